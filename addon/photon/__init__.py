@@ -1,0 +1,35 @@
+# SPDX-License-Identifier: GPL-2.0-or-later
+"""Photon: a photon-mapping render engine for Blender (engine id PHOTON, settings at scene.photon)."""
+
+bl_info = {
+    "name": "Photon",
+    "author": "Photon developers",
+    "version": (0, 1, 0),
+    "blender": (3, 4, 0),
+    "location": "Render Properties > Render Engine > Photon",
+    "description": "Photon mapping, ray tracing and radiosity render engine",
+    "category": "Render",
+}
+
+# The native module may be missing or built for another Python: the add-on must still register
+# so the panel can say why instead of Blender refusing to enable it.
+try:
+    from . import _photon  # noqa: F401
+    NATIVE_IMPORT_ERROR = None
+except Exception as exc:  # ImportError, or an undefined symbol from a stale build
+    _photon = None
+    NATIVE_IMPORT_ERROR = f"{type(exc).__name__}: {exc}"
+
+from . import engine, properties, ui  # noqa: E402
+
+_modules = (properties, engine, ui)
+
+
+def register():
+    for module in _modules:
+        module.register()
+
+
+def unregister():
+    for module in reversed(_modules):
+        module.unregister()

@@ -1,0 +1,81 @@
+"""Builds a native scene from Blender's evaluated depsgraph (Blender types stop here)."""
+
+import time
+
+import numpy as np
+
+from . import sync_camera, sync_lights, sync_materials, sync_mesh
+
+
+class SyncStats:
+    def __init__(self):
+        self.meshes = 0
+        self.instances = 0
+        self.triangles = 0
+        self.lights = 0
+        self.seconds = 0.0
+
+
+def sync_scene(native, depsgraph, reporter):
+    """Returns (native Scene, SyncStats)."""
+    t0 = time.perf_counter()
+    scene = depsgraph.scene
+    native_scene = native.Scene()
+    stats = SyncStats()
+    materials = sync_materials.MaterialTable(native_scene, reporter)
+
+    mesh_index = {}        # data identity -> native mesh index (None: no triangles)
+    pending = {}           # (mesh index, slot tuple, visibility) -> list of 4x4 matrices
+    unsupported = {}       # object type -> object names
+
+    for inst in depsgraph.object_instances:
+        # Instance items die when iteration moves on: use them only inside this body.
+        obj = inst.object
+        obj_type = obj.type
+        if obj_type == 'LIGHT':
+            if sync_lights.export_light(native, native_scene, obj, inst.matrix_world, reporter):
+                stats.lights += 1
+            continue
+        if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
+            unsupported.setdefault(obj_type, set()).add(obj.name)
+            continue
+        if obj_type not in sync_mesh.GEOMETRY_TYPES:
+            continue
+        if not inst.is_instance and not inst.show_self:
+            continue
+        # The evaluated data block identifies shared geometry: every instance of one mesh
+        # (particles, geometry nodes, linked duplicates) maps to one native mesh and one BVH.
+        data = obj.data
+        key = ("data", data.as_pointer()) if data is not None else ("object", obj.name)
+        if key not in mesh_index:
+            index, triangles = sync_mesh.export_object_mesh(native_scene, obj, reporter)
+            mesh_index[key] = index
+            if index is not None:
+                stats.meshes += 1
+                stats.triangles += triangles
+        index = mesh_index[key]
+        if index is None:
+            continue
+        slots = tuple(materials.slot_indices(obj))
+        visibility = sync_lights.visibility_bits(native, obj)
+        pending.setdefault((index, slots, visibility), []).append(
+            np.asarray(inst.matrix_world, dtype=np.float32))
+
+    for (index, slots, visibility), matrices in pending.items():
+        stats.instances += native_scene.add_instances(
+            index, np.stack(matrices), list(slots), visibility)
+
+    for obj_type, names in sorted(unsupported.items()):
+        shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")
+        reporter.warning(f"{obj_type.title()} objects are not supported yet and were skipped: "
+                         f"{shown}")
+
+    sync_camera.export_camera(native_scene, scene, depsgraph, reporter)
+    native_scene.set_world(sync_materials.world_color(scene.world, reporter))
+
+    if stats.triangles == 0:
+        reporter.warning("The scene has no renderable geometry")
+    if stats.lights == 0 and max(sync_materials.world_color(scene.world, reporter)) <= 0.0:
+        reporter.warning("The scene has no lights and a black world: only emissive surfaces will show")
+    stats.seconds = time.perf_counter() - t0
+    return native_scene, stats

@@ -1,0 +1,83 @@
+"""The scene camera as a native camera: view window, clipping and depth of field."""
+
+import numpy as np
+
+
+def render_size(render):
+    """Full frame size in pixels, as Blender computes it (integer percentage scaling)."""
+    width = render.resolution_x * render.resolution_percentage // 100
+    height = render.resolution_y * render.resolution_percentage // 100
+    return max(width, 1), max(height, 1)
+
+
+def render_region(render, width, height):
+    """Pixel rectangle (x0, y0, x1, y1), y downwards, that Blender's result covers.
+
+    Blender truncates border * size to integers for its render rectangle, with y measured
+    from the bottom; the render result is that rectangle's size.
+    """
+    if not render.use_border:
+        return 0, 0, width, height
+    xmin = int(render.border_min_x * width)
+    xmax = int(render.border_max_x * width)
+    ymin = int(render.border_min_y * height)
+    ymax = int(render.border_max_y * height)
+    xmax = max(xmax, xmin + 1)
+    ymax = max(ymax, ymin + 1)
+    return xmin, height - ymax, xmax, height - ymin
+
+
+def export_camera(native_scene, scene, depsgraph, reporter):
+    cam_obj = scene.camera
+    if cam_obj is None:
+        reporter.warning("The scene has no camera; rendering from the default view")
+        native_scene.set_camera("PERSP", np.identity(4, dtype=np.float32),
+                                [-0.5, 0.5, -0.5, 0.5], 0.1, 1000.0)
+        return
+    cam_obj = cam_obj.evaluated_get(depsgraph)
+    if cam_obj.type != 'CAMERA':
+        reporter.warning(f"Active camera '{cam_obj.name}' is not a camera object; "
+                         f"using its transform with a 50 mm lens")
+        matrix = cam_obj.matrix_world.normalized()
+        native_scene.set_camera("PERSP", np.asarray(matrix, dtype=np.float32),
+                                [-0.36, 0.36, -0.36, 0.36], 0.1, 1000.0)
+        return
+    cam = cam_obj.data
+    projection = "ORTHO" if cam.type == 'ORTHO' else "PERSP"
+    if cam.type == 'PANO':
+        reporter.warning(f"Camera '{cam_obj.name}': panoramic cameras are not supported; "
+                         f"rendering as perspective")
+
+    # view_frame() folds in sensor fit, lens shift, aspect ratio and the orthographic scale.
+    frame = cam.view_frame(scene=scene)
+    xs = [v.x for v in frame]
+    ys = [v.y for v in frame]
+    if projection == "PERSP":
+        depth = -frame[0].z
+        if depth <= 0.0:
+            depth = 1.0
+        xs = [x / depth for x in xs]
+        ys = [y / depth for y in ys]
+    window = [min(xs), max(xs), min(ys), max(ys)]
+
+    aperture_radius = 0.0
+    focus_distance = 10.0
+    if cam.dof.use_dof:
+        fstop = max(cam.dof.aperture_fstop, 1e-5)
+        if projection == "ORTHO":
+            aperture_radius = 1.0 / (2.0 * fstop)
+        else:
+            aperture_radius = (cam.lens * 1e-3) / (2.0 * fstop)
+        if cam.dof.focus_object is not None:
+            focus = cam.dof.focus_object.evaluated_get(depsgraph).matrix_world.translation
+            view_axis = cam_obj.matrix_world.to_3x3().normalized().col[2]
+            focus_distance = abs(view_axis.dot(cam_obj.matrix_world.translation - focus))
+        else:
+            focus_distance = cam.dof.focus_distance
+        focus_distance = max(focus_distance, 1e-5)
+
+    # Cycles removes the camera object's scale; so do we.
+    matrix = cam_obj.matrix_world.normalized()
+    native_scene.set_camera(projection, np.asarray(matrix, dtype=np.float32), window,
+                            float(cam.clip_start), float(cam.clip_end),
+                            float(aperture_radius), float(focus_distance))

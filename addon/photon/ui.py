@@ -1,0 +1,95 @@
+"""Panels for the Photon engine, and Blender's own panels that apply to it."""
+
+import bpy
+
+ENGINE = "PHOTON"
+
+# Blender's built-in panels that work for any engine using shader nodes: material slots and
+# surface, world surface. Panels that list BLENDER_RENDER (dimensions, output, object, ...) are
+# engine-independent and are enabled too.
+EXTRA_PANELS = (
+    "EEVEE_MATERIAL_PT_context_material",
+    "EEVEE_MATERIAL_PT_surface",
+    "EEVEE_WORLD_PT_surface",
+    "DATA_PT_light",
+    "DATA_PT_EEVEE_light",
+    "DATA_PT_EEVEE_light_distance",
+    "DATA_PT_spot",
+    "DATA_PT_camera_dof",
+    "DATA_PT_camera_dof_aperture",
+    "RENDER_PT_film",
+)
+EXCLUDED_PANELS = {"VIEWLAYER_PT_filter", "VIEWLAYER_PT_layer_passes"}
+
+
+def compatible_panels():
+    for panel in bpy.types.Panel.__subclasses__():
+        engines = getattr(panel, "COMPAT_ENGINES", None)
+        if engines is None or panel.__name__ in EXCLUDED_PANELS:
+            continue
+        if "BLENDER_RENDER" in engines or panel.__name__ in EXTRA_PANELS:
+            yield panel
+
+
+class PhotonPanel:
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "render"
+    COMPAT_ENGINES = {ENGINE}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+
+class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
+    bl_label = "Photon"
+
+    def draw(self, context):
+        from . import NATIVE_IMPORT_ERROR
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        if NATIVE_IMPORT_ERROR:
+            box = layout.box()
+            box.alert = True
+            box.label(text="The native renderer failed to load:", icon="ERROR")
+            for line in NATIVE_IMPORT_ERROR.split(": "):
+                box.label(text=line)
+        props = context.scene.photon
+        layout.prop(props, "integrator")
+        col = layout.column(align=True)
+        col.prop(props, "samples")
+        col.prop(props, "max_depth")
+        layout.prop(props, "seed")
+
+
+class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
+    bl_label = "Performance"
+    bl_parent_id = "PHOTON_PT_render"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        props = context.scene.photon
+        layout.prop(props, "threads")
+        layout.prop(props, "tile_size")
+
+
+classes = (PHOTON_PT_render, PHOTON_PT_performance)
+
+
+def register():
+    for cls in classes:
+        bpy.utils.register_class(cls)
+    for panel in compatible_panels():
+        panel.COMPAT_ENGINES.add(ENGINE)
+
+
+def unregister():
+    for panel in compatible_panels():
+        panel.COMPAT_ENGINES.discard(ENGINE)
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

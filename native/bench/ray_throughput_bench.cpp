@@ -1,0 +1,122 @@
+// Camera-ray throughput of the RAY_TRACE integrator against a bare Embree rtcIntersect1 loop over
+// the same rays. Run: build/photon_bench --benchmark_filter=Camera
+// Target (issue 2): integrator camera rays >= 70% of bare Embree.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+
+#include "photon/accel.h"
+#include "photon/camera.h"
+#include "photon/ray_trace_integrator.h"
+#include "photon/test_scenes.h"
+
+using namespace photon;
+
+namespace {
+
+constexpr int kSize = 256;
+
+struct Fixture {
+  Scene scene;
+  std::vector<std::string> warnings;
+  std::unique_ptr<Accel> accel;
+  std::unique_ptr<LightSet> lights;
+  RenderSettings settings;
+  std::vector<Ray> rays;
+
+  explicit Fixture(bool with_lights) {
+    scene = make_cornell_box();
+    // A dense sphere so the BVH is not trivially small.
+    add_mesh_instance(&scene, make_uv_sphere({0.4f, 0.3f, 0.9f}, 0.3f, 256, 128), 0);
+    if (!with_lights) scene.lights.clear();
+    accel = std::make_unique<Accel>(scene, &warnings);
+    lights = std::make_unique<LightSet>(scene.lights, &warnings);
+    settings.full_width = settings.full_height = kSize;
+    settings.x1 = settings.y1 = kSize;
+    settings.max_depth = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x)
+        rays.push_back(generate_camera_ray(scene.camera, (x + 0.5f) / kSize, (y + 0.5f) / kSize,
+                                           Vec2(0.5f, 0.5f)));
+  }
+  RenderContext context() const {
+    RenderContext c;
+    c.scene = &scene;
+    c.accel = accel.get();
+    c.lights = lights.get();
+    c.settings = &settings;
+    return c;
+  }
+};
+
+void BM_CameraRays_BareEmbree(benchmark::State& state) {
+  Fixture f(false);
+  RTCScene top = f.accel->top_level();
+  uint64_t hits = 0;
+  for (auto _ : state) {
+    for (const Ray& r : f.rays) {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      RTCRayHit rh;
+      rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
+      rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
+      rh.ray.tnear = r.tmin, rh.ray.tfar = r.tmax, rh.ray.time = 0, rh.ray.mask = kVisibleCamera;
+      rh.ray.id = 0, rh.ray.flags = 0;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(top, &ctx, &rh);
+      hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    }
+  }
+  benchmark::DoNotOptimize(hits);
+  state.SetItemsProcessed(state.iterations() * f.rays.size());
+}
+
+// Camera rays through the integrator: ray generation, intersection, hit shading setup and the
+// material lookup, with no lights (so no shadow rays) - the per-camera-ray overhead.
+void BM_CameraRays_RayTraceIntegrator(benchmark::State& state) {
+  Fixture f(false);
+  RayTraceIntegrator integrator;
+  const RenderContext ctx = f.context();
+  float sum = 0.0f;
+  for (auto _ : state) {
+    for (int y = 0; y < kSize; ++y) {
+      for (int x = 0; x < kSize; ++x) {
+        Sampler sampler(0, static_cast<uint64_t>(y) * kSize + x, 0);
+        const Vec2 jitter = sampler.get_2d();
+        const Ray ray = generate_camera_ray(f.scene.camera, (x + jitter.x) / kSize,
+                                            (y + jitter.y) / kSize, sampler.get_2d());
+        sum += integrator.radiance(ctx, ray, sampler).alpha;
+      }
+    }
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations() * kSize * kSize);
+}
+
+// The full RAY_TRACE shading of one camera sample per pixel (camera ray + one shadow ray).
+void BM_ShadedSamples_RayTraceIntegrator(benchmark::State& state) {
+  Fixture f(true);
+  RayTraceIntegrator integrator;
+  const RenderContext ctx = f.context();
+  float sum = 0.0f;
+  for (auto _ : state) {
+    for (int y = 0; y < kSize; ++y) {
+      for (int x = 0; x < kSize; ++x) {
+        Sampler sampler(0, static_cast<uint64_t>(y) * kSize + x, 0);
+        const Vec2 jitter = sampler.get_2d();
+        const Ray ray = generate_camera_ray(f.scene.camera, (x + jitter.x) / kSize,
+                                            (y + jitter.y) / kSize, sampler.get_2d());
+        sum += integrator.radiance(ctx, ray, sampler).radiance.x;
+      }
+    }
+  }
+  benchmark::DoNotOptimize(sum);
+  state.SetItemsProcessed(state.iterations() * kSize * kSize);
+}
+
+}  // namespace
+
+BENCHMARK(BM_CameraRays_BareEmbree)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CameraRays_RayTraceIntegrator)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ShadedSamples_RayTraceIntegrator)->Unit(benchmark::kMillisecond);
+BENCHMARK_MAIN();

@@ -1,0 +1,300 @@
+// The `_photon` Python module: builds a native Scene from numpy buffers and runs renders with the
+// GIL released. Blender types never reach this file; the add-on converts them to arrays first.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <stdexcept>
+
+#include "photon/render_session.h"
+#include "photon/scene.h"
+
+namespace py = pybind11;
+using namespace photon;
+
+namespace {
+
+using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+using IntArray = py::array_t<int32_t, py::array::c_style | py::array::forcecast>;
+
+// Copies a numpy array holding `group` values per row into `out` with one memcpy; each element of
+// `out` packs sizeof(T) / sizeof(value) values (a Vec3 packs three floats).
+template <typename T, typename Array>
+void copy_rows(const Array& a, size_t group, std::vector<T>* out, const char* what) {
+  using Value = typename Array::value_type;
+  static_assert(sizeof(T) % sizeof(Value) == 0, "element layout");
+  constexpr size_t kPerElement = sizeof(T) / sizeof(Value);
+  const size_t n = static_cast<size_t>(a.size());
+  if (n % group != 0 || n % kPerElement != 0)
+    throw std::invalid_argument(std::string(what) + ": size is not a multiple of " +
+                                std::to_string(group));
+  out->resize(n / kPerElement);
+  if (n) std::memcpy(out->data(), a.data(), n * sizeof(Value));
+}
+
+Transform transform_from(const FloatArray& m) {
+  if (m.size() != 16 && m.size() != 12)
+    throw std::invalid_argument("matrix must have 16 (4x4) or 12 (3x4) values, row-major");
+  return Transform::from_rows(m.data());
+}
+
+Vec3 vec3_from(const std::vector<float>& v, const char* what) {
+  if (v.size() < 3) throw std::invalid_argument(std::string(what) + " needs 3 values");
+  return {v[0], v[1], v[2]};
+}
+
+py::dict stats_dict(const RenderStats& s) {
+  py::dict d;
+  d["build_seconds"] = s.build_seconds;
+  d["prepare_seconds"] = s.prepare_seconds;
+  d["render_seconds"] = s.render_seconds;
+  d["camera_samples"] = s.camera_samples;
+  d["non_finite_samples"] = s.non_finite_samples;
+  d["unique_triangles"] = s.unique_triangles;
+  d["instances"] = s.instances;
+  d["bvh_count"] = s.bvh_count;
+  d["lights"] = s.lights;
+  d["threads"] = s.threads;
+  return d;
+}
+
+py::array_t<float> to_numpy(std::vector<float>&& data, int height, int width) {
+  auto* heap = new std::vector<float>(std::move(data));
+  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+  return py::array_t<float>({height, width, 4}, heap->data(), owner);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_photon, m) {
+  m.doc() = "Photon native renderer";
+
+  py::class_<Scene, std::shared_ptr<Scene>>(m, "Scene")
+      .def(py::init<>())
+      .def(
+          "add_mesh",
+          [](Scene& scene, const std::string& name, const FloatArray& positions,
+             const IntArray& triangles, py::object corner_normals, py::object corner_uvs,
+             py::object material_slots) {
+            Mesh mesh;
+            mesh.name = name;
+            copy_rows(positions, 3, &mesh.positions, "positions");
+            // Reinterpreted as unsigned: a negative index becomes huge and is dropped as out of range.
+            copy_rows(triangles, 3, &mesh.indices, "triangles");
+            if (!corner_normals.is_none())
+              copy_rows(corner_normals.cast<FloatArray>(), 3, &mesh.corner_normals,
+                        "corner_normals");
+            if (!corner_uvs.is_none())
+              copy_rows(corner_uvs.cast<FloatArray>(), 2, &mesh.corner_uvs, "corner_uvs");
+            if (!material_slots.is_none())
+              copy_rows(material_slots.cast<IntArray>(), 1, &mesh.material_slots,
+                        "material_slots");
+            MeshCleanupReport report;
+            {
+              py::gil_scoped_release release;
+              report = clean_mesh(&mesh);
+            }
+            py::dict d;
+            d["index"] = scene.meshes.size();
+            d["triangles"] = mesh.triangle_count();
+            d["non_finite_vertices"] = report.non_finite_vertices;
+            d["dropped_triangles"] = report.dropped_triangles;
+            scene.meshes.push_back(std::move(mesh));
+            return d;
+          },
+          py::arg("name"), py::arg("positions"), py::arg("triangles"),
+          py::arg("corner_normals") = py::none(), py::arg("corner_uvs") = py::none(),
+          py::arg("material_slots") = py::none(),
+          "Adds a triangle mesh; invalid triangles are dropped and counted.")
+      .def(
+          "add_instance",
+          [](Scene& scene, uint32_t mesh, const FloatArray& matrix,
+             const std::vector<int32_t>& slot_materials, uint32_t visibility,
+             const std::string& name) {
+            if (mesh >= scene.meshes.size()) throw std::out_of_range("mesh index");
+            Instance inst;
+            inst.name = name;
+            inst.mesh = mesh;
+            inst.object_to_world = transform_from(matrix);
+            inst.slot_materials = slot_materials;
+            inst.visibility = visibility & kVisibleAll;
+            scene.instances.push_back(std::move(inst));
+            return scene.instances.size() - 1;
+          },
+          py::arg("mesh"), py::arg("matrix"), py::arg("slot_materials") = std::vector<int32_t>{},
+          py::arg("visibility") = static_cast<uint32_t>(kVisibleAll), py::arg("name") = "")
+      .def(
+          "add_instances",
+          [](Scene& scene, uint32_t mesh, const FloatArray& matrices,
+             const std::vector<int32_t>& slot_materials, uint32_t visibility,
+             const std::string& name) {
+            if (mesh >= scene.meshes.size()) throw std::out_of_range("mesh index");
+            if (matrices.size() % 16) throw std::invalid_argument("matrices: N x 4 x 4 expected");
+            const size_t n = matrices.size() / 16;
+            for (size_t i = 0; i < n; ++i) {
+              Instance inst;
+              inst.name = name;
+              inst.mesh = mesh;
+              inst.object_to_world = Transform::from_rows(matrices.data() + 16 * i);
+              inst.slot_materials = slot_materials;
+              inst.visibility = visibility & kVisibleAll;
+              scene.instances.push_back(std::move(inst));
+            }
+            return n;
+          },
+          py::arg("mesh"), py::arg("matrices"), py::arg("slot_materials") = std::vector<int32_t>{},
+          py::arg("visibility") = static_cast<uint32_t>(kVisibleAll), py::arg("name") = "",
+          "Adds many instances of one mesh from an (N, 4, 4) array of row-major matrices.")
+      .def(
+          "add_material",
+          [](Scene& scene, const std::string& name, const std::string& type,
+             const std::vector<float>& color, float ior, const std::vector<float>& emission) {
+            Material mat;
+            mat.name = name;
+            if (type == "DIFFUSE") mat.type = MaterialType::kDiffuse;
+            else if (type == "MIRROR") mat.type = MaterialType::kMirror;
+            else if (type == "GLASS") mat.type = MaterialType::kGlass;
+            else throw std::invalid_argument("unknown material type " + type);
+            mat.color = max(vec3_from(color, "color"), Vec3(0.0f));
+            mat.ior = std::isfinite(ior) ? std::clamp(ior, 1e-3f, 100.0f) : 1.45f;
+            mat.emission = max(vec3_from(emission, "emission"), Vec3(0.0f));
+            if (!is_finite(mat.color)) mat.color = Vec3(0.8f);
+            if (!is_finite(mat.emission)) mat.emission = Vec3(0.0f);
+            scene.materials.push_back(std::move(mat));
+            return scene.materials.size() - 1;
+          },
+          py::arg("name"), py::arg("type") = "DIFFUSE",
+          py::arg("color") = std::vector<float>{0.8f, 0.8f, 0.8f}, py::arg("ior") = 1.45f,
+          py::arg("emission") = std::vector<float>{0.0f, 0.0f, 0.0f})
+      .def(
+          "add_light",
+          [](Scene& scene, const std::string& name, const std::string& type,
+             const FloatArray& matrix, const std::vector<float>& color, float power, float radius,
+             float spot_size, float spot_blend, float sun_angle, const std::string& shape,
+             float size_x, float size_y, uint32_t visibility) {
+            Light l;
+            l.name = name;
+            if (type == "POINT") l.type = LightType::kPoint;
+            else if (type == "SPOT") l.type = LightType::kSpot;
+            else if (type == "SUN") l.type = LightType::kSun;
+            else if (type == "AREA") l.type = LightType::kArea;
+            else throw std::invalid_argument("unknown light type " + type);
+            l.light_to_world = transform_from(matrix);
+            l.color = vec3_from(color, "color");
+            l.power = power;
+            l.radius = radius;
+            l.spot_size = spot_size;
+            l.spot_blend = spot_blend;
+            l.sun_angle = sun_angle;
+            l.shape = (shape == "DISK" || shape == "ELLIPSE") ? AreaShape::kEllipse
+                                                               : AreaShape::kRectangle;
+            l.size_x = size_x;
+            l.size_y = (shape == "SQUARE" || shape == "DISK") ? size_x : size_y;
+            l.visibility = visibility & kVisibleAll;
+            scene.lights.push_back(std::move(l));
+            return scene.lights.size() - 1;
+          },
+          py::arg("name"), py::arg("type"), py::arg("matrix"), py::arg("color"), py::arg("power"),
+          py::arg("radius") = 0.0f, py::arg("spot_size") = 0.785398f,
+          py::arg("spot_blend") = 0.15f, py::arg("sun_angle") = 0.0f,
+          py::arg("shape") = "SQUARE", py::arg("size_x") = 1.0f, py::arg("size_y") = 1.0f,
+          py::arg("visibility") = static_cast<uint32_t>(kVisibleGlossy | kVisibleTransmission))
+      .def(
+          "set_camera",
+          [](Scene& scene, const std::string& projection, const FloatArray& matrix,
+             const std::vector<float>& window, float clip_start, float clip_end,
+             float aperture_radius, float focus_distance) {
+            Camera& c = scene.camera;
+            c.projection =
+                projection == "ORTHO" ? Projection::kOrthographic : Projection::kPerspective;
+            c.camera_to_world = transform_from(matrix);
+            if (window.size() != 4) throw std::invalid_argument("window: min_x max_x min_y max_y");
+            c.window_min_x = window[0];
+            c.window_max_x = window[1];
+            c.window_min_y = window[2];
+            c.window_max_y = window[3];
+            c.clip_start = std::max(clip_start, 0.0f);
+            c.clip_end = clip_end;
+            c.aperture_radius = std::max(aperture_radius, 0.0f);
+            c.focus_distance = focus_distance;
+          },
+          py::arg("projection"), py::arg("matrix"), py::arg("window"), py::arg("clip_start"),
+          py::arg("clip_end"), py::arg("aperture_radius") = 0.0f,
+          py::arg("focus_distance") = 10.0f)
+      .def(
+          "set_world",
+          [](Scene& scene, const std::vector<float>& color) {
+            Vec3 c = max(vec3_from(color, "color"), Vec3(0.0f));
+            scene.world.color = is_finite(c) ? c : Vec3(0.0f);
+          },
+          py::arg("color"))
+      .def_property_readonly("mesh_count", [](const Scene& s) { return s.meshes.size(); })
+      .def_property_readonly("instance_count", [](const Scene& s) { return s.instances.size(); })
+      .def_property_readonly("light_count", [](const Scene& s) { return s.lights.size(); })
+      .def_property_readonly("material_count", [](const Scene& s) { return s.materials.size(); })
+      .def_property_readonly("triangle_count", [](const Scene& s) {
+        size_t n = 0;
+        for (const Mesh& mesh : s.meshes) n += mesh.triangle_count();
+        return n;
+      });
+
+  py::enum_<IntegratorType>(m, "Integrator").value("RAY_TRACE", IntegratorType::kRayTrace);
+
+  py::class_<RenderSettings>(m, "RenderSettings")
+      .def(py::init<>())
+      .def_readwrite("full_width", &RenderSettings::full_width)
+      .def_readwrite("full_height", &RenderSettings::full_height)
+      .def_readwrite("x0", &RenderSettings::x0)
+      .def_readwrite("y0", &RenderSettings::y0)
+      .def_readwrite("x1", &RenderSettings::x1)
+      .def_readwrite("y1", &RenderSettings::y1)
+      .def_readwrite("samples", &RenderSettings::samples)
+      .def_readwrite("max_depth", &RenderSettings::max_depth)
+      .def_readwrite("seed", &RenderSettings::seed)
+      .def_readwrite("threads", &RenderSettings::threads)
+      .def_readwrite("tile_size", &RenderSettings::tile_size)
+      .def_readwrite("transparent_background", &RenderSettings::transparent_background)
+      .def_readwrite("integrator", &RenderSettings::integrator);
+
+  py::class_<RenderSession>(m, "RenderSession")
+      .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings) {
+             return std::make_unique<RenderSession>(std::move(scene), settings);
+           }),
+           py::arg("scene"), py::arg("settings"))
+      .def("start", &RenderSession::start)
+      .def("cancel", &RenderSession::cancel)
+      .def("wait", &RenderSession::wait, py::call_guard<py::gil_scoped_release>())
+      .def(
+          "take_tiles",
+          [](RenderSession& s, double timeout) {
+            std::vector<Tile> tiles;
+            {
+              py::gil_scoped_release release;
+              tiles = s.take_tiles(timeout);
+            }
+            py::list out;
+            for (Tile& t : tiles) {
+              const int w = t.width, h = t.height, x = t.x, y = t.y;
+              out.append(py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w)));
+            }
+            return out;
+          },
+          py::arg("timeout") = 0.1,
+          "Finished tiles as (x, y, width, height, rgba[h, w, 4]) with y downwards.")
+      .def_property_readonly("finished", &RenderSession::finished)
+      .def_property_readonly("cancelled", &RenderSession::cancelled)
+      .def_property_readonly("progress", &RenderSession::progress)
+      .def_property_readonly("status", &RenderSession::status)
+      .def_property_readonly("warnings", &RenderSession::warnings)
+      .def_property_readonly("stats", [](const RenderSession& s) { return stats_dict(s.stats()); })
+      .def("image", [](const RenderSession& s) {
+        return to_numpy(s.image(), s.region_height(), s.region_width());
+      });
+
+  m.attr("VISIBLE_CAMERA") = static_cast<uint32_t>(kVisibleCamera);
+  m.attr("VISIBLE_DIFFUSE") = static_cast<uint32_t>(kVisibleDiffuse);
+  m.attr("VISIBLE_GLOSSY") = static_cast<uint32_t>(kVisibleGlossy);
+  m.attr("VISIBLE_TRANSMISSION") = static_cast<uint32_t>(kVisibleTransmission);
+  m.attr("VISIBLE_SHADOW") = static_cast<uint32_t>(kVisibleShadow);
+}

@@ -1,0 +1,182 @@
+#include "photon/accel.h"
+
+#include <cstring>
+
+namespace photon {
+namespace {
+
+Vec3 mat3_mul(const float m[3][3], const Vec3& v) {
+  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+          m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+}
+
+void init_ray(const Ray& ray, uint32_t mask, RTCRay* r) {
+  r->org_x = ray.origin.x;
+  r->org_y = ray.origin.y;
+  r->org_z = ray.origin.z;
+  r->dir_x = ray.direction.x;
+  r->dir_y = ray.direction.y;
+  r->dir_z = ray.direction.z;
+  r->tnear = ray.tmin;
+  r->tfar = ray.tmax;
+  r->time = 0.0f;
+  r->mask = mask;
+  r->id = 0;
+  r->flags = 0;
+}
+
+}  // namespace
+
+void Accel::on_embree_error(void* user, RTCError code, const char* message) {
+  auto* self = static_cast<Accel*>(user);
+  std::lock_guard<std::mutex> lock(self->warnings_mutex_);
+  if (self->warnings_)
+    self->warnings_->push_back("Embree error " + std::to_string(static_cast<int>(code)) + ": " +
+                               (message ? message : ""));
+}
+
+Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
+    : scene_(scene), warnings_(warnings) {
+  device_ = rtcNewDevice(nullptr);
+  rtcSetDeviceErrorFunction(device_, &Accel::on_embree_error, this);
+
+  // Bottom level: one scene per mesh that has triangles and is used by an instance.
+  std::vector<uint8_t> used(scene.meshes.size(), 0);
+  for (const Instance& inst : scene.instances)
+    if (inst.mesh < used.size()) used[inst.mesh] = 1;
+  mesh_scenes_.assign(scene.meshes.size(), nullptr);
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    if (!used[m] || mesh.triangle_count() == 0) continue;
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it:
+    // copy into a padded buffer owned by Embree instead of sharing the std::vector.
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), mesh.positions.size()));
+    if (vertices) std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                               mesh.indices.data(), 0, 3 * sizeof(uint32_t),
+                               mesh.triangle_count());
+    rtcCommitGeometry(geom);
+    RTCScene blas = rtcNewScene(device_);
+    rtcSetSceneFlags(blas, RTC_SCENE_FLAG_ROBUST);
+    rtcAttachGeometryByID(blas, geom, 0);
+    rtcReleaseGeometry(geom);
+    rtcCommitScene(blas);
+    mesh_scenes_[m] = blas;
+    ++blas_count_;
+    triangle_count_ += mesh.triangle_count();
+  }
+
+  // Top level: one instance geometry per Instance; geometry id = index into instances_.
+  top_ = rtcNewScene(device_);
+  rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
+  size_t skipped = 0;
+  for (const Instance& inst : scene.instances) {
+    if (inst.mesh >= mesh_scenes_.size() || !mesh_scenes_[inst.mesh]) continue;
+    InstanceData data;
+    data.mesh = &scene.meshes[inst.mesh];
+    data.source = &inst;
+    data.to_world = inst.object_to_world;
+    if (!data.to_world.is_finite() || !data.to_world.normal_matrix(data.normal_matrix)) {
+      ++skipped;
+      continue;
+    }
+    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(geom, mesh_scenes_[inst.mesh]);
+    float xf[12];  // 3x4 column major
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 3; ++r) xf[c * 3 + r] = data.to_world.m[r][c];
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xf);
+    rtcSetGeometryMask(geom, inst.visibility);
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(instances_.size()));
+    rtcReleaseGeometry(geom);
+    instances_.push_back(data);
+  }
+  rtcCommitScene(top_);
+  if (skipped && warnings_)
+    warnings_->push_back("Skipped " + std::to_string(skipped) +
+                         " instance(s) with a non-finite or singular transform");
+
+  if (!instances_.empty()) {
+    RTCBounds b;
+    rtcGetSceneBounds(top_, &b);
+    bounds_min_ = Vec3(b.lower_x, b.lower_y, b.lower_z);
+    bounds_max_ = Vec3(b.upper_x, b.upper_y, b.upper_z);
+  }
+}
+
+Accel::~Accel() {
+  if (top_) rtcReleaseScene(top_);
+  for (RTCScene s : mesh_scenes_)
+    if (s) rtcReleaseScene(s);
+  if (device_) rtcReleaseDevice(device_);
+}
+
+bool Accel::intersect(const Ray& ray, uint32_t mask, Hit* hit) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  init_ray(ray, mask, &rh.ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(top_, &context, &rh);
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+  hit->t = rh.ray.tfar;
+  hit->u = rh.hit.u;
+  hit->v = rh.hit.v;
+  hit->instance = rh.hit.instID[0];
+  hit->primitive = rh.hit.primID;
+  return true;
+}
+
+bool Accel::occluded(const Ray& ray, uint32_t mask) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r;
+  init_ray(ray, mask, &r);
+  rtcOccluded1(top_, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar to -inf when something blocks the ray
+}
+
+SurfaceInteraction Accel::interaction(const Hit& hit) const {
+  const InstanceData& inst = instances_[hit.instance];
+  const Mesh& mesh = *inst.mesh;
+  const size_t tri = hit.primitive;
+  const uint32_t* idx = &mesh.indices[3 * tri];
+  const Vec3 &p0 = mesh.positions[idx[0]], &p1 = mesh.positions[idx[1]],
+             &p2 = mesh.positions[idx[2]];
+  const float b0 = 1.0f - hit.u - hit.v;
+
+  SurfaceInteraction si;
+  si.p = inst.to_world.point(p0 * b0 + p1 * hit.u + p2 * hit.v);
+  si.ng = normalize(mat3_mul(inst.normal_matrix, cross(p1 - p0, p2 - p0)));
+  si.ns = si.ng;
+  if (!mesh.corner_normals.empty()) {
+    const Vec3* n = &mesh.corner_normals[3 * tri];
+    Vec3 ns = mat3_mul(inst.normal_matrix, n[0] * b0 + n[1] * hit.u + n[2] * hit.v);
+    if (length_squared(ns) > 0.0f && is_finite(ns)) {
+      ns = normalize(ns);
+      si.ns = dot(ns, si.ng) < 0.0f ? -ns : ns;
+    }
+  }
+  if (!mesh.corner_uvs.empty()) {
+    const Vec2* uv = &mesh.corner_uvs[3 * tri];
+    si.uv = uv[0] * b0 + uv[1] * hit.u + uv[2] * hit.v;
+  }
+  const int32_t slot = mesh.material_slots.empty() ? 0 : mesh.material_slots[tri];
+  const auto& slots = inst.source->slot_materials;
+  int32_t material = (slot >= 0 && static_cast<size_t>(slot) < slots.size()) ? slots[slot] : -1;
+  if (material >= 0 && static_cast<size_t>(material) < scene_.materials.size()) {
+    si.material = static_cast<uint32_t>(material);
+    si.mat = &scene_.materials[material];
+  } else {
+    si.material = UINT32_MAX;
+    si.mat = &Scene::default_material();
+  }
+  return si;
+}
+
+}  // namespace photon

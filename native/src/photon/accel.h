@@ -1,0 +1,85 @@
+// Embree 3 acceleration structure over a Scene: one BVH per mesh, instanced into a top-level
+// scene, so N instances of a mesh cost one BVH.
+#pragma once
+
+#include <embree3/rtcore.h>
+
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "photon/math.h"
+#include "photon/scene.h"
+
+namespace photon {
+
+struct Hit {
+  float t = 0.0f;
+  float u = 0.0f, v = 0.0f;  // Embree barycentrics: p = (1-u-v) p0 + u p1 + v p2
+  uint32_t instance = 0;
+  uint32_t primitive = 0;
+};
+
+// Everything shading needs about a hit point, in world space.
+struct SurfaceInteraction {
+  Vec3 p;
+  Vec3 ng;  // geometric normal, unit length, as wound by the mesh
+  Vec3 ns;  // interpolated shading normal, on the same side as ng
+  Vec2 uv;
+  uint32_t material = 0;
+  const Material* mat = nullptr;
+};
+
+class Accel {
+ public:
+  // Builds the BVHs. `scene` must outlive the Accel. Warnings (Embree errors, skipped instances)
+  // are appended to `warnings`.
+  Accel(const Scene& scene, std::vector<std::string>* warnings);
+  ~Accel();
+  Accel(const Accel&) = delete;
+  Accel& operator=(const Accel&) = delete;
+
+  bool intersect(const Ray& ray, uint32_t mask, Hit* hit) const;
+  bool occluded(const Ray& ray, uint32_t mask) const;
+  SurfaceInteraction interaction(const Hit& hit) const;
+
+  size_t instance_count() const { return instances_.size(); }
+  size_t blas_count() const { return blas_count_; }
+  size_t triangle_count() const { return triangle_count_; }  // unique (not instanced) triangles
+  // Bounding box of all instanced geometry in world space (empty scene: min > max).
+  Vec3 bounds_min() const { return bounds_min_; }
+  Vec3 bounds_max() const { return bounds_max_; }
+  RTCScene top_level() const { return top_; }
+
+ private:
+  struct InstanceData {
+    const Mesh* mesh = nullptr;
+    const Instance* source = nullptr;
+    Transform to_world;
+    float normal_matrix[3][3];
+  };
+
+  const Scene& scene_;
+  RTCDevice device_ = nullptr;
+  RTCScene top_ = nullptr;
+  std::vector<RTCScene> mesh_scenes_;
+  std::vector<InstanceData> instances_;  // indexed by Embree instance geometry id
+  size_t blas_count_ = 0;
+  size_t triangle_count_ = 0;
+  Vec3 bounds_min_{INFINITY, INFINITY, INFINITY};
+  Vec3 bounds_max_{-INFINITY, -INFINITY, -INFINITY};
+  std::vector<std::string>* warnings_;
+  std::mutex warnings_mutex_;
+
+  static void on_embree_error(void* user, RTCError code, const char* message);
+};
+
+// Offsets a ray origin off the surface along the geometric normal, on the side `w` leaves to, so
+// a spawned ray does not re-hit its own triangle.
+inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& w) {
+  const float eps = 1e-4f * (1.0f + max_abs_component(p));
+  return dot(ng, w) >= 0.0f ? p + ng * eps : p - ng * eps;
+}
+
+}  // namespace photon

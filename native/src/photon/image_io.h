@@ -1,0 +1,15 @@
+// Writing and reading RGBA float images through OpenImageIO (EXR stays linear float).
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace photon {
+
+bool write_rgba_image(const std::string& path, const std::vector<float>& rgba, int width,
+                      int height, std::string* error);
+
+bool read_rgba_image(const std::string& path, std::vector<float>* rgba, int* width, int* height,
+                     std::string* error);
+
+}  // namespace photon

@@ -1,0 +1,58 @@
+// Light sources in world space, in the units Cycles gives Blender's lights, so an artist's watts
+// mean the same in both engines:
+//  - point / spot of power P: radiant intensity I = P / (4 pi) W/sr (spot: times Cycles' cone
+//    attenuation); with a radius r they are a disc of radius r facing the shaded point;
+//  - sun of strength S: irradiance S W/m^2 on a surface facing it, spread over its angular disc;
+//  - area of power P and area A: one-sided, uniform radiance L = P / (4 A) (Cycles' eval_fac of
+//    0.25 / A), emitted down the light's local -Z axis.
+#pragma once
+
+#include <vector>
+
+#include "photon/math.h"
+#include "photon/scene.h"
+
+namespace photon {
+
+// A sampled connection from a shading point to a light.
+struct LightSample {
+  Vec3 wi;         // unit direction from the shading point towards the light
+  float distance;  // to the sampled point; INFINITY for the sun
+  Vec3 weight;     // Le * G / pdf without the receiver cosine: irradiance per unit cos(theta)
+};
+
+class LightSet {
+ public:
+  explicit LightSet(const std::vector<Light>& lights, std::vector<std::string>* warnings);
+
+  size_t size() const { return lights_.size(); }
+
+  // Samples light `index` as seen from point `p`. Returns false if it sends nothing there.
+  bool sample(size_t index, const Vec3& p, Vec2 u, LightSample* out) const;
+
+  // Nearest light surface (area quad/disc or point-light sphere) hit by the ray before `tmax`
+  // among lights whose visibility matches `mask`. Returns the emitted radiance towards the ray.
+  bool intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance) const;
+
+ private:
+  struct Prepared {
+    LightType type;
+    AreaShape shape;
+    uint32_t visibility;
+    Vec3 position;
+    Vec3 axis;          // emission direction (world -Z of the light), unit
+    Vec3 half_u, half_v;  // area: half extents in world space
+    Vec3 intensity;     // point / spot: W/sr
+    Vec3 radiance;      // area, sphere and sun surfaces: W/m^2/sr
+    Vec3 irradiance;    // sun: W/m^2
+    float radius;
+    float area;
+    float cos_half_spot;
+    float spot_smooth;
+    float sun_cos_max;  // cos of half the sun's angular diameter
+  };
+  static float spot_attenuation(const Prepared& l, const Vec3& dir_from_light);
+  std::vector<Prepared> lights_;
+};
+
+}  // namespace photon

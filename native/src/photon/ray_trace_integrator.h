@@ -1,0 +1,20 @@
+// Whitted-style ray tracing (Whitted 1980): direct light from every light at diffuse surfaces,
+// perfect mirror reflection and dielectric refraction followed recursively up to max_depth.
+#pragma once
+
+#include "photon/integrator.h"
+
+namespace photon {
+
+class RayTraceIntegrator : public Integrator {
+ public:
+  RadianceSample radiance(const RenderContext& context, const Ray& camera_ray,
+                          Sampler& sampler) const override;
+};
+
+// Irradiance at a diffuse point from all lights and the world, one shadow ray per light.
+// Multiply by albedo / pi for outgoing radiance. Shared with later integrators.
+Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& si,
+                       Sampler& sampler);
+
+}  // namespace photon

@@ -1,0 +1,264 @@
+#include "photon/render_session.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_scheduler_observer.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+#include "photon/camera.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Embree recommends flush-to-zero and denormals-are-zero in every thread that traces rays:
+// denormal arithmetic is slow and never changes an image.
+void set_flush_denormals() {
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+class FlushDenormalsObserver : public tbb::task_scheduler_observer {
+ public:
+  explicit FlushDenormalsObserver(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) {
+    observe(true);
+  }
+  ~FlushDenormalsObserver() override { observe(false); }
+  void on_scheduler_entry(bool) override { set_flush_denormals(); }
+};
+
+RenderSettings sanitize(RenderSettings s) {
+  s.full_width = std::clamp(s.full_width, 1, 65536);
+  s.full_height = std::clamp(s.full_height, 1, 65536);
+  s.x0 = std::clamp(s.x0, 0, s.full_width - 1);
+  s.y0 = std::clamp(s.y0, 0, s.full_height - 1);
+  s.x1 = std::clamp(s.x1, s.x0 + 1, s.full_width);
+  s.y1 = std::clamp(s.y1, s.y0 + 1, s.full_height);
+  s.samples = std::clamp(s.samples, 1, 1 << 20);
+  s.max_depth = std::clamp(s.max_depth, 0, 1024);
+  s.threads = std::max(s.threads, 0);
+  s.tile_size = std::clamp(s.tile_size, 4, 4096);
+  return s;
+}
+
+}  // namespace
+
+RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings)
+    : scene_(std::move(scene)), settings_(sanitize(settings)) {
+  image_.assign(static_cast<size_t>(region_width()) * region_height() * 4, 0.0f);
+  const int ts = settings_.tile_size;
+  tile_count_ = static_cast<size_t>((region_width() + ts - 1) / ts) *
+                static_cast<size_t>((region_height() + ts - 1) / ts);
+  status_ = "Waiting";
+}
+
+RenderSession::~RenderSession() {
+  cancel();
+  if (worker_.joinable()) worker_.join();
+}
+
+void RenderSession::start() {
+  if (worker_.joinable() || finished_) return;
+  worker_ = std::thread([this] { run(); });
+}
+
+void RenderSession::wait() {
+  if (worker_.joinable()) worker_.join();
+}
+
+void RenderSession::cancel() {
+  cancel_ = true;
+  tiles_ready_.notify_all();
+}
+
+std::vector<Tile> RenderSession::take_tiles(double timeout_seconds) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  tiles_ready_.wait_for(lock, std::chrono::duration<double>(std::max(timeout_seconds, 0.0)),
+                        [this] { return !queue_.empty() || finished_; });
+  std::vector<Tile> out(std::make_move_iterator(queue_.begin()),
+                        std::make_move_iterator(queue_.end()));
+  queue_.clear();
+  return out;
+}
+
+float RenderSession::progress() const {
+  return tile_count_ ? static_cast<float>(tiles_done_.load()) / tile_count_ : 1.0f;
+}
+
+std::string RenderSession::status() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+std::vector<std::string> RenderSession::warnings() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return warnings_;
+}
+
+RenderStats RenderSession::stats() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stats_;
+}
+
+std::vector<float> RenderSession::image() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return image_;
+}
+
+void RenderSession::set_status(const std::string& s) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  status_ = s;
+}
+
+void RenderSession::run() {
+  // Nothing may escape the worker thread: an exception there would terminate Blender.
+  try {
+    run_render();
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.push_back(std::string("Render failed: ") + e.what());
+    cancel_ = true;
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.push_back("Render failed with an unknown error");
+    cancel_ = true;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_ = cancel_ ? "Cancelled" : "Done";
+    finished_ = true;
+  }
+  tiles_ready_.notify_all();
+}
+
+void RenderSession::run_render() {
+  set_flush_denormals();
+  const int threads =
+      settings_.threads > 0 ? settings_.threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(threads);
+  FlushDenormalsObserver observer(arena);
+
+  std::vector<std::string> warnings;
+  set_status("Building BVH");
+  auto t0 = Clock::now();
+  std::unique_ptr<Accel> accel;
+  arena.execute([&] { accel = std::make_unique<Accel>(*scene_, &warnings); });
+  LightSet lights(scene_->lights, &warnings);
+  const double build_seconds = seconds_since(t0);
+
+  RenderContext context;
+  context.scene = scene_.get();
+  context.accel = accel.get();
+  context.lights = &lights;
+  context.settings = &settings_;
+  std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
+
+  set_status("Preparing");
+  t0 = Clock::now();
+  arena.execute([&] { integrator->prepare(context, cancel_); });
+  const double prepare_seconds = seconds_since(t0);
+
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.insert(warnings_.end(), warnings.begin(), warnings.end());
+    stats_.build_seconds = build_seconds;
+    stats_.prepare_seconds = prepare_seconds;
+    stats_.unique_triangles = accel->triangle_count();
+    stats_.instances = accel->instance_count();
+    stats_.bvh_count = accel->blas_count();
+    stats_.lights = lights.size();
+    stats_.threads = threads;
+    status_ = "Rendering";
+  }
+
+  const int ts = settings_.tile_size;
+  const int tiles_x = (region_width() + ts - 1) / ts;
+  t0 = Clock::now();
+  arena.execute([&] {
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, tile_count_, 1),
+        [&](const tbb::blocked_range<size_t>& range) {
+          for (size_t i = range.begin(); i != range.end(); ++i) {
+            if (cancel_) return;
+            Tile tile;
+            tile.x = static_cast<int>(i % tiles_x) * ts;
+            tile.y = static_cast<int>(i / tiles_x) * ts;
+            tile.width = std::min(ts, region_width() - tile.x);
+            tile.height = std::min(ts, region_height() - tile.y);
+            render_tile(context, *integrator, &tile);
+            if (cancel_) return;  // a partly rendered tile is not handed over
+            std::lock_guard<std::mutex> lock(mutex_);
+            for (int row = 0; row < tile.height; ++row) {
+              const float* src = &tile.rgba[static_cast<size_t>(row) * tile.width * 4];
+              float* dst = &image_[(static_cast<size_t>(tile.y + row) * region_width() + tile.x) * 4];
+              std::copy(src, src + tile.width * 4, dst);
+            }
+            queue_.push_back(std::move(tile));
+            ++tiles_done_;
+            tiles_ready_.notify_all();
+          }
+        },
+        tbb::simple_partitioner());
+  });
+
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stats_.render_seconds = seconds_since(t0);
+    stats_.camera_samples = static_cast<uint64_t>(tiles_done_.load()) == tile_count_
+                                ? static_cast<uint64_t>(region_width()) * region_height() *
+                                      settings_.samples
+                                : 0;
+  }
+}
+
+void RenderSession::render_tile(const RenderContext& context, const Integrator& integrator,
+                                Tile* tile) {
+  tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
+  const RenderSettings& s = settings_;
+  const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
+  const float inv_spp = 1.0f / s.samples;
+  uint64_t bad = 0;
+  for (int row = 0; row < tile->height; ++row) {
+    if (cancel_) return;
+    const int py = s.y0 + tile->y + row;
+    for (int col = 0; col < tile->width; ++col) {
+      const int px = s.x0 + tile->x + col;
+      // The random stream depends on the pixel's place in the full frame only.
+      const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
+      Vec3 sum(0.0f);
+      float alpha = 0.0f;
+      for (int k = 0; k < s.samples; ++k) {
+        Sampler sampler(s.seed, pixel_index, static_cast<uint32_t>(k));
+        const Vec2 jitter = sampler.get_2d();
+        const Vec2 lens = sampler.get_2d();
+        const Ray ray = generate_camera_ray(context.scene->camera, (px + jitter.x) * inv_w,
+                                            (py + jitter.y) * inv_h, lens);
+        const RadianceSample r = integrator.radiance(context, ray, sampler);
+        if (!is_finite(r.radiance)) {
+          ++bad;
+          continue;
+        }
+        sum += r.radiance;
+        alpha += r.alpha;
+      }
+      float* out = &tile->rgba[(static_cast<size_t>(row) * tile->width + col) * 4];
+      out[0] = sum.x * inv_spp;
+      out[1] = sum.y * inv_spp;
+      out[2] = sum.z * inv_spp;
+      out[3] = alpha * inv_spp;
+    }
+  }
+  if (bad) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stats_.non_finite_samples += bad;
+  }
+}
+
+}  // namespace photon
