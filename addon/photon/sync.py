@@ -39,14 +39,13 @@ def sync_scene(native, depsgraph, reporter):
         if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
             unsupported.setdefault(obj_type, set()).add(obj.name)
             continue
-        if obj_type not in sync_mesh.GEOMETRY_TYPES:
+        if not sync_mesh.is_geometry(obj):
             continue
         if not inst.is_instance and not inst.show_self:
             continue
         # The evaluated data block identifies shared geometry: every instance of one mesh
         # (particles, geometry nodes, linked duplicates) maps to one native mesh and one BVH.
-        data = obj.data
-        key = ("data", data.as_pointer()) if data is not None else ("object", obj.name)
+        key = obj.data.as_pointer()
         if key not in mesh_index:
             index, triangles = sync_mesh.export_object_mesh(native_scene, obj, reporter)
             mesh_index[key] = index

@@ -1,11 +1,19 @@
 """Evaluated geometry to native triangle meshes, with numpy foreach_get (no per-vertex loops)."""
 
+import bpy
 import numpy as np
 
-# Object types whose evaluated geometry converts to a mesh with Object.to_mesh().
-GEOMETRY_TYPES = {'MESH', 'CURVE', 'SURFACE', 'FONT', 'META'}
+# Since Blender 3.0, curve and text objects hand their evaluated mesh to render engines as a
+# separate instance whose data is a Mesh; surfaces and metaballs still evaluate on the object.
+# So: an object is geometry when its evaluated data is a Mesh, or it is a surface or metaball.
+TO_MESH_TYPES = {'SURFACE', 'META'}
 # Types that carry geometry Photon cannot render yet: reported, not silently dropped.
 UNSUPPORTED_GEOMETRY_TYPES = {'VOLUME', 'POINTCLOUD', 'CURVES', 'GPENCIL'}
+
+
+def is_geometry(obj):
+    data = obj.data
+    return data is not None and (isinstance(data, bpy.types.Mesh) or obj.type in TO_MESH_TYPES)
 
 
 def mesh_arrays(mesh):

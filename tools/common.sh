@@ -1,0 +1,35 @@
+# Shared by setup_and_demo.sh and run_tests.sh: Debian packages and the CMake build.
+set -euo pipefail
+
+REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+BUILD="${PHOTON_BUILD_DIR:-$REPO/build}"
+
+PACKAGES=(
+  cmake g++ make pkg-config
+  blender
+  libembree-dev libtbb-dev libopenimageio-dev openimageio-tools python3-openimageio
+  pybind11-dev python3-dev python3-numpy python3-pytest
+  libgtest-dev libbenchmark-dev
+)
+
+install_packages() {
+  local missing=()
+  for p in "${PACKAGES[@]}"; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  done
+  if [ ${#missing[@]} -eq 0 ]; then
+    echo "== all Debian packages present"
+    return
+  fi
+  echo "== installing: ${missing[*]}"
+  local sudo=""
+  [ "$(id -u)" -eq 0 ] || sudo="sudo"
+  $sudo apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends "${missing[@]}"
+}
+
+build() {
+  echo "== building in $BUILD"
+  cmake -S "$REPO" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3
+  cmake --build "$BUILD" -j"$(nproc)"
+}
