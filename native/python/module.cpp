@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "photon/mesh_import.h"
 #include "photon/render_session.h"
 #include "photon/scene.h"
 
@@ -59,6 +60,33 @@ py::dict stats_dict(const RenderStats& s) {
   return d;
 }
 
+// Drops invalid triangles (without the GIL) and appends the mesh; returns what happened.
+py::dict finish_mesh(Scene& scene, Mesh&& mesh) {
+  MeshCleanupReport report;
+  {
+    py::gil_scoped_release release;
+    report = clean_mesh(&mesh);
+  }
+  py::dict d;
+  d["index"] = scene.meshes.size();
+  d["triangles"] = mesh.triangle_count();
+  d["non_finite_vertices"] = report.non_finite_vertices;
+  d["dropped_triangles"] = report.dropped_triangles;
+  scene.meshes.push_back(std::move(mesh));
+  return d;
+}
+
+template <typename Array>
+const typename Array::value_type* optional_data(const py::object& obj, Array* holder,
+                                                size_t group, size_t count, const char* what) {
+  if (obj.is_none()) return nullptr;
+  *holder = obj.cast<Array>();
+  if (static_cast<size_t>(holder->size()) != group * count)
+    throw std::invalid_argument(std::string(what) + ": expected " +
+                                std::to_string(group * count) + " values");
+  return holder->data();
+}
+
 py::array_t<float> to_numpy(std::vector<float>&& data, int height, int width) {
   auto* heap = new std::vector<float>(std::move(data));
   py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
@@ -90,23 +118,47 @@ PYBIND11_MODULE(_photon, m) {
             if (!material_slots.is_none())
               copy_rows(material_slots.cast<IntArray>(), 1, &mesh.material_slots,
                         "material_slots");
-            MeshCleanupReport report;
-            {
-              py::gil_scoped_release release;
-              report = clean_mesh(&mesh);
-            }
-            py::dict d;
-            d["index"] = scene.meshes.size();
-            d["triangles"] = mesh.triangle_count();
-            d["non_finite_vertices"] = report.non_finite_vertices;
-            d["dropped_triangles"] = report.dropped_triangles;
-            scene.meshes.push_back(std::move(mesh));
-            return d;
+            return finish_mesh(scene, std::move(mesh));
           },
           py::arg("name"), py::arg("positions"), py::arg("triangles"),
           py::arg("corner_normals") = py::none(), py::arg("corner_uvs") = py::none(),
           py::arg("material_slots") = py::none(),
           "Adds a triangle mesh; invalid triangles are dropped and counted.")
+      .def(
+          "add_loop_mesh",
+          [](Scene& scene, const std::string& name, const FloatArray& positions,
+             const IntArray& corner_loops, const IntArray& loop_vertices,
+             py::object vertex_normals, py::object loop_normals, py::object loop_uvs,
+             py::object material_slots) {
+            Mesh mesh;
+            mesh.name = name;
+            copy_rows(positions, 3, &mesh.positions, "positions");
+            if (corner_loops.size() % 3) throw std::invalid_argument("corner_loops: 3 per triangle");
+            LoopMeshView view;
+            view.corner_loops = corner_loops.data();
+            view.corner_count = corner_loops.size();
+            view.loop_vertices = loop_vertices.data();
+            view.loop_count = loop_vertices.size();
+            FloatArray vn, ln, uv;
+            view.vertex_normals =
+                optional_data(vertex_normals, &vn, 3, mesh.positions.size(), "vertex_normals");
+            view.loop_normals = optional_data(loop_normals, &ln, 3, view.loop_count, "loop_normals");
+            view.loop_uvs = optional_data(loop_uvs, &uv, 2, view.loop_count, "loop_uvs");
+            {
+              py::gil_scoped_release release;
+              gather_loop_mesh(view, &mesh);
+            }
+            if (!material_slots.is_none())
+              copy_rows(material_slots.cast<IntArray>(), 1, &mesh.material_slots,
+                        "material_slots");
+            return finish_mesh(scene, std::move(mesh));
+          },
+          py::arg("name"), py::arg("positions"), py::arg("corner_loops"),
+          py::arg("loop_vertices"), py::arg("vertex_normals") = py::none(),
+          py::arg("loop_normals") = py::none(), py::arg("loop_uvs") = py::none(),
+          py::arg("material_slots") = py::none(),
+          "Adds a mesh given as Blender stores it: three loop indices per triangle, the vertex "
+          "of each loop, and per-vertex or per-loop normals and per-loop UVs.")
       .def(
           "add_instance",
           [](Scene& scene, uint32_t mesh, const FloatArray& matrix,
@@ -208,7 +260,7 @@ PYBIND11_MODULE(_photon, m) {
             Camera& c = scene.camera;
             c.projection =
                 projection == "ORTHO" ? Projection::kOrthographic : Projection::kPerspective;
-            c.camera_to_world = transform_from(matrix);
+            c.set_camera_to_world(transform_from(matrix));
             if (window.size() != 4) throw std::invalid_argument("window: min_x max_x min_y max_y");
             c.window_min_x = window[0];
             c.window_max_x = window[1];

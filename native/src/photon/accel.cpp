@@ -77,9 +77,10 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
     if (inst.mesh >= mesh_scenes_.size() || !mesh_scenes_[inst.mesh]) continue;
     InstanceData data;
     data.mesh = &scene.meshes[inst.mesh];
-    data.source = &inst;
-    data.to_world = inst.object_to_world;
-    if (!data.to_world.is_finite() || !data.to_world.normal_matrix(data.normal_matrix)) {
+    data.slot_materials = inst.slot_materials.data();
+    data.slot_count = static_cast<uint32_t>(inst.slot_materials.size());
+    const Transform& to_world = inst.object_to_world;
+    if (!to_world.is_finite() || !to_world.normal_matrix(data.normal_matrix)) {
       ++skipped;
       continue;
     }
@@ -87,7 +88,7 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
     rtcSetGeometryInstancedScene(geom, mesh_scenes_[inst.mesh]);
     float xf[12];  // 3x4 column major
     for (int c = 0; c < 4; ++c)
-      for (int r = 0; r < 3; ++r) xf[c * 3 + r] = data.to_world.m[r][c];
+      for (int r = 0; r < 3; ++r) xf[c * 3 + r] = to_world.m[r][c];
     rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xf);
     rtcSetGeometryMask(geom, inst.visibility);
     rtcCommitGeometry(geom);
@@ -125,6 +126,8 @@ bool Accel::intersect(const Ray& ray, uint32_t mask, Hit* hit) const {
   rtcIntersect1(top_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   hit->t = rh.ray.tfar;
+  hit->p = ray.origin + ray.direction * rh.ray.tfar;
+  hit->ng_object = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
   hit->u = rh.hit.u;
   hit->v = rh.hit.v;
   hit->instance = rh.hit.instID[0];
@@ -142,17 +145,16 @@ bool Accel::occluded(const Ray& ray, uint32_t mask) const {
 }
 
 SurfaceInteraction Accel::interaction(const Hit& hit) const {
+  // Built from what Embree returned (point, geometric normal) so the common case touches no
+  // vertex data; only smooth meshes read their corner normals.
   const InstanceData& inst = instances_[hit.instance];
   const Mesh& mesh = *inst.mesh;
   const size_t tri = hit.primitive;
-  const uint32_t* idx = &mesh.indices[3 * tri];
-  const Vec3 &p0 = mesh.positions[idx[0]], &p1 = mesh.positions[idx[1]],
-             &p2 = mesh.positions[idx[2]];
   const float b0 = 1.0f - hit.u - hit.v;
 
   SurfaceInteraction si;
-  si.p = inst.to_world.point(p0 * b0 + p1 * hit.u + p2 * hit.v);
-  si.ng = normalize(mat3_mul(inst.normal_matrix, cross(p1 - p0, p2 - p0)));
+  si.p = hit.p;
+  si.ng = normalize(mat3_mul(inst.normal_matrix, hit.ng_object));
   si.ns = si.ng;
   if (!mesh.corner_normals.empty()) {
     const Vec3* n = &mesh.corner_normals[3 * tri];
@@ -167,8 +169,9 @@ SurfaceInteraction Accel::interaction(const Hit& hit) const {
     si.uv = uv[0] * b0 + uv[1] * hit.u + uv[2] * hit.v;
   }
   const int32_t slot = mesh.material_slots.empty() ? 0 : mesh.material_slots[tri];
-  const auto& slots = inst.source->slot_materials;
-  int32_t material = (slot >= 0 && static_cast<size_t>(slot) < slots.size()) ? slots[slot] : -1;
+  const int32_t material = (slot >= 0 && static_cast<uint32_t>(slot) < inst.slot_count)
+                               ? inst.slot_materials[slot]
+                               : -1;
   if (material >= 0 && static_cast<size_t>(material) < scene_.materials.size()) {
     si.material = static_cast<uint32_t>(material);
     si.mat = &scene_.materials[material];

@@ -15,6 +15,8 @@
 namespace photon {
 
 struct Hit {
+  Vec3 p;          // world-space hit point (ray origin + t * direction)
+  Vec3 ng_object;  // Embree's unnormalised geometric normal, in the mesh's object space
   float t = 0.0f;
   float u = 0.0f, v = 0.0f;  // Embree barycentrics: p = (1-u-v) p0 + u p1 + v p2
   uint32_t instance = 0;
@@ -53,11 +55,12 @@ class Accel {
   RTCScene top_level() const { return top_; }
 
  private:
+  // What shading reads per hit, kept compact (one cache line) and free of pointer chains.
   struct InstanceData {
-    const Mesh* mesh = nullptr;
-    const Instance* source = nullptr;
-    Transform to_world;
     float normal_matrix[3][3];
+    uint32_t slot_count = 0;
+    const int32_t* slot_materials = nullptr;
+    const Mesh* mesh = nullptr;
   };
 
   const Scene& scene_;

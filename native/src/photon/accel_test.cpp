@@ -32,13 +32,14 @@ struct Affine {
   float a[3][3];
   Vec3 t;
   Vec3 apply(const Vec3& p) const {
-    return Vec3(a[0][0] * p.x + a[0][1] * p.y + a[0][2] * p.z, a[1][0] * p.x + a[1][1] * p.y + a[1][2] * p.z,
+    return Vec3(a[0][0] * p.x + a[0][1] * p.y + a[0][2] * p.z,
+                a[1][0] * p.x + a[1][1] * p.y + a[1][2] * p.z,
                 a[2][0] * p.x + a[2][1] * p.y + a[2][2] * p.z) +
            t;
   }
   Transform transform() const {
-    const float rows[12] = {a[0][0], a[0][1], a[0][2], t.x, a[1][0], a[1][1], a[1][2], t.y,
-                            a[2][0], a[2][1], a[2][2], t.z};
+    const float rows[12] = {a[0][0], a[0][1], a[0][2], t.x,     a[1][0], a[1][1],
+                            a[1][2], t.y,     a[2][0], a[2][1], a[2][2], t.z};
     return Transform::from_rows(rows);
   }
 };
@@ -88,8 +89,8 @@ TEST(Accel, HitsAQuadWithCorrectDistanceBarycentricsAndNormal) {
     EXPECT_EQ(si.mat, &scene.materials[1]);
   }
 
-  // Triangle 1 is (-1,-1,0), (1,1,0), (-1,1,0): (-0.5, 0.5) = p0 + u (2,2) + v (0,2), u = 0.25, v = 0.5.
-  // Hit from below: the geometric normal keeps the mesh's winding (+z).
+  // Triangle 1 is (-1,-1,0), (1,1,0), (-1,1,0): (-0.5, 0.5) = p0 + u (2,2) + v (0,2), u = 0.25, v =
+  // 0.5. Hit from below: the geometric normal keeps the mesh's winding (+z).
   Hit hit;
   ASSERT_TRUE(accel.intersect(make_ray({-0.5f, 0.5f, -2.0f}, {0, 0, 1}), kVisibleCamera, &hit));
   EXPECT_NEAR(hit.t, 2.0f, 1e-5f);
@@ -176,7 +177,8 @@ TEST(Accel, InstancesShareOneBvhAndTransformPointsAndNormals) {
     EXPECT_TRUE(VecNear(si.ng, n, 1e-5f));
     EXPECT_EQ(si.material, i);
     // The untransformed triangle at the origin is not in the scene.
-    EXPECT_FALSE(accel.intersect(make_ray(Vec3(1.0f / 3) + Vec3(1.0f), Vec3(-1.0f)), kVisibleAll, &hit));
+    EXPECT_FALSE(
+        accel.intersect(make_ray(Vec3(1.0f / 3) + Vec3(1.0f), Vec3(-1.0f)), kVisibleAll, &hit));
   }
   // The world bounds enclose both instances.
   EXPECT_NEAR(accel.bounds_min().x, -6.0f, 1e-4f);
@@ -212,7 +214,8 @@ TEST(Accel, SmoothSphereShadingNormalsArePointingOutwards) {
   Accel accel(scene, nullptr);
   // Facets lie within 1 - cos(pi / 24) of the sphere.
   const float facet = 1.0f - std::cos(kPi / 24.0f);
-  for (const Vec3& off : {Vec3(0.1f, 0.2f, 0.0f), Vec3(0.5f, -0.3f, 0.0f), Vec3(-0.7f, 0.1f, 0.0f)}) {
+  for (const Vec3& off :
+       {Vec3(0.1f, 0.2f, 0.0f), Vec3(0.5f, -0.3f, 0.0f), Vec3(-0.7f, 0.1f, 0.0f)}) {
     const float depth = std::sqrt(1.0f - length_squared(off));
     const Ray ray = make_ray(centre + off + Vec3(0, 0, 10), {0, 0, -1});
     Hit hit;
@@ -266,7 +269,8 @@ TEST(Accel, SkipsInstancesWithNonFiniteOrSingularTransforms) {
   add_mesh_instance(&scene, box, 0, nan_xf.transform());
   add_mesh_instance(&scene, box, 0, inf_xf.transform());
   add_mesh_instance(&scene, box, 1, flat_xf.transform());
-  add_mesh_instance(&scene, box, 2, Affine{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, Vec3(3, 0, 0)}.transform());
+  add_mesh_instance(&scene, box, 2,
+                    Affine{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, Vec3(3, 0, 0)}.transform());
   std::vector<std::string> warnings;
   Accel accel(scene, &warnings);
   EXPECT_EQ(accel.instance_count(), 1u);
@@ -295,7 +299,8 @@ TEST(Accel, EmptySceneHasNothingToHit) {
 
 TEST(Accel, MaterialSlotsMapThroughTheInstance) {
   Scene scene;
-  for (const char* name : {"m0", "m1", "m2"}) scene.materials.push_back(named_material(name, Vec3(0.5f)));
+  for (const char* name : {"m0", "m1", "m2"})
+    scene.materials.push_back(named_material(name, Vec3(0.5f)));
   // Five triangles side by side along x, each on its own slot.
   Mesh mesh;
   for (int k = 0; k < 5; ++k) {
@@ -317,7 +322,8 @@ TEST(Accel, MaterialSlotsMapThroughTheInstance) {
   for (int k = 0; k < 5; ++k) {
     SCOPED_TRACE(k);
     Hit hit;
-    ASSERT_TRUE(accel.intersect(make_ray({2.0f * k + 0.25f, 0.5f, 1.0f}, {0, 0, -1}), kVisibleAll, &hit));
+    ASSERT_TRUE(
+        accel.intersect(make_ray({2.0f * k + 0.25f, 0.5f, 1.0f}, {0, 0, -1}), kVisibleAll, &hit));
     EXPECT_EQ(hit.primitive, static_cast<uint32_t>(k));
     const SurfaceInteraction si = accel.interaction(hit);
     EXPECT_EQ(si.material, expected_index[k]);

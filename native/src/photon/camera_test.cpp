@@ -123,7 +123,8 @@ TEST(Camera, OrthographicRaysAreParallelAndSpreadOverTheWindow) {
       const Ray ray = generate_camera_ray(cam, fx, fy, Vec2(0.1f, 0.9f));
       const Vec2 w = window_point(cam, fx, fy);
       EXPECT_TRUE(VecNear(ray.direction, -b.back, 1e-5f));
-      EXPECT_TRUE(VecNear(ray.origin, b.eye + b.right * w.x + b.up * w.y, 1e-5f)) << fx << " " << fy;
+      EXPECT_TRUE(VecNear(ray.origin, b.eye + b.right * w.x + b.up * w.y, 1e-5f))
+          << fx << " " << fy;
       EXPECT_NEAR(ray.tmin, cam.clip_start, 1e-5f);
       EXPECT_NEAR(ray.tmax, cam.clip_end, 1e-3f);
     }
@@ -162,7 +163,8 @@ TEST(Camera, ThinLensRaysConvergeOnTheFocalPlane) {
       for (float fy : {0.05f, 0.5f, 0.7f}) {
         // Where the pinhole ray crosses the plane at depth focus_distance.
         const Ray p = generate_camera_ray(pinhole, fx, fy, Vec2(0.5f, 0.5f));
-        const Vec3 focus = p.origin + p.direction * (cam.focus_distance / dot(p.direction, -b.back));
+        const Vec3 focus =
+            p.origin + p.direction * (cam.focus_distance / dot(p.direction, -b.back));
         float max_offset = 0.0f;
         for (int i = 0; i < 8; ++i) {
           for (int j = 0; j < 8; ++j) {
@@ -175,8 +177,8 @@ TEST(Camera, ThinLensRaysConvergeOnTheFocalPlane) {
             EXPECT_LE(length(offset), cam.aperture_radius * (1.0f + 1e-5f));
             max_offset = std::max(max_offset, length(offset));
             // ...and reaches the same point of the focal plane as every other lens sample.
-            const float t = (cam.focus_distance - dot(r.origin - b.eye, -b.back)) /
-                            dot(r.direction, -b.back);
+            const float t =
+                (cam.focus_distance - dot(r.origin - b.eye, -b.back)) / dot(r.direction, -b.back);
             EXPECT_TRUE(VecNear(r.origin + r.direction * t, focus, 2e-5f * (1.0f + t)))
                 << "film " << fx << " " << fy << " lens " << u.x << " " << u.y;
           }

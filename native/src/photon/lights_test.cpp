@@ -50,7 +50,8 @@ Vec3 average_over_grid(const LightSet& set, size_t index, const Vec3& p, int n,
       sz += v.z;
     }
   const double inv = 1.0 / (static_cast<double>(n) * n);
-  sum = Vec3(static_cast<float>(sx * inv), static_cast<float>(sy * inv), static_cast<float>(sz * inv));
+  sum = Vec3(static_cast<float>(sx * inv), static_cast<float>(sy * inv),
+             static_cast<float>(sz * inv));
   return sum;
 }
 
@@ -91,7 +92,8 @@ TEST(PointLight, SphereLightConvergesToThePointLightFarAway) {
   EXPECT_NEAR(mean.x, point, 1e-3 * point);
   // Exactly: mean of I cos_l / dist^2 over the disc = (2 I / r^2) (1 - d / sqrt(d^2 + r^2)).
   const double intensity = power / (4.0 * kPiD);
-  const double exact = 2.0 * intensity / (r * r) * (1.0 - d / std::sqrt(double(d) * d + double(r) * r));
+  const double exact =
+      2.0 * intensity / (r * r) * (1.0 - d / std::sqrt(double(d) * d + double(r) * r));
   EXPECT_NEAR(mean.y, exact, 2e-4 * exact);
 }
 
@@ -106,7 +108,8 @@ TEST(PointLight, SphereLightIrradianceNearbyMatchesADisc) {
                                    [](const LightSample& ls) { return ls.weight * ls.wi.z; });
   const double expected = power / (4.0 * kPiD) / (d * d + r * r);
   EXPECT_NEAR(e.x, expected, 1e-3 * expected);
-  EXPECT_GT(std::fabs(e.x - power / (4.0 * kPiD) / (d * d)), 0.03 * expected);  // not the point value
+  EXPECT_GT(std::fabs(e.x - power / (4.0 * kPiD) / (d * d)),
+            0.03 * expected);  // not the point value
 }
 
 TEST(SpotLight, IsZeroOutsideTheConeAndCosineWeightedInside) {
@@ -145,7 +148,8 @@ TEST(SpotLight, IsZeroOutsideTheConeAndCosineWeightedInside) {
 
   // Blend region: smoothstep in (cos - cos_half) / smooth, halfway = half of the full value.
   const double c_mid = cos_half + 0.5 * smooth, a_mid = std::acos(c_mid);
-  EXPECT_NEAR(weight_at(a_mid), intensity * c_mid * c_mid * c_mid / (d * d) * 0.5, 1e-4 * intensity);
+  EXPECT_NEAR(weight_at(a_mid), intensity * c_mid * c_mid * c_mid / (d * d) * 0.5,
+              1e-4 * intensity);
   // Continuous and monotonic from the cone edge to the end of the blend.
   const double a_edge = std::acos(cos_half), a_full = std::acos(cos_half + smooth);
   double previous = 0.0;
@@ -190,7 +194,8 @@ TEST(SunLight, GivesItsStrengthFromWithinItsAngularDisc) {
   for (int j = 0; j < 32; ++j)
     for (int i = 0; i < 32; ++i) {
       LightSample ls;
-      ASSERT_TRUE(set.sample(0, Vec3(0.3f, 0.2f, 0.1f), Vec2((i + 0.5f) / 32, (j + 0.5f) / 32), &ls));
+      ASSERT_TRUE(
+          set.sample(0, Vec3(0.3f, 0.2f, 0.1f), Vec2((i + 0.5f) / 32, (j + 0.5f) / 32), &ls));
       EXPECT_FALSE(std::isfinite(ls.distance));
       EXPECT_TRUE(VecNear(ls.weight, light.color * 3.0f, 1e-6f));
       EXPECT_NEAR(length(ls.wi), 1.0f, 1e-5f);
@@ -227,7 +232,8 @@ TEST(SunLight, VisibleDiscRadianceIntegratesToTheStrength) {
 
 // Sum over two corners of int int h^2 / (x^2 + y^2 + h^2)^2 over [0, a] x [0, b] (the point below
 // a corner of an a x b rectangle at height h): (1/2) F(a, b) with
-// F = a / sqrt(a^2 + h^2) atan(b / sqrt(a^2 + h^2)) + b / sqrt(b^2 + h^2) atan(a / sqrt(b^2 + h^2)).
+// F = a / sqrt(a^2 + h^2) atan(b / sqrt(a^2 + h^2)) + b / sqrt(b^2 + h^2) atan(a / sqrt(b^2 +
+// h^2)).
 double corner_integral(double a, double b, double h) {
   const double sa = std::sqrt(a * a + h * h), sb = std::sqrt(b * b + h * h);
   return 0.5 * (a / sa * std::atan(b / sa) + b / sb * std::atan(a / sb));

@@ -235,7 +235,8 @@ void RenderSession::render_tile(const RenderContext& context, const Integrator& 
       Vec3 sum(0.0f);
       float alpha = 0.0f;
       for (int k = 0; k < s.samples; ++k) {
-        Sampler sampler(s.seed, pixel_index, static_cast<uint32_t>(k));
+        Sampler sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
+                        static_cast<uint32_t>(s.samples));
         const Vec2 jitter = sampler.get_2d();
         const Vec2 lens = sampler.get_2d();
         const Ray ray = generate_camera_ray(context.scene->camera, (px + jitter.x) * inv_w,

@@ -48,7 +48,8 @@ struct ChiSquareResult {
 };
 
 // Pearson's test against expected counts; bins expecting fewer than 5 samples are pooled.
-ChiSquareResult chi_square(const std::vector<double>& observed, const std::vector<double>& expected) {
+ChiSquareResult chi_square(const std::vector<double>& observed,
+                           const std::vector<double>& expected) {
   ChiSquareResult r;
   double pooled_obs = 0.0, pooled_exp = 0.0;
   int bins = 0;
@@ -84,8 +85,8 @@ void expect_fits(const std::vector<double>& observed, const std::vector<double>&
   const ChiSquareResult r = chi_square(observed, expected);
   EXPECT_FALSE(r.sample_outside_support) << "samples landed where the pdf is zero";
   EXPECT_GT(r.dof, 10);
-  EXPECT_LT(r.statistic, r.threshold) << "chi-square statistic " << r.statistic << " with "
-                                      << r.dof << " degrees of freedom";
+  EXPECT_LT(r.statistic, r.threshold)
+      << "chi-square statistic " << r.statistic << " with " << r.dof << " degrees of freedom";
 }
 
 // Fixed-seed uniform points on [0, 1)^2 (24-bit floats, never 1).
@@ -124,7 +125,8 @@ void check_direction_distribution(const std::function<Vec3(Vec2)>& sample, doubl
     ASSERT_NEAR(length(w), 1.0f, 1e-5f);
     const double theta = std::acos(std::clamp(static_cast<double>(w.z), -1.0, 1.0));
     ASSERT_LE(theta, theta_max + 1e-3);
-    ++observed[bin_of(theta, 0.0, theta_max, kTheta) * kPhi + bin_of(azimuth(w), 0, 2 * kPiD, kPhi)];
+    ++observed[bin_of(theta, 0.0, theta_max, kTheta) * kPhi +
+               bin_of(azimuth(w), 0, 2 * kPiD, kPhi)];
   }
   const double dphi = 2.0 * kPiD / kPhi;
   for (int t = 0; t < kTheta; ++t) {
@@ -167,7 +169,8 @@ TEST(ChiSquare, RejectsAWrongDistribution) {
 }
 
 TEST(Sampling, CosineHemisphereIsCosineDistributed) {
-  // pdf(w) = cos(theta) / pi; over a cell: dphi / pi * int cos sin dtheta = dphi (s1^2 - s0^2) / 2pi.
+  // pdf(w) = cos(theta) / pi; over a cell: dphi / pi * int cos sin dtheta = dphi (s1^2 - s0^2) /
+  // 2pi.
   check_direction_distribution(
       sample_cosine_hemisphere, kPiD / 2,
       [](double t0, double t1) {
@@ -299,7 +302,8 @@ TEST(Sampling, UniformTriangleBarycentricsAreUniform) {
   for (int k = 0; k < 3; ++k) {
     SCOPED_TRACE(k);
     for (int i = 0; i < kMarginal; ++i) {
-      const double a = static_cast<double>(i) / kMarginal, c = static_cast<double>(i + 1) / kMarginal;
+      const double a = static_cast<double>(i) / kMarginal,
+                   c = static_cast<double>(i + 1) / kMarginal;
       exp_b[k][i] = kSampleCount * ((1 - a) * (1 - a) - (1 - c) * (1 - c));
     }
     const ChiSquareResult r = chi_square(obs_b[k], exp_b[k]);
@@ -353,16 +357,16 @@ TEST(Sampler, ValuesAreInTheUnitInterval) {
 }
 
 TEST(Sampler, Get2dIsStratifiedOverSampleIndices) {
-  // 64 points per cell of a 16 x 16 grid. Independent uniform points would give a chi-square
-  // near its 255 degrees of freedom and cells off by +-8 (one standard deviation) or more; a
-  // low-discrepancy sequence must do far better.
+  // The pixel's kN samples, 64 per cell of a 16 x 16 grid. Independent uniform points would give
+  // a chi-square near its 255 degrees of freedom and cells off by +-8 (one standard deviation) or
+  // more; a low-discrepancy sequence must do far better.
   const int kGrid = 16, kPerCell = 64, kN = kGrid * kGrid * kPerCell;
   for (uint64_t stream : {0ull, 1234567ull}) {
     for (int dim = 0; dim < 3; ++dim) {
       SCOPED_TRACE(::testing::Message() << "stream " << stream << " dimension " << dim);
       std::vector<int> count(kGrid * kGrid, 0);
       for (int s = 0; s < kN; ++s) {
-        Sampler sampler(3, stream, static_cast<uint32_t>(s));
+        Sampler sampler(3, stream, static_cast<uint32_t>(s), static_cast<uint32_t>(kN));
         Vec2 u;
         for (int d = 0; d <= dim; ++d) u = sampler.get_2d();
         ++count[bin_of(u.y, 0, 1, kGrid) * kGrid + bin_of(u.x, 0, 1, kGrid)];
@@ -377,6 +381,55 @@ TEST(Sampler, Get2dIsStratifiedOverSampleIndices) {
       EXPECT_LE(worst, kPerCell / 8);
     }
   }
+}
+
+// Regression test for a bug in photon/rng.h as of commit 109ae12: every get_2d() dimension
+// returned the same R2 point of the sample index, only shifted by a per-(pixel, dimension)
+// Cranley-Patterson rotation, so within one pixel the second 2D value was the first plus a
+// constant (mod 1). The 4D points (pixel jitter, lens) or (pixel jitter, light sample) then lie
+// on a 2D sub-torus and integrands depending on both converge to a wrong, pixel-dependent value
+// however many samples are taken (see RenderSession.DepthOfFieldConvergesToTheExactPixelValue).
+TEST(Sampler, SuccessiveDimensionsAreIndependentWithinAPixel) {
+  const int kGrid = 8, kN = 4096;
+  for (uint32_t count : {static_cast<uint32_t>(kN), 0u}) {  // known and unknown sample count
+    for (uint64_t pixel = 0; pixel < 4; ++pixel) {
+      SCOPED_TRACE(::testing::Message() << "pixel " << pixel << " sample count " << count);
+      std::vector<double> observed(kGrid * kGrid, 0.0), expected(kGrid * kGrid, kN / 64.0);
+      double product = 0.0;
+      for (int s = 0; s < kN; ++s) {
+        Sampler sampler(0, pixel, static_cast<uint32_t>(s), count);
+        const Vec2 a = sampler.get_2d();
+        const Vec2 b = sampler.get_2d();
+        ++observed[bin_of(b.x, 0, 1, kGrid) * kGrid + bin_of(a.x, 0, 1, kGrid)];
+        product += (a.x < 0.5f && b.x < 0.5f) ? 1.0 : 0.0;
+      }
+      // (a.x, b.x) should fill the unit square uniformly.
+      const ChiSquareResult r = chi_square(observed, expected);
+      EXPECT_LT(r.statistic, r.threshold);
+      // E[1(a.x < 1/2) 1(b.x < 1/2)] = 1/4 for independent uniforms; the standard error with
+      // 4096 independent samples is 0.007.
+      EXPECT_NEAR(product / kN, 0.25, 0.05);
+    }
+  }
+}
+
+TEST(Sampler, PermuteIndexIsABijection) {
+  for (uint32_t count : {1u, 2u, 3u, 7u, 64u, 1000u, 4097u}) {
+    for (uint32_t key : {0u, 1u, 0xDEADBEEFu, 0x12345678u}) {
+      std::vector<int> hits(count, 0);
+      for (uint32_t i = 0; i < count; ++i) {
+        const uint32_t j = permute_index(i, count, key);
+        ASSERT_LT(j, count);
+        ++hits[j];
+      }
+      for (uint32_t j = 0; j < count; ++j) ASSERT_EQ(hits[j], 1) << count << " " << key;
+    }
+  }
+  // Different keys give different orders.
+  int same = 0;
+  for (uint32_t i = 0; i < 1000; ++i)
+    same += permute_index(i, 1000, 1u) == permute_index(i, 1000, 2u);
+  EXPECT_LT(same, 50);
 }
 
 TEST(Sampler, DifferentStreamsAreUniformAcrossPixels) {

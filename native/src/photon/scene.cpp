@@ -7,6 +7,24 @@ const Material& Scene::default_material() {
   return kDefault;
 }
 
+void Camera::set_camera_to_world(const Transform& xf) {
+  Vec3 x = xf.column(0), y = xf.column(1), z = xf.column(2);
+  const Vec3 t = xf.column(3);
+  z = normalize(z);
+  y = normalize(y - z * dot(y, z));
+  x = cross(y, z);
+  const bool ok = is_finite(x) && is_finite(y) && is_finite(z) && is_finite(t) &&
+                  length_squared(x) > 0.5f;
+  if (!ok) {
+    x = Vec3(1, 0, 0);
+    y = Vec3(0, 1, 0);
+    z = Vec3(0, 0, 1);
+  }
+  const Vec3 pos = is_finite(t) ? t : Vec3(0.0f);
+  const float rows[12] = {x.x, y.x, z.x, pos.x, x.y, y.y, z.y, pos.y, x.z, y.z, z.z, pos.z};
+  camera_to_world = Transform::from_rows(rows);
+}
+
 MeshCleanupReport clean_mesh(Mesh* mesh) {
   MeshCleanupReport report;
   const size_t vertex_count = mesh->positions.size();

@@ -82,7 +82,9 @@ enum class Projection : uint8_t { kPerspective, kOrthographic };
 
 struct Camera {
   Projection projection = Projection::kPerspective;
-  Transform camera_to_world;  // camera looks down local -Z, +Y up
+  // Rigid (rotation + translation, no scale): camera looks down local -Z, +Y up. Use
+  // set_camera_to_world(), which removes scale and shear.
+  Transform camera_to_world;
   // Image-plane window in camera space: at distance 1 for perspective, in scene units for
   // orthographic. Blender's sensor fit, lens shift and aspect are already folded in.
   float window_min_x = -0.5f, window_max_x = 0.5f;
@@ -90,6 +92,10 @@ struct Camera {
   float clip_start = 0.1f, clip_end = 1000.0f;  // along the view axis
   float aperture_radius = 0.0f;                 // thin lens; 0 = pinhole
   float focus_distance = 10.0f;
+
+  // Stores `xf` with its axes orthonormalised (Gram-Schmidt; Blender cameras may carry scale,
+  // which Cycles ignores too). A degenerate matrix leaves the identity rotation.
+  void set_camera_to_world(const Transform& xf);
 };
 
 struct World {

@@ -11,9 +11,15 @@ namespace {
 
 // Tags every per-triangle attribute with the triangle's original index t, so we can tell
 // which triangle a surviving attribute came from.
-Vec3 normal_tag(size_t t, int c) { return Vec3(static_cast<float>(t + 1), static_cast<float>(c + 1), 1.0f); }
-Vec2 uv_tag(size_t t, int c) { return Vec2(static_cast<float>(t), static_cast<float>(c) * 0.25f); }
-int32_t slot_tag(size_t t) { return static_cast<int32_t>(10 * t + 3); }
+Vec3 normal_tag(size_t t, int c) {
+  return Vec3(static_cast<float>(t + 1), static_cast<float>(c + 1), 1.0f);
+}
+Vec2 uv_tag(size_t t, int c) {
+  return Vec2(static_cast<float>(t), static_cast<float>(c) * 0.25f);
+}
+int32_t slot_tag(size_t t) {
+  return static_cast<int32_t>(10 * t + 3);
+}
 
 void tag_attributes(Mesh* mesh) {
   mesh->corner_normals.clear();
@@ -68,17 +74,17 @@ TEST(CleanMesh, DropsUnrenderableTrianglesAndKeepsAttributesAligned) {
       {0, inf, 0},  // 8
   };
   mesh.indices = {
-      0, 1, 2,   // 0 keep
-      0, 1, 6,   // 1 NaN vertex
-      0, 0, 1,   // 2 repeated index
-      4, 5, 1,   // 3 keep
-      0, 1, 99,  // 4 index out of range
-      0, 1, 3,   // 5 collinear: zero area
-      2, 0, 7,   // 6 two corners at the same place: zero area
-      5, 8, 4,   // 7 infinite vertex
-      1, 2, 2,   // 8 repeated index
-      2, 5, 4,   // 9 keep
-      9, 10, 11, // 10 all out of range
+      0, 1,  2,   // 0 keep
+      0, 1,  6,   // 1 NaN vertex
+      0, 0,  1,   // 2 repeated index
+      4, 5,  1,   // 3 keep
+      0, 1,  99,  // 4 index out of range
+      0, 1,  3,   // 5 collinear: zero area
+      2, 0,  7,   // 6 two corners at the same place: zero area
+      5, 8,  4,   // 7 infinite vertex
+      1, 2,  2,   // 8 repeated index
+      2, 5,  4,   // 9 keep
+      9, 10, 11,  // 10 all out of range
   };
   tag_attributes(&mesh);
   const std::vector<uint32_t> original = mesh.indices;
@@ -109,8 +115,8 @@ TEST(CleanMesh, AreaTestIsRelativeToTheTriangleSize) {
   // A tiny but well-shaped triangle is real geometry (e.g. a model in millimetres scaled down);
   // a needle whose area vanishes next to its edges is not.
   Mesh mesh;
-  mesh.positions = {{0, 0, 0}, {1e-4f, 0, 0}, {0, 1e-4f, 0},   // tiny right triangle
-                    {0, 0, 0}, {1000, 0, 0}, {2000, 1e-9f, 0}};  // needle, height 1e-9 at 2000
+  mesh.positions = {{0, 0, 0}, {1e-4f, 0, 0}, {0, 1e-4f, 0},      // tiny right triangle
+                    {0, 0, 0}, {1000, 0, 0},  {2000, 1e-9f, 0}};  // needle, height 1e-9 at 2000
   mesh.indices = {0, 1, 2, 3, 4, 5};
   tag_attributes(&mesh);
   const std::vector<uint32_t> original = mesh.indices;
