@@ -1,6 +1,5 @@
 #include "photon/render_session.h"
 
-#include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_scheduler_observer.h>
@@ -181,31 +180,30 @@ void RenderSession::run_render() {
   const int ts = settings_.tile_size;
   const int tiles_x = (region_width() + ts - 1) / ts;
   t0 = Clock::now();
+  // Tiles are handed out in reading order from a shared counter, so they appear top to bottom
+  // in Blender's image editor. Which thread renders a tile does not change its pixels.
+  std::atomic<size_t> next_tile{0};
   arena.execute([&] {
-    tbb::parallel_for(
-        tbb::blocked_range<size_t>(0, tile_count_, 1),
-        [&](const tbb::blocked_range<size_t>& range) {
-          for (size_t i = range.begin(); i != range.end(); ++i) {
-            if (cancel_) return;
-            Tile tile;
-            tile.x = static_cast<int>(i % tiles_x) * ts;
-            tile.y = static_cast<int>(i / tiles_x) * ts;
-            tile.width = std::min(ts, region_width() - tile.x);
-            tile.height = std::min(ts, region_height() - tile.y);
-            render_tile(context, *integrator, &tile);
-            if (cancel_) return;  // a partly rendered tile is not handed over
-            std::lock_guard<std::mutex> lock(mutex_);
-            for (int row = 0; row < tile.height; ++row) {
-              const float* src = &tile.rgba[static_cast<size_t>(row) * tile.width * 4];
-              float* dst = &image_[(static_cast<size_t>(tile.y + row) * region_width() + tile.x) * 4];
-              std::copy(src, src + tile.width * 4, dst);
-            }
-            queue_.push_back(std::move(tile));
-            ++tiles_done_;
-            tiles_ready_.notify_all();
-          }
-        },
-        tbb::simple_partitioner());
+    tbb::parallel_for(0, threads, [&](int) {
+      for (size_t i = next_tile++; i < tile_count_ && !cancel_; i = next_tile++) {
+        Tile tile;
+        tile.x = static_cast<int>(i % tiles_x) * ts;
+        tile.y = static_cast<int>(i / tiles_x) * ts;
+        tile.width = std::min(ts, region_width() - tile.x);
+        tile.height = std::min(ts, region_height() - tile.y);
+        render_tile(context, *integrator, &tile);
+        if (cancel_) return;  // a partly rendered tile is not handed over
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (int row = 0; row < tile.height; ++row) {
+          const float* src = &tile.rgba[static_cast<size_t>(row) * tile.width * 4];
+          float* dst = &image_[(static_cast<size_t>(tile.y + row) * region_width() + tile.x) * 4];
+          std::copy(src, src + tile.width * 4, dst);
+        }
+        queue_.push_back(std::move(tile));
+        ++tiles_done_;
+        tiles_ready_.notify_all();
+      }
+    });
   });
 
   {
@@ -235,6 +233,8 @@ void RenderSession::render_tile(const RenderContext& context, const Integrator& 
       Vec3 sum(0.0f);
       float alpha = 0.0f;
       for (int k = 0; k < s.samples; ++k) {
+        // Checked often enough that Esc stops even a render with absurd sample counts at once.
+        if ((k & 63) == 63 && cancel_.load(std::memory_order_relaxed)) return;
         Sampler sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
                         static_cast<uint32_t>(s.samples));
         const Vec2 jitter = sampler.get_2d();
