@@ -185,17 +185,21 @@ bool LightSet::intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit
         found = true;
         break;
       }
-      case LightType::kSun: {
-        if (std::isfinite(best) || l.sun_cos_max >= 1.0f) break;
-        if (dot(-ray.direction, l.axis) < l.sun_cos_max) break;
-        *radiance = l.radiance;
-        found = true;
-        break;
-      }
+      case LightType::kSun:
+        break;  // at infinity: see distant_radiance()
     }
   }
   if (found) *t_hit = best;
   return found;
+}
+
+Vec3 LightSet::distant_radiance(const Vec3& direction, uint32_t mask) const {
+  Vec3 sum(0.0f);
+  for (const Prepared& l : lights_) {
+    if (l.type != LightType::kSun || !(l.visibility & mask) || l.sun_cos_max >= 1.0f) continue;
+    if (dot(-direction, l.axis) >= l.sun_cos_max) sum += l.radiance;
+  }
+  return sum;
 }
 
 }  // namespace photon

@@ -34,6 +34,10 @@ class LightSet {
   // among lights whose visibility matches `mask`. Returns the emitted radiance towards the ray.
   bool intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance) const;
 
+  // Radiance from lights at infinity (sun discs) along a ray that left the scene, for lights
+  // whose visibility matches `mask`. Zero when the direction misses every sun.
+  Vec3 distant_radiance(const Vec3& direction, uint32_t mask) const;
+
  private:
   struct Prepared {
     LightType type;

@@ -220,14 +220,21 @@ TEST(SunLight, VisibleDiscRadianceIntegratesToTheStrength) {
   light.sun_angle = 0.05f;
   light.visibility = kVisibleAll;
   LightSet set({light}, nullptr);
+  // The sun is at infinity: rays that leave the scene see it, whatever their clip distance.
+  const Vec3 radiance = set.distant_radiance(Vec3(0, 0, 1), kVisibleCamera);
+  EXPECT_NEAR(kPiD * radiance.x * std::sin(0.025) * std::sin(0.025), 2.0, 3e-3);
+  // Outside the disc, or for rays the sun is hidden from, nothing.
+  EXPECT_EQ(set.distant_radiance(normalize(Vec3(0.1f, 0, 1)), kVisibleCamera).x, 0.0f);
+  light.visibility = kVisibleGlossy;
+  LightSet hidden({light}, nullptr);
+  EXPECT_EQ(hidden.distant_radiance(Vec3(0, 0, 1), kVisibleCamera).x, 0.0f);
+  EXPECT_GT(hidden.distant_radiance(Vec3(0, 0, 1), kVisibleGlossy).x, 0.0f);
+  // Finite-distance intersection never reports the sun.
   Ray ray;
   ray.direction = Vec3(0, 0, 1);
   float t;
-  Vec3 radiance;
-  ASSERT_TRUE(set.intersect(ray, INFINITY, kVisibleCamera, &t, &radiance));
-  EXPECT_NEAR(kPiD * radiance.x * std::sin(0.025) * std::sin(0.025), 2.0, 3e-3);
-  ray.direction = normalize(Vec3(0.1f, 0, 1));  // outside the disc
-  EXPECT_FALSE(set.intersect(ray, INFINITY, kVisibleCamera, &t, &radiance));
+  Vec3 le;
+  EXPECT_FALSE(set.intersect(ray, INFINITY, kVisibleCamera, &t, &le));
 }
 
 // Sum over two corners of int int h^2 / (x^2 + y^2 + h^2)^2 over [0, a] x [0, b] (the point below

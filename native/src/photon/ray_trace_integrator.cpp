@@ -57,8 +57,10 @@ RadianceSample RayTraceIntegrator::radiance(const RenderContext& context, const 
       break;
     }
     if (!found) {
+      // The ray left the scene (camera rays too, whatever their clip distance): world and suns.
       if (depth > 0 || !context.settings->transparent_background)
         result.radiance += throughput * context.scene->world.color;
+      result.radiance += throughput * context.lights->distant_radiance(ray.direction, mask);
       break;
     }
     if (depth == 0) result.alpha = 1.0f;
