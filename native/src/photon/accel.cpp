@@ -26,6 +26,16 @@ void init_ray(const Ray& ray, uint32_t mask, RTCRay* r) {
   r->flags = 0;
 }
 
+void fill_hit(const RTCRayHit& rh, const Ray& ray, Hit* hit) {
+  hit->t = rh.ray.tfar;
+  hit->p = ray.origin + ray.direction * rh.ray.tfar;
+  hit->ng_object = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+  hit->u = rh.hit.u;
+  hit->v = rh.hit.v;
+  hit->instance = rh.hit.instID[0];
+  hit->primitive = rh.hit.primID;
+}
+
 }  // namespace
 
 void Accel::on_embree_error(void* user, RTCError code, const char* message) {
@@ -125,14 +135,30 @@ bool Accel::intersect(const Ray& ray, uint32_t mask, Hit* hit) const {
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(top_, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-  hit->t = rh.ray.tfar;
-  hit->p = ray.origin + ray.direction * rh.ray.tfar;
-  hit->ng_object = Vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-  hit->u = rh.hit.u;
-  hit->v = rh.hit.v;
-  hit->instance = rh.hit.instID[0];
-  hit->primitive = rh.hit.primID;
+  fill_hit(rh, ray, hit);
   return true;
+}
+
+void Accel::intersect_coherent(const Ray* rays, size_t count, uint32_t mask, Hit* hits,
+                               bool* found) const {
+  constexpr size_t kBatch = 64;
+  RTCRayHit batch[kBatch];
+  for (size_t base = 0; base < count; base += kBatch) {
+    const size_t n = std::min(kBatch, count - base);
+    for (size_t i = 0; i < n; ++i) {
+      init_ray(rays[base + i], mask, &batch[i].ray);
+      batch[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      batch[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect1M(top_, &context, batch, static_cast<unsigned>(n), sizeof(RTCRayHit));
+    for (size_t i = 0; i < n; ++i) {
+      found[base + i] = batch[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      if (found[base + i]) fill_hit(batch[i], rays[base + i], &hits[base + i]);
+    }
+  }
 }
 
 bool Accel::occluded(const Ray& ray, uint32_t mask) const {

@@ -44,6 +44,12 @@ struct RadianceSample {
   float alpha = 0.0f;  // 1 when the camera ray hit something that is not background
 };
 
+// The first intersection of a camera ray, traced beforehand together with its neighbours.
+struct CameraHit {
+  bool found = false;
+  Hit hit;
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -53,9 +59,18 @@ class Integrator {
     (void)context;
     (void)cancel;
   }
-  // Radiance arriving along a camera ray. Must be thread-safe and deterministic in `sampler`.
-  virtual RadianceSample radiance(const RenderContext& context, const Ray& camera_ray,
-                                  Sampler& sampler) const = 0;
+  // Radiance arriving along a camera ray whose first hit is already known (the renderer traces
+  // camera rays in coherent batches). Must be thread-safe and deterministic in `sampler`.
+  virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
+                                           const CameraHit& first, Sampler& sampler) const = 0;
+
+  // Traces the camera ray's first hit itself, then as above.
+  RadianceSample radiance(const RenderContext& context, const Ray& camera_ray,
+                          Sampler& sampler) const {
+    CameraHit first;
+    first.found = context.accel->intersect(camera_ray, kVisibleCamera, &first.hit);
+    return radiance_from_hit(context, camera_ray, first, sampler);
+  }
 };
 
 std::unique_ptr<Integrator> make_integrator(IntegratorType type);

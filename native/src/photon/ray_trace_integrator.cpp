@@ -37,8 +37,10 @@ Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& s
   return e;
 }
 
-RadianceSample RayTraceIntegrator::radiance(const RenderContext& context, const Ray& camera_ray,
-                                            Sampler& sampler) const {
+RadianceSample RayTraceIntegrator::radiance_from_hit(const RenderContext& context,
+                                                     const Ray& camera_ray,
+                                                     const CameraHit& first,
+                                                     Sampler& sampler) const {
   RadianceSample result;
   Vec3 throughput(1.0f);
   Ray ray = camera_ray;
@@ -47,7 +49,13 @@ RadianceSample RayTraceIntegrator::radiance(const RenderContext& context, const 
 
   for (int depth = 0;; ++depth) {
     Hit hit;
-    const bool found = context.accel->intersect(ray, mask, &hit);
+    bool found;
+    if (depth == 0) {
+      found = first.found;
+      hit = first.hit;
+    } else {
+      found = context.accel->intersect(ray, mask, &hit);
+    }
     float t_light;
     Vec3 light_radiance;
     if (context.lights->intersect(ray, found ? hit.t : ray.tmax, mask, &t_light,

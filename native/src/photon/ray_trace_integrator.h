@@ -8,8 +8,8 @@ namespace photon {
 
 class RayTraceIntegrator : public Integrator {
  public:
-  RadianceSample radiance(const RenderContext& context, const Ray& camera_ray,
-                          Sampler& sampler) const override;
+  RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
+                                   const CameraHit& first, Sampler& sampler) const override;
 };
 
 // Irradiance at a diffuse point from all lights and the world, one shadow ray per light.

@@ -6,7 +6,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
-#include "photon/camera.h"
+#include "photon/pixel_renderer.h"
 
 namespace photon {
 namespace {
@@ -219,43 +219,9 @@ void RenderSession::run_render() {
 void RenderSession::render_tile(const RenderContext& context, const Integrator& integrator,
                                 Tile* tile) {
   tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
-  const RenderSettings& s = settings_;
-  const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
-  const float inv_spp = 1.0f / s.samples;
   uint64_t bad = 0;
-  for (int row = 0; row < tile->height; ++row) {
-    if (cancel_) return;
-    const int py = s.y0 + tile->y + row;
-    for (int col = 0; col < tile->width; ++col) {
-      const int px = s.x0 + tile->x + col;
-      // The random stream depends on the pixel's place in the full frame only.
-      const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
-      Vec3 sum(0.0f);
-      float alpha = 0.0f;
-      for (int k = 0; k < s.samples; ++k) {
-        // Checked often enough that Esc stops even a render with absurd sample counts at once.
-        if ((k & 63) == 63 && cancel_.load(std::memory_order_relaxed)) return;
-        Sampler sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
-                        static_cast<uint32_t>(s.samples));
-        const Vec2 jitter = sampler.get_2d();
-        const Vec2 lens = sampler.get_2d();
-        const Ray ray = generate_camera_ray(context.scene->camera, (px + jitter.x) * inv_w,
-                                            (py + jitter.y) * inv_h, lens);
-        const RadianceSample r = integrator.radiance(context, ray, sampler);
-        if (!is_finite(r.radiance)) {
-          ++bad;
-          continue;
-        }
-        sum += r.radiance;
-        alpha += r.alpha;
-      }
-      float* out = &tile->rgba[(static_cast<size_t>(row) * tile->width + col) * 4];
-      out[0] = sum.x * inv_spp;
-      out[1] = sum.y * inv_spp;
-      out[2] = sum.z * inv_spp;
-      out[3] = alpha * inv_spp;
-    }
-  }
+  render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
+                tile->height, tile->rgba.data(), cancel_, &bad);
   if (bad) {
     std::lock_guard<std::mutex> lock(mutex_);
     stats_.non_finite_samples += bad;

@@ -1,0 +1,68 @@
+#include "photon/pixel_renderer.h"
+
+#include <memory>
+#include <vector>
+
+#include "photon/camera.h"
+
+namespace photon {
+
+bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
+                   int width, int height, float* rgba, const std::atomic<bool>& cancel,
+                   uint64_t* non_finite) {
+  const RenderSettings& s = *context.settings;
+  const Camera& camera = context.scene->camera;
+  const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
+  const float inv_spp = 1.0f / s.samples;
+  const size_t n = static_cast<size_t>(width);
+
+  std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
+  std::vector<Ray> rays(n);
+  std::vector<Hit> hits(n);
+  std::unique_ptr<bool[]> found(new bool[n]);
+  std::vector<Vec3> sums(n);
+  std::vector<float> alphas(n);
+
+  for (int row = 0; row < height; ++row) {
+    const int py = y + row;
+    std::fill(sums.begin(), sums.end(), Vec3(0.0f));
+    std::fill(alphas.begin(), alphas.end(), 0.0f);
+    for (int k = 0; k < s.samples; ++k) {
+      if (cancel.load(std::memory_order_relaxed)) return false;
+      for (size_t i = 0; i < n; ++i) {
+        const int px = x + static_cast<int>(i);
+        // The stream depends on the pixel's place in the full frame only.
+        const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
+        samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
+                              static_cast<uint32_t>(s.samples));
+        const Vec2 jitter = samplers[i].get_2d();
+        const Vec2 lens = samplers[i].get_2d();
+        rays[i] = generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h,
+                                      lens);
+      }
+      context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
+      for (size_t i = 0; i < n; ++i) {
+        CameraHit first;
+        first.found = found[i];
+        if (first.found) first.hit = hits[i];
+        const RadianceSample r = integrator.radiance_from_hit(context, rays[i], first, samplers[i]);
+        if (!is_finite(r.radiance)) {
+          ++*non_finite;
+          continue;
+        }
+        sums[i] += r.radiance;
+        alphas[i] += r.alpha;
+      }
+    }
+    float* out = rgba + static_cast<size_t>(row) * n * 4;
+    for (size_t i = 0; i < n; ++i) {
+      out[4 * i + 0] = sums[i].x * inv_spp;
+      out[4 * i + 1] = sums[i].y * inv_spp;
+      out[4 * i + 2] = sums[i].z * inv_spp;
+      out[4 * i + 3] = alphas[i] * inv_spp;
+    }
+  }
+  return true;
+}
+
+}  // namespace photon

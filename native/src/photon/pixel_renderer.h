@@ -1,0 +1,22 @@
+// The per-pixel sampling loop shared by the render session, the CLI and the benchmarks.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "photon/integrator.h"
+
+namespace photon {
+
+// Renders the pixels [x, x + width) x [y, y + height) of the full frame (y downwards) into
+// `rgba` (width * height * 4 floats, top row first), averaging context.settings->samples
+// samples per pixel. For each row and sample index, the row's camera rays are traced together
+// as one coherent Embree stream; the rest of each path is traced ray by ray.
+// Random numbers depend only on (seed, pixel, sample), never on the block being rendered.
+// Returns false, leaving the block incomplete, as soon as `cancel` is set. Non-finite samples
+// are dropped and counted in `non_finite`.
+bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
+                   int width, int height, float* rgba, const std::atomic<bool>& cancel,
+                   uint64_t* non_finite);
+
+}  // namespace photon
