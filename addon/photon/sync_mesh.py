@@ -3,17 +3,15 @@
 import bpy
 import numpy as np
 
-# Since Blender 3.0, curve and text objects hand their evaluated mesh to render engines as a
-# separate instance whose data is a Mesh; surfaces and metaballs still evaluate on the object.
-# So: an object is geometry when its evaluated data is a Mesh, or it is a surface or metaball.
-TO_MESH_TYPES = {'SURFACE', 'META'}
+# Since Blender 3.0 the evaluated geometry of curves, text, surfaces and metaballs reaches render
+# engines as a separate instance whose data is a Mesh (the object's own entry keeps its Curve or
+# MetaBall data). So an object is geometry exactly when its evaluated data is a Mesh.
+def is_geometry(obj):
+    return isinstance(obj.data, bpy.types.Mesh)
+
+
 # Types that carry geometry Photon cannot render yet: reported, not silently dropped.
 UNSUPPORTED_GEOMETRY_TYPES = {'VOLUME', 'POINTCLOUD', 'CURVES', 'GPENCIL'}
-
-
-def is_geometry(obj):
-    data = obj.data
-    return data is not None and (isinstance(data, bpy.types.Mesh) or obj.type in TO_MESH_TYPES)
 
 
 def _get(collection, attribute, dtype, count, components=1):

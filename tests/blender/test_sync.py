@@ -4,10 +4,11 @@
 def test_sync_counts(blender):
     result, _ = blender.run_script("sync_counts.py")
     assert "exception" not in result, result.get("exception")
-    # Meshes: subdivided cube, arrayed plane, the scattered cube, the shared box, the text.
-    assert result["mesh_count"] == 5
-    # Instances: 1 + 1 + 100 scattered + 2 linked duplicates + 1 text.
-    assert result["instance_count"] == 105
+    # Meshes: subdivided cube, arrayed plane, the scattered cube, the shared box, the text, the
+    # metaball and the NURBS sphere (each converted once, not also from its Curve/MetaBall entry).
+    assert result["mesh_count"] == 7
+    # Instances: 1 + 1 + 100 scattered + 2 linked duplicates + text + metaball + surface.
+    assert result["instance_count"] == 107
     # Unique triangles: 48 (subdivided cube) + 6 (array) + 12 (scattered cube, once) +
     # 12 (shared box, once) + the text's own triangles.
     assert result["triangle_count"] > 48 + 6 + 12 + 12

@@ -1,5 +1,5 @@
-"""Builds a scene with modifiers, geometry-nodes instances, a text object, a linked duplicate and
-every light type, syncs it, and reports the native scene's counts."""
+"""Builds a scene with modifiers, geometry-nodes instances, text, a metaball, a NURBS surface, a
+linked duplicate and every light type, syncs it, and reports the native scene's counts."""
 
 import bpy
 
@@ -52,6 +52,11 @@ def main():
     text = bpy.data.curves.new("Text", 'FONT')
     text.body = "Hi"
     builders.link(bpy.data.objects.new("Text", text))
+
+    meta = bpy.data.metaballs.new("Meta")
+    meta.elements.new()
+    builders.link(bpy.data.objects.new("Meta", meta)).location = (4, 0, 0)
+    bpy.ops.surface.primitive_nurbs_surface_sphere_add(location=(-4, 0, 0))
 
     builders.light("Point", 'POINT', 100, (0, 0, 3), shadow_soft_size=0.1)
     builders.light("Spot", 'SPOT', 100, (1, 0, 3), spot_size=1.0, spot_blend=0.2)
