@@ -104,11 +104,9 @@ void BM_CameraRays_EmbreeStream(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * f.rays.size());
 }
 
-// Camera rays through the RAY_TRACE integrator exactly as the renderer runs them
-// (render_pixels: ray generation, coherent first-hit streams, hit shading setup, material
-// lookup), one sample per pixel, with no lights so that no shadow rays are traced.
-void BM_CameraRays_RayTraceIntegrator(benchmark::State& state) {
-  Fixture f(false);
+// One sample per pixel of the whole frame through render_pixels, exactly as the renderer runs it.
+void render_frame(benchmark::State& state, bool with_lights) {
+  Fixture f(with_lights);
   RayTraceIntegrator integrator;
   const RenderContext ctx = f.context();
   std::vector<float> rgba(kSize * kSize * 4);
@@ -119,18 +117,12 @@ void BM_CameraRays_RayTraceIntegrator(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * kSize * kSize);
 }
 
+// Camera rays through the RAY_TRACE integrator: ray generation, coherent first-hit streams, hit
+// shading setup and material lookup, with no lights so that no shadow rays are traced.
+void BM_CameraRays_RayTraceIntegrator(benchmark::State& state) { render_frame(state, false); }
+
 // The full RAY_TRACE shading of one sample per pixel: camera ray plus one shadow ray.
-void BM_ShadedSamples_RayTraceIntegrator(benchmark::State& state) {
-  Fixture f(true);
-  RayTraceIntegrator integrator;
-  const RenderContext ctx = f.context();
-  std::vector<float> rgba(kSize * kSize * 4);
-  std::atomic<bool> cancel{false};
-  uint64_t bad = 0;
-  for (auto _ : state) render_pixels(ctx, integrator, 0, 0, kSize, kSize, rgba.data(), cancel, &bad);
-  benchmark::DoNotOptimize(rgba.data());
-  state.SetItemsProcessed(state.iterations() * kSize * kSize);
-}
+void BM_ShadedSamples_RayTraceIntegrator(benchmark::State& state) { render_frame(state, true); }
 
 }  // namespace
 
