@@ -70,11 +70,12 @@ def sync_scene(native, depsgraph, reporter):
                          f"{shown}")
 
     sync_camera.export_camera(native_scene, scene, depsgraph, reporter)
-    native_scene.set_world(sync_materials.world_color(scene.world, reporter))
+    world = sync_materials.world_color(scene.world, reporter)
+    native_scene.set_world(world)
 
     if stats.triangles == 0:
         reporter.warning("The scene has no renderable geometry")
-    if stats.lights == 0 and max(sync_materials.world_color(scene.world, reporter)) <= 0.0:
+    if stats.lights == 0 and max(world) <= 0.0:
         reporter.warning("The scene has no lights and a black world: only emissive surfaces will show")
     stats.seconds = time.perf_counter() - t0
     return native_scene, stats

@@ -6,16 +6,10 @@
 #include <vector>
 
 #include "photon/test_scenes.h"
+#include "photon/test_util.h"
 
 namespace photon {
 namespace {
-
-::testing::AssertionResult VecNear(const Vec3& a, const Vec3& b, float tol) {
-  const float d = length(a - b);
-  if (d <= tol) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "(" << a.x << ", " << a.y << ", " << a.z << ") vs ("
-                                       << b.x << ", " << b.y << ", " << b.z << "), distance " << d;
-}
 
 // A rotated and translated camera: its columns are right, up, back (view axis = -back), eye.
 struct CameraBasis {

@@ -64,13 +64,6 @@ class Integrator {
   virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                            const CameraHit& first, Sampler& sampler) const = 0;
 
-  // Traces the camera ray's first hit itself, then as above.
-  RadianceSample radiance(const RenderContext& context, const Ray& camera_ray,
-                          Sampler& sampler) const {
-    CameraHit first;
-    first.found = context.accel->intersect(camera_ray, kVisibleCamera, &first.hit);
-    return radiance_from_hit(context, camera_ray, first, sampler);
-  }
 };
 
 std::unique_ptr<Integrator> make_integrator(IntegratorType type);
