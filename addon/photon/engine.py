@@ -7,7 +7,7 @@ import traceback
 import bpy
 import numpy as np
 
-from . import report, sync, sync_camera
+from . import properties, report, sync, sync_camera
 
 POLL_SECONDS = 0.05  # tile poll interval; bounds Esc latency together with the per-row check
 
@@ -32,6 +32,13 @@ def make_settings(native, scene, full_width, full_height, region):
     settings.tile_size = max(8, int(props.tile_size))
     settings.transparent_background = bool(scene.render.film_transparent)
     settings.integrator = getattr(native.Integrator, props.integrator)
+    settings.photons = max(0, int(props.photons))
+    settings.caustic_photons = max(0, int(props.caustic_photons))
+    settings.gather_count = max(1, int(props.gather_count))
+    settings.gather_radius = max(0.0, float(props.gather_radius))
+    settings.caustic_gather_count = max(1, int(props.caustic_gather_count))
+    settings.final_gather_rays = max(0, int(props.final_gather_rays))
+    settings.photon_time = max(0.0, float(props.photon_time))
     return settings
 
 
@@ -42,6 +49,13 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     bl_use_postprocess = True
     # Keep Blender's shader nodes visible so artists author Principled materials for Photon.
     bl_use_shading_nodes_custom = False
+    _passes = ()
+
+    def update_render_passes(self, scene=None, renderlayer=None):
+        # Registering makes the passes exist in the compositor's Render Layers node.
+        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
+        for name, _index in properties.enabled_passes(renderlayer):
+            self.register_pass(scene, renderlayer, name, 3, "RGB", "COLOR")
 
     def render(self, depsgraph):
         # An exception escaping render() makes Blender write an empty file and crash in
@@ -69,6 +83,10 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         region = sync_camera.render_region(scene.render, width, height)
         settings = make_settings(native, scene, width, height, region)
         region_w, region_h = region[2] - region[0], region[3] - region[1]
+        self._passes = properties.enabled_passes(depsgraph.view_layer)
+        for name, _index in self._passes:
+            self.add_pass(name, 3, "RGB", layer=depsgraph.view_layer.name)
+        settings.light_passes = bool(self._passes)
 
         session = native.RenderSession(native_scene, settings)
         session.start()
@@ -76,20 +94,30 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             (region_h + settings.tile_size - 1) // settings.tile_size)
         tiles_done = 0
         cancelled = False
+        photons_stopped = False
         try:
             while True:
-                for x, y, w, h, rgba in session.take_tiles(POLL_SECONDS):
-                    self._write_tile(x, region_h - (y + h), w, h, rgba)
+                for x, y, w, h, rgba, passes in session.take_tiles(POLL_SECONDS):
+                    self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
                     tiles_done += 1
-                if not cancelled and self.test_break():
-                    session.cancel()
-                    cancelled = True
+                if not cancelled and not photons_stopped and self.test_break():
+                    if session.preparing:
+                        # Esc while photons are traced ends the tracing; the image is rendered
+                        # with the photons traced so far (Blender keeps test_break() set from
+                        # here on, so the rest of this render cannot be cancelled).
+                        session.stop_preparation()
+                        photons_stopped = True
+                        reporter.warning("Esc: photon tracing stopped, rendering with the "
+                                         "photons traced so far")
+                    else:
+                        session.cancel()
+                        cancelled = True
                 self.update_progress(session.progress)
                 self.update_stats("", self._stats_line(session, sync_stats, tiles_done,
                                                        tiles_total, t_start))
                 if session.finished:
-                    for x, y, w, h, rgba in session.take_tiles(0.0):
-                        self._write_tile(x, region_h - (y + h), w, h, rgba)
+                    for x, y, w, h, rgba, passes in session.take_tiles(0.0):
+                        self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
                         tiles_done += 1
                     break
         finally:
@@ -110,10 +138,20 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             f"({sync_stats.triangles} triangles, {sync_stats.instances} instances, "
             f"{sync_stats.lights} lights), BVH {stats['build_seconds']:.3f} s, "
             f"render {stats['render_seconds']:.3f} s, total {elapsed:.3f} s")
+        if "photons_emitted" in stats:
+            reporter.info(
+                f"photons: {int(stats['photons_emitted']):,} global and "
+                f"{int(stats['caustic_photons_emitted']):,} caustic emitted, "
+                f"{int(stats['global_photons_stored']):,} and "
+                f"{int(stats['caustic_photons_stored']):,} stored in "
+                f"{stats['photon_trace_seconds']:.3f} s; maps built in "
+                f"{stats['photon_map_build_seconds']:.3f} s, radiance precomputed in "
+                f"{stats['radiance_precompute_seconds']:.3f} s "
+                f"({stats['photon_map_bytes'] / 1e6:.1f} MB)")
         # Free native memory now rather than when Python collects: -a renders many frames.
         del session, native_scene
 
-    def _write_tile(self, x, y_bottom, w, h, rgba):
+    def _write_tile(self, x, y_bottom, w, h, rgba, light_passes=None):
         # Native tiles are top row first; Blender's result rows go bottom-up.
         pixels = np.ascontiguousarray(rgba[::-1], dtype=np.float32)
         result = self.begin_result(x, y_bottom, w, h)
@@ -121,12 +159,17 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         if len(passes) == 1:
             passes.foreach_set("rect", pixels.ravel())
         else:
-            # Other passes registered on the view layer get zeros until Photon writes them.
+            ours = dict(self._passes)
             parts = []
             for render_pass in passes:
                 if render_pass.name == "Combined":
                     parts.append(pixels.ravel())
+                elif (render_pass.name in ours and light_passes is not None
+                      and render_pass.channels == 3):
+                    parts.append(np.ascontiguousarray(
+                        light_passes[ours[render_pass.name]][::-1], dtype=np.float32).ravel())
                 else:
+                    # Passes Photon does not produce (e.g. Z, Normal enabled on the view layer).
                     parts.append(np.zeros(w * h * render_pass.channels, dtype=np.float32))
             passes.foreach_set("rect", np.concatenate(parts))
         self.end_result(result)

@@ -1,7 +1,7 @@
 """Render settings stored on the scene as scene.photon."""
 
 import bpy
-from bpy.props import EnumProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
 
 class PhotonRenderSettings(bpy.types.PropertyGroup):
@@ -9,10 +9,13 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
         name="Integrator",
         description="Rendering algorithm",
         items=[
+            ("PHOTON_MAP", "Photon Mapping",
+             "Global illumination and caustics from global and caustic photon maps, with "
+             "final gathering"),
             ("RAY_TRACE", "Ray Tracing",
              "Whitted ray tracing: direct light, perfect mirrors and glass"),
         ],
-        default="RAY_TRACE",
+        default="PHOTON_MAP",
     )
     samples: IntProperty(
         name="Samples", description="Camera samples per pixel",
@@ -23,6 +26,36 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
     seed: IntProperty(
         name="Seed", description="Random seed; the same seed renders the same image",
         default=0, min=0)
+    photons: IntProperty(
+        name="Photons", description="Photons emitted for the global photon map (indirect light)",
+        default=200000, min=0, soft_max=10000000, max=1000000000)
+    caustic_photons: IntProperty(
+        name="Caustic Photons",
+        description="Photons aimed at mirrors and glass for the caustic photon map",
+        default=100000, min=0, soft_max=10000000, max=1000000000)
+    gather_count: IntProperty(
+        name="Gather Count",
+        description="Nearest photons used in a global photon map estimate",
+        default=100, min=1, soft_max=500, max=10000)
+    gather_radius: FloatProperty(
+        name="Gather Radius",
+        description="Largest distance searched for photons (0 = automatic from the scene size)",
+        default=0.0, min=0.0, soft_max=10.0, subtype="DISTANCE", unit="LENGTH")
+    caustic_gather_count: IntProperty(
+        name="Caustic Gather Count",
+        description="Nearest photons used in a caustic estimate",
+        default=50, min=1, soft_max=500, max=10000)
+    final_gather_rays: IntProperty(
+        name="Final Gather Rays",
+        description="Rays gathering indirect light per camera sample "
+                    "(0 = read the global photon map directly: fast, blotchy preview)",
+        default=16, min=0, soft_max=256, max=4096)
+    photon_time: FloatProperty(
+        name="Photon Time",
+        description="Trace photons for this many seconds instead of a fixed count "
+                    "(0 = use the counts). Esc during photon tracing renders with the "
+                    "photons traced so far",
+        default=0.0, min=0.0, soft_max=600.0, max=86400.0, subtype="TIME_ABSOLUTE", unit="TIME")
     threads: IntProperty(
         name="Threads", description="Render threads (0 = all cores)",
         default=0, min=0, soft_max=256)
@@ -31,11 +64,52 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
         default=64, min=8, max=4096, subtype="PIXEL")
 
 
+class PhotonViewLayerSettings(bpy.types.PropertyGroup):
+    """Render passes Photon writes besides Combined (view_layer.photon)."""
+    use_pass_direct: BoolProperty(
+        name="Photon Direct", description="Direct light, emission and specular paths to lights",
+        default=False)
+    use_pass_indirect: BoolProperty(
+        name="Photon Indirect", description="Light that bounced off diffuse surfaces",
+        default=False)
+    use_pass_caustics: BoolProperty(
+        name="Photon Caustics", description="Light focused onto diffuse surfaces by mirrors "
+                                            "and glass (the caustic photon map)",
+        default=False)
+    use_pass_photon_map: BoolProperty(
+        name="Photon Map", description="Dots where photons are stored, coloured by their "
+                                       "power (not light)",
+        default=False)
+
+
+# (pass name in Blender, view-layer property, index in the native pass array)
+LIGHT_PASSES = (
+    ("Photon Direct", "use_pass_direct", 0),
+    ("Photon Indirect", "use_pass_indirect", 1),
+    ("Photon Caustics", "use_pass_caustics", 2),
+    ("Photon Map", "use_pass_photon_map", 3),
+)
+
+
+def enabled_passes(view_layer):
+    settings = getattr(view_layer, "photon", None)
+    if settings is None:
+        return []
+    return [(name, index) for name, prop, index in LIGHT_PASSES if getattr(settings, prop)]
+
+
+classes = (PhotonRenderSettings, PhotonViewLayerSettings)
+
+
 def register():
-    bpy.utils.register_class(PhotonRenderSettings)
+    for cls in classes:
+        bpy.utils.register_class(cls)
     bpy.types.Scene.photon = PointerProperty(type=PhotonRenderSettings)
+    bpy.types.ViewLayer.photon = PointerProperty(type=PhotonViewLayerSettings)
 
 
 def unregister():
+    del bpy.types.ViewLayer.photon
     del bpy.types.Scene.photon
-    bpy.utils.unregister_class(PhotonRenderSettings)
+    for cls in reversed(classes):
+        bpy.utils.unregister_class(cls)

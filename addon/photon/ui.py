@@ -64,6 +64,54 @@ class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
         layout.prop(props, "seed")
 
 
+class PHOTON_PT_photon_mapping(PhotonPanel, bpy.types.Panel):
+    bl_label = "Photon Mapping"
+    bl_parent_id = "PHOTON_PT_render"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.scene.photon.integrator == "PHOTON_MAP"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        props = context.scene.photon
+        col = layout.column(align=True)
+        col.prop(props, "photons")
+        col.prop(props, "caustic_photons")
+        layout.prop(props, "photon_time")
+        col = layout.column(align=True)
+        col.prop(props, "gather_count")
+        col.prop(props, "caustic_gather_count")
+        col.prop(props, "gather_radius")
+        layout.prop(props, "final_gather_rays")
+
+
+class PHOTON_PT_passes(bpy.types.Panel):
+    bl_label = "Photon Passes"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "view_layer"
+    COMPAT_ENGINES = {ENGINE}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.view_layer.photon
+        col = layout.column(heading="Light", align=True)
+        col.prop(settings, "use_pass_direct", text="Direct")
+        col.prop(settings, "use_pass_indirect", text="Indirect")
+        col.prop(settings, "use_pass_caustics", text="Caustics")
+        col = layout.column(heading="Debug", align=True)
+        col.prop(settings, "use_pass_photon_map", text="Photon Map")
+
+
 class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
     bl_label = "Performance"
     bl_parent_id = "PHOTON_PT_render"
@@ -78,7 +126,7 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
         layout.prop(props, "tile_size")
 
 
-classes = (PHOTON_PT_render, PHOTON_PT_performance)
+classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_performance, PHOTON_PT_passes)
 
 
 def register():

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "photon/mesh_import.h"
+#include "photon/pixel_renderer.h"
 #include "photon/render_session.h"
 #include "photon/scene.h"
 
@@ -57,6 +58,7 @@ py::dict stats_dict(const RenderStats& s) {
   d["bvh_count"] = s.bvh_count;
   d["lights"] = s.lights;
   d["threads"] = s.threads;
+  for (const auto& [name, value] : s.integrator) d[py::str(name)] = value;
   return d;
 }
 
@@ -91,6 +93,16 @@ py::array_t<float> to_numpy(std::vector<float>&& data, int height, int width) {
   auto* heap = new std::vector<float>(std::move(data));
   py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
   return py::array_t<float>({height, width, 4}, heap->data(), owner);
+}
+
+// Light passes of a tile as [pass, h, w, 3]: Direct, Indirect, Caustics, Photon Map.
+py::array_t<float> passes_to_numpy(std::vector<float>&& data, int height, int width) {
+  auto* heap = new std::vector<float>(std::move(data));
+  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+  const py::ssize_t h = height, w = width, f = sizeof(float);
+  std::vector<py::ssize_t> shape{kPassCount, h, w, 3};
+  std::vector<py::ssize_t> strides{3 * f, w * kPassFloats * f, kPassFloats * f, f};
+  return py::array_t<float>(shape, strides, heap->data(), owner);
 }
 
 }  // namespace
@@ -291,7 +303,11 @@ PYBIND11_MODULE(_photon, m) {
         return n;
       });
 
-  py::enum_<IntegratorType>(m, "Integrator").value("RAY_TRACE", IntegratorType::kRayTrace);
+  py::enum_<IntegratorType>(m, "Integrator")
+      .value("RAY_TRACE", IntegratorType::kRayTrace)
+      .value("PHOTON_MAP", IntegratorType::kPhotonMap);
+  m.attr("PASS_NAMES") = py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics",
+                                        "Photon Map");
 
   py::class_<RenderSettings>(m, "RenderSettings")
       .def(py::init<>())
@@ -307,7 +323,15 @@ PYBIND11_MODULE(_photon, m) {
       .def_readwrite("threads", &RenderSettings::threads)
       .def_readwrite("tile_size", &RenderSettings::tile_size)
       .def_readwrite("transparent_background", &RenderSettings::transparent_background)
-      .def_readwrite("integrator", &RenderSettings::integrator);
+      .def_readwrite("integrator", &RenderSettings::integrator)
+      .def_readwrite("light_passes", &RenderSettings::light_passes)
+      .def_readwrite("photons", &RenderSettings::photons)
+      .def_readwrite("caustic_photons", &RenderSettings::caustic_photons)
+      .def_readwrite("gather_count", &RenderSettings::gather_count)
+      .def_readwrite("gather_radius", &RenderSettings::gather_radius)
+      .def_readwrite("caustic_gather_count", &RenderSettings::caustic_gather_count)
+      .def_readwrite("final_gather_rays", &RenderSettings::final_gather_rays)
+      .def_readwrite("photon_time", &RenderSettings::photon_time);
 
   py::class_<RenderSession>(m, "RenderSession")
       .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings) {
@@ -316,6 +340,8 @@ PYBIND11_MODULE(_photon, m) {
            py::arg("scene"), py::arg("settings"))
       .def("start", &RenderSession::start)
       .def("cancel", &RenderSession::cancel)
+      .def("stop_preparation", &RenderSession::stop_preparation)
+      .def_property_readonly("preparing", &RenderSession::preparing)
       .def("wait", &RenderSession::wait, py::call_guard<py::gil_scoped_release>())
       .def(
           "take_tiles",
@@ -328,12 +354,15 @@ PYBIND11_MODULE(_photon, m) {
             py::list out;
             for (Tile& t : tiles) {
               const int w = t.width, h = t.height, x = t.x, y = t.y;
-              out.append(py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w)));
+              py::object passes = py::none();
+              if (!t.passes.empty()) passes = passes_to_numpy(std::move(t.passes), h, w);
+              out.append(py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w), passes));
             }
             return out;
           },
           py::arg("timeout") = 0.1,
-          "Finished tiles as (x, y, width, height, rgba[h, w, 4]) with y downwards.")
+          "Finished tiles as (x, y, width, height, rgba[h, w, 4], passes) with y downwards; "
+          "passes is [4, h, w, 3] (PASS_NAMES order) when light_passes is set, else None.")
       .def_property_readonly("finished", &RenderSession::finished)
       .def_property_readonly("cancelled", &RenderSession::cancelled)
       .def_property_readonly("progress", &RenderSession::progress)

@@ -83,10 +83,12 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
   top_ = rtcNewScene(device_);
   rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
   size_t skipped = 0;
-  for (const Instance& inst : scene.instances) {
+  for (size_t index = 0; index < scene.instances.size(); ++index) {
+    const Instance& inst = scene.instances[index];
     if (inst.mesh >= mesh_scenes_.size() || !mesh_scenes_[inst.mesh]) continue;
     InstanceData data;
     data.mesh = &scene.meshes[inst.mesh];
+    data.scene_index = static_cast<uint32_t>(index);
     data.slot_materials = inst.slot_materials.data();
     data.slot_count = static_cast<uint32_t>(inst.slot_materials.size());
     const Transform& to_world = inst.object_to_world;
@@ -194,18 +196,24 @@ SurfaceInteraction Accel::interaction(const Hit& hit) const {
     const Vec2* uv = &mesh.corner_uvs[3 * tri];
     si.uv = uv[0] * b0 + uv[1] * hit.u + uv[2] * hit.v;
   }
-  const int32_t slot = mesh.material_slots.empty() ? 0 : mesh.material_slots[tri];
+  si.mat = &triangle_material(hit.instance, hit.primitive, &si.material);
+  return si;
+}
+
+const Material& Accel::triangle_material(uint32_t instance, uint32_t primitive,
+                                         uint32_t* index) const {
+  const InstanceData& inst = instances_[instance];
+  const Mesh& mesh = *inst.mesh;
+  const int32_t slot = mesh.material_slots.empty() ? 0 : mesh.material_slots[primitive];
   const int32_t material = (slot >= 0 && static_cast<uint32_t>(slot) < inst.slot_count)
                                ? inst.slot_materials[slot]
                                : -1;
   if (material >= 0 && static_cast<size_t>(material) < scene_.materials.size()) {
-    si.material = static_cast<uint32_t>(material);
-    si.mat = &scene_.materials[material];
-  } else {
-    si.material = UINT32_MAX;
-    si.mat = &Scene::default_material();
+    if (index) *index = static_cast<uint32_t>(material);
+    return scene_.materials[material];
   }
-  return si;
+  if (index) *index = UINT32_MAX;
+  return Scene::default_material();
 }
 
 }  // namespace photon

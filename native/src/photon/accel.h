@@ -49,6 +49,13 @@ class Accel {
   void intersect_coherent(const Ray* rays, size_t count, uint32_t mask, Hit* hits,
                           bool* found) const;
   SurfaceInteraction interaction(const Hit& hit) const;
+  // The material of triangle `primitive` of Embree instance `instance` (the default material
+  // when the slot maps to none), and its scene material index (UINT32_MAX for the default).
+  const Material& triangle_material(uint32_t instance, uint32_t primitive,
+                                    uint32_t* index = nullptr) const;
+  // Index into Scene::instances of Embree instance `instance` (instances whose transform was
+  // unusable are skipped, so the two numberings can differ).
+  uint32_t scene_instance(uint32_t instance) const { return instances_[instance].scene_index; }
 
   size_t instance_count() const { return instances_.size(); }
   size_t blas_count() const { return blas_count_; }
@@ -65,6 +72,7 @@ class Accel {
     uint32_t slot_count = 0;
     const int32_t* slot_materials = nullptr;
     const Mesh* mesh = nullptr;
+    uint32_t scene_index = 0;
   };
 
   const Scene& scene_;

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -16,7 +17,9 @@
 
 namespace photon {
 
-enum class IntegratorType : uint8_t { kRayTrace };
+enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap };
+
+class EmissiveMeshes;
 
 struct RenderSettings {
   int full_width = 64, full_height = 64;  // whole frame in pixels
@@ -28,7 +31,17 @@ struct RenderSettings {
   int threads = 0;     // 0 = all cores
   int tile_size = 64;
   bool transparent_background = false;
-  IntegratorType integrator = IntegratorType::kRayTrace;
+  IntegratorType integrator = IntegratorType::kPhotonMap;
+  bool light_passes = false;  // also write the Direct / Indirect / Caustics / Photon Map passes
+
+  // Photon mapping (seed 000 sec. 2.1; Jensen 2001).
+  uint64_t photons = 200000;          // photon paths emitted for the global map
+  uint64_t caustic_photons = 100000;  // photon paths aimed at specular objects
+  int gather_count = 100;             // k nearest photons in a global-map estimate
+  float gather_radius = 0.0f;         // maximum search radius; 0 = from the scene's size
+  int caustic_gather_count = 50;      // k nearest photons in a caustic estimate
+  int final_gather_rays = 16;         // per camera sample; 0 = read the global map directly
+  float photon_time = 0.0f;           // > 0: trace photons for this many seconds instead
 };
 
 // Read-only state shared by all threads during a render.
@@ -37,11 +50,33 @@ struct RenderContext {
   const Accel* accel = nullptr;
   const LightSet* lights = nullptr;
   const RenderSettings* settings = nullptr;
+  const EmissiveMeshes* emissive = nullptr;  // emissive triangles as lights (may be empty)
 };
 
+// What one camera sample sees, split into light passes whose sum is the Combined image.
 struct RadianceSample {
-  Vec3 radiance;
+  Vec3 direct;    // emission, direct light, and lights / world seen through specular paths
+  Vec3 indirect;  // light that bounced off at least one diffuse surface
+  Vec3 caustic;   // light that reached a diffuse surface through specular paths only
+  Vec3 photon_map;  // a view of the stored photons (not light; not part of Combined)
   float alpha = 0.0f;  // 1 when the camera ray hit something that is not background
+  Vec3 radiance() const { return direct + indirect + caustic; }
+};
+
+// Reports and controls a long preparation (photon tracing, a radiosity solve).
+struct PrepareControl {
+  const std::atomic<bool>* cancel = nullptr;      // abandon the render
+  const std::atomic<bool>* stop_early = nullptr;  // finish this phase now, keep what is done
+  std::function<void(const std::string& status, float fraction)> progress;
+  std::function<void(const std::string& warning)> warn;
+
+  bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+  bool should_stop() const {
+    return cancelled() || (stop_early && stop_early->load(std::memory_order_relaxed));
+  }
+  void report(const std::string& status, float fraction) const {
+    if (progress) progress(status, fraction);
+  }
 };
 
 // The first intersection of a camera ray, traced beforehand together with its neighbours.
@@ -54,11 +89,13 @@ class Integrator {
  public:
   virtual ~Integrator() = default;
   // Runs once before pixels are rendered (photon tracing, radiosity solve, ...). Long
-  // preparations poll `cancel` and return early when it is set.
-  virtual void prepare(const RenderContext& context, const std::atomic<bool>& cancel) {
+  // preparations poll `control` and return early when asked to.
+  virtual void prepare(const RenderContext& context, const PrepareControl& control) {
     (void)context;
-    (void)cancel;
+    (void)control;
   }
+  // Statistics of the preparation, as "name: value" lines for the UI and logs.
+  virtual std::vector<std::pair<std::string, double>> prepare_stats() const { return {}; }
   // Radiance arriving along a camera ray whose first hit is already known (the renderer traces
   // camera rays in coherent batches). Must be thread-safe and deterministic in `sampler`.
   virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,

@@ -109,6 +109,7 @@ bool LightSet::sample(size_t index, const Vec3& p, Vec2 u, LightSample* out) con
       if (l.type == LightType::kSpot) attenuation *= spot_attenuation(l, -out->wi);
       if (attenuation <= 0.0f) return false;
       out->weight = l.intensity * (attenuation / dist2);
+      out->pdf = l.radius > 0.0f ? dist2 / (cos_light * l.area) : 0.0f;
       return true;
     }
     case LightType::kSun: {
@@ -136,6 +137,7 @@ bool LightSet::sample(size_t index, const Vec3& p, Vec2 u, LightSample* out) con
       const float cos_light = dot(-out->wi, l.axis);  // one-sided: emits along its axis only
       if (cos_light <= 0.0f) return false;
       out->weight = l.radiance * (cos_light * l.area / dist2);
+      out->pdf = dist2 / (cos_light * l.area);
       return true;
     }
   }
@@ -191,6 +193,43 @@ bool LightSet::intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit
   }
   if (found) *t_hit = best;
   return found;
+}
+
+bool LightSet::has_area(size_t index) const {
+  const Prepared& l = lights_[index];
+  return l.type == LightType::kArea ||
+         ((l.type == LightType::kPoint || l.type == LightType::kSpot) && l.radius > 0.0f);
+}
+
+bool LightSet::eval(size_t index, const Vec3& p, const Vec3& wi, Vec3* radiance, float* distance,
+                    float* pdf) const {
+  const Prepared& l = lights_[index];
+  if (!has_area(index)) return false;
+  // The surface sample() draws from: the area light itself, or the disc of the light's radius
+  // facing p.
+  const Vec3 n = l.type == LightType::kArea ? l.axis : normalize(p - l.position);
+  const float denom = dot(wi, n);
+  if (!(denom < 0.0f)) return false;
+  const float t = dot(l.position - p, n) / denom;
+  if (!(t > 0.0f)) return false;
+  const Vec3 d = p + wi * t - l.position;
+  bool inside;
+  if (l.type == LightType::kArea) {
+    const float su = dot(d, l.half_u) / length_squared(l.half_u);
+    const float sv = dot(d, l.half_v) / length_squared(l.half_v);
+    inside = l.shape == AreaShape::kRectangle ? std::fabs(su) <= 1.0f && std::fabs(sv) <= 1.0f
+                                              : su * su + sv * sv <= 1.0f;
+  } else {
+    inside = length_squared(d) <= l.radius * l.radius;
+  }
+  if (!inside) return false;
+  const float cos_light = -denom;
+  Vec3 le = l.radiance;
+  if (l.type == LightType::kSpot) le *= spot_attenuation(l, -wi);
+  *radiance = le;
+  *distance = t;
+  *pdf = t * t / (cos_light * l.area);
+  return true;
 }
 
 Vec3 LightSet::distant_radiance(const Vec3& direction, uint32_t mask) const {

@@ -19,6 +19,20 @@ struct LightSample {
   Vec3 wi;         // unit direction from the shading point towards the light
   float distance;  // to the sampled point; INFINITY for the sun
   Vec3 weight;     // Le * G / pdf without the receiver cosine: irradiance per unit cos(theta)
+  float pdf = 0.0f;  // solid-angle density of wi; 0 for delta lights (point, spot, sun)
+};
+
+// A photon leaving a light: its ray and its flux before dividing by the number of photons
+// and the probability of having picked this light.
+struct EmittedPhoton {
+  Ray ray;
+  Vec3 power;
+};
+
+// Spheres around the specular objects that caustic photons are aimed at.
+struct BoundingSphere {
+  Vec3 center;
+  float radius = 0.0f;
 };
 
 class LightSet {
@@ -37,6 +51,27 @@ class LightSet {
   // Radiance from lights at infinity (sun discs) along a ray that left the scene, for lights
   // whose visibility matches `mask`. Zero when the direction misses every sun.
   Vec3 distant_radiance(const Vec3& direction, uint32_t mask) const;
+
+  // For multiple importance sampling: whether sample() of this light has a density (area
+  // lights, point and spot lights with a radius), and the radiance, distance and solid-angle
+  // density sample() would produce for direction `wi` from `p` (false if it misses the light).
+  bool has_area(size_t index) const;
+  bool eval(size_t index, const Vec3& p, const Vec3& wi, Vec3* radiance, float* distance,
+            float* pdf) const;
+
+  // Photon emission (light_emission.cpp). `scene_center` / `scene_radius` bound the scene,
+  // for the sun's beam. power(): the light's emitted flux in W per channel.
+  Vec3 power(size_t index, float scene_radius) const;
+  void emit(size_t index, const Vec3& scene_center, float scene_radius, Vec2 u_pos, Vec2 u_dir,
+            EmittedPhoton* out) const;
+  // Caustic photons: directions restricted to cones around `targets` (Jensen's projection
+  // maps in continuous form); the photon's power carries the correction. `coverage()` is the
+  // fraction of the light's flux heading to the targets, for splitting photons between lights.
+  bool emit_towards(size_t index, const std::vector<BoundingSphere>& targets,
+                    const Vec3& scene_center, float scene_radius, float u_pick, Vec2 u_pos,
+                    Vec2 u_dir, EmittedPhoton* out) const;
+  float coverage(size_t index, const std::vector<BoundingSphere>& targets,
+                 float scene_radius) const;
 
  private:
   struct Prepared {

@@ -9,7 +9,7 @@ namespace photon {
 
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
-                   uint64_t* non_finite) {
+                   uint64_t* non_finite, float* passes) {
   const RenderSettings& s = *context.settings;
   const Camera& camera = context.scene->camera;
   const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
@@ -21,12 +21,14 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
   std::vector<Hit> hits(n);
   std::unique_ptr<bool[]> found(new bool[n]);
   std::vector<Vec3> sums(n);
+  std::vector<Vec3> pass_sums(passes ? n * kPassCount : 0);
   std::vector<float> alphas(n);
 
   for (int row = 0; row < height; ++row) {
     const int py = y + row;
     std::fill(sums.begin(), sums.end(), Vec3(0.0f));
     std::fill(alphas.begin(), alphas.end(), 0.0f);
+    std::fill(pass_sums.begin(), pass_sums.end(), Vec3(0.0f));
     for (int k = 0; k < s.samples; ++k) {
       if (cancel.load(std::memory_order_relaxed)) return false;
       for (size_t i = 0; i < n; ++i) {
@@ -46,12 +48,20 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         first.found = found[i];
         if (first.found) first.hit = hits[i];
         const RadianceSample r = integrator.radiance_from_hit(context, rays[i], first, samplers[i]);
-        if (!is_finite(r.radiance)) {
+        const Vec3 radiance = r.radiance();
+        if (!is_finite(radiance) || !is_finite(r.photon_map)) {
           ++*non_finite;
           continue;
         }
-        sums[i] += r.radiance;
+        sums[i] += radiance;
         alphas[i] += r.alpha;
+        if (passes) {
+          Vec3* p = &pass_sums[i * kPassCount];
+          p[0] += r.direct;
+          p[1] += r.indirect;
+          p[2] += r.caustic;
+          p[3] += r.photon_map;
+        }
       }
     }
     float* out = rgba + static_cast<size_t>(row) * n * 4;
@@ -60,6 +70,14 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
       out[4 * i + 1] = sums[i].y * inv_spp;
       out[4 * i + 2] = sums[i].z * inv_spp;
       out[4 * i + 3] = alphas[i] * inv_spp;
+    }
+    if (passes) {
+      float* pout = passes + static_cast<size_t>(row) * n * kPassFloats;
+      for (size_t i = 0; i < n * kPassCount; ++i) {
+        pout[3 * i + 0] = pass_sums[i].x * inv_spp;
+        pout[3 * i + 1] = pass_sums[i].y * inv_spp;
+        pout[3 * i + 2] = pass_sums[i].z * inv_spp;
+      }
     }
   }
   return true;

@@ -15,8 +15,12 @@ namespace photon {
 // Random numbers depend only on (seed, pixel, sample), never on the block being rendered.
 // Returns false, leaving the block incomplete, as soon as `cancel` is set. Non-finite samples
 // are dropped and counted in `non_finite`.
+// `passes` (optional, width * height * kPassFloats floats) receives the light passes per pixel:
+// Direct RGB, Indirect RGB, Caustics RGB, Photon Map RGB; Combined RGB is their light sum.
+constexpr int kPassCount = 4;
+constexpr int kPassFloats = 3 * kPassCount;
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
-                   uint64_t* non_finite);
+                   uint64_t* non_finite, float* passes = nullptr);
 
 }  // namespace photon

@@ -12,9 +12,4 @@ class RayTraceIntegrator : public Integrator {
                                    const CameraHit& first, Sampler& sampler) const override;
 };
 
-// Irradiance at a diffuse point from all lights and the world, one shadow ray per light.
-// Multiply by albedo / pi for outgoing radiance. Shared with later integrators.
-Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& si,
-                       Sampler& sampler);
-
 }  // namespace photon

@@ -6,6 +6,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
+#include "photon/emissive_mesh.h"
 #include "photon/pixel_renderer.h"
 
 namespace photon {
@@ -44,6 +45,14 @@ RenderSettings sanitize(RenderSettings s) {
   s.max_depth = std::clamp(s.max_depth, 0, 1024);
   s.threads = std::max(s.threads, 0);
   s.tile_size = std::clamp(s.tile_size, 4, 4096);
+  s.photons = std::min<uint64_t>(s.photons, 1000000000ull);
+  s.caustic_photons = std::min<uint64_t>(s.caustic_photons, 1000000000ull);
+  s.gather_count = std::clamp(s.gather_count, 1, 10000);
+  s.caustic_gather_count = std::clamp(s.caustic_gather_count, 1, 10000);
+  s.final_gather_rays = std::clamp(s.final_gather_rays, 0, 4096);
+  if (!std::isfinite(s.gather_radius) || s.gather_radius < 0.0f) s.gather_radius = 0.0f;
+  if (!std::isfinite(s.photon_time) || s.photon_time < 0.0f) s.photon_time = 0.0f;
+  s.photon_time = std::min(s.photon_time, 86400.0f);
   return s;
 }
 
@@ -72,6 +81,8 @@ void RenderSession::wait() {
   if (worker_.joinable()) worker_.join();
 }
 
+void RenderSession::stop_preparation() { stop_preparation_ = true; }
+
 void RenderSession::cancel() {
   cancel_ = true;
   tiles_ready_.notify_all();
@@ -88,6 +99,7 @@ std::vector<Tile> RenderSession::take_tiles(double timeout_seconds) {
 }
 
 float RenderSession::progress() const {
+  if (preparing_) return prepare_fraction_.load();
   return tile_count_ ? static_cast<float>(tiles_done_.load()) / tile_count_ : 1.0f;
 }
 
@@ -150,6 +162,7 @@ void RenderSession::run_render() {
   std::unique_ptr<Accel> accel;
   arena.execute([&] { accel = std::make_unique<Accel>(*scene_, &warnings); });
   LightSet lights(scene_->lights, &warnings);
+  const EmissiveMeshes emissive(*scene_, *accel);
   const double build_seconds = seconds_since(t0);
 
   RenderContext context;
@@ -157,12 +170,24 @@ void RenderSession::run_render() {
   context.accel = accel.get();
   context.lights = &lights;
   context.settings = &settings_;
+  context.emissive = &emissive;
   std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
 
   set_status("Preparing");
   t0 = Clock::now();
-  arena.execute([&] { integrator->prepare(context, cancel_); });
+  PrepareControl control;
+  control.cancel = &cancel_;
+  control.stop_early = &stop_preparation_;
+  control.progress = [this](const std::string& status, float fraction) {
+    prepare_fraction_ = fraction;
+    set_status(status);
+  };
+  control.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
+  preparing_ = true;
+  arena.execute([&] { integrator->prepare(context, control); });
+  preparing_ = false;
   const double prepare_seconds = seconds_since(t0);
+  if (cancel_) return;
 
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -174,6 +199,7 @@ void RenderSession::run_render() {
     stats_.bvh_count = accel->blas_count();
     stats_.lights = lights.size();
     stats_.threads = threads;
+    stats_.integrator = integrator->prepare_stats();
     status_ = "Rendering";
   }
 
@@ -219,9 +245,12 @@ void RenderSession::run_render() {
 void RenderSession::render_tile(const RenderContext& context, const Integrator& integrator,
                                 Tile* tile) {
   tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
+  if (settings_.light_passes)
+    tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
   uint64_t bad = 0;
   render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
-                tile->height, tile->rgba.data(), cancel_, &bad);
+                tile->height, tile->rgba.data(), cancel_, &bad,
+                settings_.light_passes ? tile->passes.data() : nullptr);
   if (bad) {
     std::lock_guard<std::mutex> lock(mutex_);
     stats_.non_finite_samples += bad;

@@ -22,6 +22,8 @@ namespace photon {
 struct Tile {
   int x = 0, y = 0, width = 0, height = 0;
   std::vector<float> rgba;
+  // With RenderSettings::light_passes: kPassFloats floats per pixel (see pixel_renderer.h).
+  std::vector<float> passes;
 };
 
 struct RenderStats {
@@ -35,6 +37,7 @@ struct RenderStats {
   size_t bvh_count = 0;
   size_t lights = 0;
   int threads = 0;
+  std::vector<std::pair<std::string, double>> integrator;  // the integrator's prepare_stats()
 };
 
 class RenderSession {
@@ -47,13 +50,17 @@ class RenderSession {
   void start();  // returns at once; the render runs on its own thread
   void wait();   // blocks until the render has finished or been cancelled
   void cancel();
+  // Ends the integrator's preparation (photon tracing) early; the render then goes on with
+  // what was prepared so far (Esc during photon tracing, seed 003).
+  void stop_preparation();
 
   // Finished tiles since the last call; waits up to `timeout_seconds` for at least one.
   std::vector<Tile> take_tiles(double timeout_seconds);
 
   bool finished() const { return finished_.load(); }
   bool cancelled() const { return cancel_.load(); }
-  float progress() const;  // fraction of tiles done
+  float progress() const;  // fraction of the current phase (photon tracing, then tiles) done
+  bool preparing() const { return preparing_.load(); }
   std::string status() const;
   std::vector<std::string> warnings() const;
   RenderStats stats() const;
@@ -72,6 +79,9 @@ class RenderSession {
   RenderSettings settings_;
   std::thread worker_;
   std::atomic<bool> cancel_{false};
+  std::atomic<bool> stop_preparation_{false};
+  std::atomic<float> prepare_fraction_{0.0f};
+  std::atomic<bool> preparing_{false};
   std::atomic<bool> finished_{false};
   std::atomic<size_t> tiles_done_{0};
   size_t tile_count_ = 0;

@@ -116,4 +116,36 @@ Scene make_cornell_box(float light_power) {
   return scene;
 }
 
+Scene make_caustic_box(float light_power) {
+  Scene scene = make_cornell_box();
+  // Keep the five walls (the first five instances), drop the two blocks and the area light.
+  scene.instances.resize(5);
+  scene.meshes.resize(5);
+  scene.lights.clear();
+  Material glass;
+  glass.name = "glass";
+  glass.type = MaterialType::kGlass;
+  glass.color = Vec3(1.0f);
+  glass.ior = 1.5f;
+  scene.materials.push_back(glass);
+  add_mesh_instance(&scene, make_uv_sphere({-0.45f, 0.2f, 0.35f}, 0.35f, 64, 32),
+                    static_cast<int32_t>(scene.materials.size() - 1));
+  Material mirror;
+  mirror.name = "mirror";
+  mirror.type = MaterialType::kMirror;
+  mirror.color = Vec3(0.95f);
+  scene.materials.push_back(mirror);
+  add_mesh_instance(&scene, make_uv_sphere({0.45f, -0.2f, 0.35f}, 0.35f, 64, 32),
+                    static_cast<int32_t>(scene.materials.size() - 1));
+  Light light;
+  light.name = "sphere_light";
+  light.type = LightType::kPoint;
+  light.power = light_power;
+  light.radius = 0.05f;
+  const float rows[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1.8f};
+  light.light_to_world = Transform::from_rows(rows);
+  scene.lights.push_back(light);
+  return scene;
+}
+
 }  // namespace photon

@@ -17,6 +17,10 @@ Mesh make_uv_sphere(const Vec3& center, float radius, int segments, int rings);
 // lit by a 0.5 m square area light of `light_power` watts under the ceiling.
 Scene make_cornell_box(float light_power = 40.0f);
 
+// The caustic box: the Cornell room (no blocks) with a glass ball (IOR 1.5) and a mirror ball,
+// both of radius 0.35, lit by a small sphere light (point light, radius 0.05) at (0, 0, 1.8).
+Scene make_caustic_box(float light_power = 60.0f);
+
 // A camera at `eye` looking at `target` (world +Z up) with the given vertical field of view
 // for an image of aspect width / height.
 Camera make_look_at_camera(const Vec3& eye, const Vec3& target, float fov_y_radians,

@@ -1,0 +1,18 @@
+#include "photon/integrator.h"
+
+#include "photon/photon_map_integrator.h"
+#include "photon/ray_trace_integrator.h"
+
+namespace photon {
+
+std::unique_ptr<Integrator> make_integrator(IntegratorType type) {
+  switch (type) {
+    case IntegratorType::kRayTrace:
+      return std::make_unique<RayTraceIntegrator>();
+    case IntegratorType::kPhotonMap:
+      return std::make_unique<PhotonMapIntegrator>();
+  }
+  return std::make_unique<PhotonMapIntegrator>();
+}
+
+}  // namespace photon

@@ -1,0 +1,223 @@
+#include "photon/photon_map_integrator.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
+#include "photon/direct_lighting.h"
+#include "photon/photon_tracer.h"
+#include "photon/sampling.h"
+#include "photon/specular_chain.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Per-thread neighbour list, so radiance queries do not allocate.
+std::vector<PhotonNeighbor>& scratch_neighbors() {
+  thread_local std::vector<PhotonNeighbor> scratch;
+  return scratch;
+}
+
+// Point j of the R2 sequence (Roberts 2018), rotated by `shift`: the final-gather directions of
+// one camera sample are stratified, and the rotation differs per sample.
+Vec2 rotated_r2(uint32_t j, Vec2 shift) {
+  constexpr double kA1 = 0.7548776662466927, kA2 = 0.5698402909980532;
+  double u = shift.x + kA1 * (j + 1), v = shift.y + kA2 * (j + 1);
+  u -= std::floor(u);
+  v -= std::floor(v);
+  return {std::min(static_cast<float>(u), 0.99999994f), std::min(static_cast<float>(v), 0.99999994f)};
+}
+
+constexpr size_t kFallbackCount = 32;     // photons when no precomputed record is near
+constexpr float kGatherMinCos = 0.5f;     // normals of gather point and surface must agree
+constexpr float kDefaultGlobalRadius = 0.1f;   // of the scene's bounding radius
+constexpr float kDefaultCausticRadius = 0.05f;
+
+// Grid cell for the radiance records: about two record spacings, from the photon density
+// measured at up to 256 gather points (median of k / (pi r_k^2), scaled by records / photons).
+float record_cell_size(const PhotonMap& map, const std::vector<GatherPoint>& points, size_t k,
+                       float max_radius) {
+  if (points.empty()) return max_radius;
+  std::vector<float> spacing;
+  std::vector<PhotonNeighbor> scratch;
+  const size_t step = std::max<size_t>(1, points.size() / 256);
+  for (size_t i = 0; i < points.size(); i += step) {
+    map.k_nearest(points[i].p, k, max_radius, kPhotonAny, &scratch);
+    if (scratch.size() < 2) continue;
+    const float photon_area = kPi * scratch.front().distance_squared / scratch.size();
+    spacing.push_back(std::sqrt(photon_area * map.size() / points.size()));
+  }
+  if (spacing.empty()) return max_radius;
+  std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
+  return std::clamp(2.0f * spacing[spacing.size() / 2], 1e-6f, max_radius);
+}
+
+}  // namespace
+
+void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
+  const RenderSettings& s = *context.settings;
+  stats_.clear();
+  const PhotonSources sources(context);
+  const float scene_radius = sources.scene_radius();
+  global_radius_ = s.gather_radius > 0.0f ? s.gather_radius : kDefaultGlobalRadius * scene_radius;
+  caustic_radius_ = s.gather_radius > 0.0f ? s.gather_radius : kDefaultCausticRadius * scene_radius;
+
+  PhotonTraceSettings trace;
+  trace.global_photons = s.photons;
+  trace.caustic_photons = s.caustic_photons;
+  trace.time_budget = s.photon_time;
+  trace.seed = s.seed;
+  PhotonTraceResult traced = trace_photons(context, sources, trace, control);
+  if (control.cancelled()) return;
+  if (traced.stopped_early && control.warn)
+    control.warn("Photon tracing was stopped early: rendering with " +
+                 std::to_string(traced.global_emitted + traced.caustic_emitted) +
+                 " photons traced so far");
+
+  control.report("Building photon maps", 1.0f);
+  auto t0 = Clock::now();
+  const uint64_t global_stored = traced.global.size(), caustic_stored = traced.caustic.size();
+  global_ = PhotonMap(std::move(traced.global));
+  caustic_ = PhotonMap(std::move(traced.caustic));
+  const double build_seconds = seconds_since(t0);
+
+  // Christensen 1999: radiance (for albedo 1) precomputed at every gather point, so a final
+  // gather ray needs one nearest-point lookup instead of a k-nearest estimate.
+  t0 = Clock::now();
+  if (s.final_gather_rays > 0 && !global_.empty()) {
+    control.report("Precomputing radiance", 1.0f);
+    const std::vector<GatherPoint>& points = traced.gather_points;
+    std::vector<RadianceRecord> records(points.size());
+    const size_t k = static_cast<size_t>(std::max(s.gather_count, 1));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const auto& r) {
+      if (control.cancelled()) return;
+      std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        records[i] = {points[i].p, points[i].n,
+                      global_.radiance_estimate(points[i].p, points[i].n, k, global_radius_,
+                                                kPhotonAny, &scratch)};
+      }
+    });
+    if (control.cancelled()) return;
+    radiance_ = RadianceCache(std::move(records), record_cell_size(global_, points, k, global_radius_));
+  }
+  const double precompute_seconds = seconds_since(t0);
+
+  stats_ = {
+      {"photons_emitted", static_cast<double>(traced.global_emitted)},
+      {"caustic_photons_emitted", static_cast<double>(traced.caustic_emitted)},
+      {"global_photons_stored", static_cast<double>(global_stored)},
+      {"caustic_photons_stored", static_cast<double>(caustic_stored)},
+      {"radiance_points", static_cast<double>(radiance_.size())},
+      {"photon_rays", static_cast<double>(traced.rays)},
+      {"photon_trace_seconds", traced.seconds},
+      {"photon_map_build_seconds", build_seconds},
+      {"radiance_precompute_seconds", precompute_seconds},
+      {"photon_map_bytes",
+       static_cast<double>(global_.memory_bytes() + caustic_.memory_bytes() + radiance_.memory_bytes())},
+      {"radiance_cell_size", radiance_.cell_size()},
+      {"global_gather_radius", global_radius_},
+      {"caustic_gather_radius", caustic_radius_},
+  };
+}
+
+std::vector<std::pair<std::string, double>> PhotonMapIntegrator::prepare_stats() const {
+  return stats_;
+}
+
+Vec3 PhotonMapIntegrator::gathered_radiance(const SurfaceInteraction& y,
+                                            std::vector<PhotonNeighbor>* scratch) const {
+  const Vec3& albedo = y.mat->color;
+  if (is_black(albedo)) return Vec3(0.0f);
+  Vec3 l;
+  if (radiance_.lookup(y.p, y.ng, kGatherMinCos, &l)) return albedo * l;
+  return albedo * global_.radiance_estimate(y.p, y.ng, kFallbackCount,
+                                            global_radius_, kPhotonAny, scratch);
+}
+
+Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const SurfaceInteraction& x,
+                                       Sampler& sampler) const {
+  const int n = context.settings->final_gather_rays;
+  const Vec2 shift = sampler.get_2d();
+  const Frame frame(x.ns);
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  Vec3 sum(0.0f);
+  for (int j = 0; j < n; ++j) {
+    // Cosine-distributed: L_r = albedo / pi * integral L cos = albedo * mean(L).
+    const Vec3 wi = frame.to_world(sample_cosine_hemisphere(rotated_r2(static_cast<uint32_t>(j), shift)));
+    if (dot(wi, x.ng) <= 0.0f) continue;
+    Ray ray;
+    ray.origin = offset_ray_origin(x.p, x.ng, wi);
+    ray.direction = wi;
+    // Light met on the way is direct light (light sampling) or a caustic (the caustic map):
+    // the gather ray collects only light reflected by the diffuse surface it ends on.
+    const DiffuseVertex y =
+        trace_specular_chain(context, ray, nullptr, kVisibleDiffuse, sampler, nullptr, nullptr);
+    if (y.found) sum += y.throughput * gathered_radiance(y.si, &scratch);
+  }
+  return sum / static_cast<float>(n);
+}
+
+// Seed 000's photon-map view: a dot where a stored photon lies, coloured by its power's hue.
+// The dot radius follows the local photon spacing, so dots stay dots in dense and sparse areas.
+Vec3 PhotonMapIntegrator::photon_dots(const SurfaceInteraction& x) const {
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  for (const PhotonMap* map : {&caustic_, &global_}) {
+    if (map->empty()) continue;
+    map->k_nearest(x.p, 8, global_radius_, kPhotonAny, &scratch);
+    if (scratch.size() < 2) continue;
+    const float spacing2 = kPi * scratch.front().distance_squared / static_cast<float>(scratch.size());
+    float best = INFINITY;
+    uint32_t index = 0;
+    for (const PhotonNeighbor& nb : scratch)
+      if (nb.distance_squared < best) best = nb.distance_squared, index = nb.index;
+    if (best < 0.09f * spacing2) {
+      const Vec3 power = (*map)[index].power();
+      const float m = max_component(power);
+      return m > 0.0f ? power / m : Vec3(0.0f);
+    }
+  }
+  return Vec3(0.0f);
+}
+
+RadianceSample PhotonMapIntegrator::radiance_from_hit(const RenderContext& context,
+                                                      const Ray& camera_ray,
+                                                      const CameraHit& first,
+                                                      Sampler& sampler) const {
+  RadianceSample result;
+  const DiffuseVertex v = trace_specular_chain(context, camera_ray, &first, kVisibleCamera,
+                                               sampler, &result.direct, &result.alpha);
+  if (!v.found) return result;
+  const RenderSettings& s = *context.settings;
+  const SurfaceInteraction& x = v.si;
+  if (s.light_passes && v.depth == 0) result.photon_map = photon_dots(x);
+  const Vec3& albedo = x.mat->color;
+  if (is_black(albedo)) return result;
+  const Vec3 weight = v.throughput * albedo;
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+
+  result.direct += weight * kInvPi * direct_irradiance(context, x, sampler);
+  if (!caustic_.empty())
+    result.caustic += weight * caustic_.radiance_estimate(
+                                   x.p, x.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+                                   caustic_radius_, kPhotonCaustic, &scratch);
+  if (s.final_gather_rays > 0) {
+    result.indirect += weight * final_gather(context, x, sampler);
+  } else if (!global_.empty()) {
+    // Preview: photons that bounced off a diffuse surface at least once; direct light and
+    // caustics come from the other two estimates.
+    result.indirect += weight * global_.radiance_estimate(
+                                    x.p, x.ng, static_cast<size_t>(std::max(s.gather_count, 1)),
+                                    global_radius_, kPhotonIndirect, &scratch);
+  }
+  return result;
+}
+
+}  // namespace photon

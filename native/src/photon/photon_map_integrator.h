@@ -1,0 +1,44 @@
+// Jensen's two-pass photon mapping (Jensen 1996; seed 000 eqs. 2.13-2.17). The first pass
+// (prepare) traces global and caustic photons into two maps and precomputes reflected radiance
+// at a subset of the global photons (Christensen 1999). The second pass splits the light
+// leaving each visible diffuse point into
+//   I1 direct light: light sampling with MIS (direct_lighting.h),
+//   I2 specular reflection and refraction: traced exactly (specular_chain.h),
+//   I3 caustics: a radiance estimate from the caustic map,
+//   I4 indirect diffuse light: final gathering, cosine-distributed rays whose hit points read
+//      the precomputed radiance; or, with final_gather_rays = 0, a direct estimate from the
+//      global map (a fast preview).
+#pragma once
+
+#include "photon/integrator.h"
+#include "photon/photon_map.h"
+#include "photon/radiance_cache.h"
+
+namespace photon {
+
+class PhotonMapIntegrator : public Integrator {
+ public:
+  void prepare(const RenderContext& context, const PrepareControl& control) override;
+  RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
+                                   const CameraHit& first, Sampler& sampler) const override;
+  std::vector<std::pair<std::string, double>> prepare_stats() const override;
+
+  const PhotonMap& global_map() const { return global_; }
+  const PhotonMap& caustic_map() const { return caustic_; }
+  float global_radius() const { return global_radius_; }
+  float caustic_radius() const { return caustic_radius_; }
+
+ private:
+  // Reflected radiance at a diffuse point y reached by a final-gather ray.
+  Vec3 gathered_radiance(const SurfaceInteraction& y, std::vector<PhotonNeighbor>* scratch) const;
+  Vec3 final_gather(const RenderContext& context, const SurfaceInteraction& x,
+                    Sampler& sampler) const;
+  Vec3 photon_dots(const SurfaceInteraction& x) const;
+
+  PhotonMap global_, caustic_;
+  RadianceCache radiance_;  // precomputed at a subset of the global photons
+  float global_radius_ = 0.0f, caustic_radius_ = 0.0f;
+  std::vector<std::pair<std::string, double>> stats_;
+};
+
+}  // namespace photon
