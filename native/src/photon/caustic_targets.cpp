@@ -12,20 +12,30 @@ std::vector<BoundingSphere> specular_targets(const Scene& scene, const Accel& ac
     const Instance& inst = scene.instances[accel.scene_instance(id)];
     if (!(inst.visibility & (kVisibleGlossy | kVisibleTransmission | kVisibleDiffuse))) continue;
     const Mesh& mesh = scene.meshes[inst.mesh];
+    // Centre of the box around the specular triangles, radius to the farthest vertex: tight
+    // for balls and lenses, where the box's half diagonal would waste 2/3 of the photons.
     Vec3 lo(INFINITY), hi(-INFINITY);
+    std::vector<uint32_t> specular;
     for (uint32_t tri = 0; tri < mesh.triangle_count(); ++tri) {
       if (accel.triangle_material(id, tri).type == MaterialType::kDiffuse) continue;
+      specular.push_back(tri);
       for (int c = 0; c < 3; ++c) {
         const Vec3 p = inst.object_to_world.point(mesh.positions[mesh.indices[3 * tri + c]]);
         lo = min(lo, p);
         hi = max(hi, p);
       }
     }
-    if (!(lo.x <= hi.x)) continue;
+    if (specular.empty()) continue;
+    const Vec3 center = (lo + hi) * 0.5f;
+    float r2 = 0.0f;
+    for (uint32_t tri : specular)
+      for (int c = 0; c < 3; ++c)
+        r2 = std::max(r2, length_squared(
+                              inst.object_to_world.point(mesh.positions[mesh.indices[3 * tri + c]]) - center));
     all_lo = min(all_lo, lo);
     all_hi = max(all_hi, hi);
     // A small margin keeps rays grazing the object inside the cone.
-    spheres.push_back({(lo + hi) * 0.5f, 0.5f * length(hi - lo) * 1.01f + 1e-4f});
+    spheres.push_back({center, std::sqrt(r2) * 1.01f + 1e-4f});
   }
   if (spheres.size() > max_targets)
     spheres = {{(all_lo + all_hi) * 0.5f, 0.5f * length(all_hi - all_lo) * 1.01f + 1e-4f}};

@@ -48,6 +48,10 @@ RenderSettings small_settings(int width, int height, int spp) {
   s.y1 = height;
   s.samples = spp;
   s.seed = 17;
+  // Small photon counts keep the photon-mapped renders quick.
+  s.photons = 20000;
+  s.caustic_photons = 10000;
+  s.final_gather_rays = 4;
   return s;
 }
 
