@@ -2,10 +2,18 @@
 // same queries through nanoflann (Debian's libnanoflann-dev) for comparison when it is present.
 #include <benchmark/benchmark.h>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <random>
 
+#include "photon/emissive_mesh.h"
 #include "photon/photon_map.h"
+#include "photon/photon_tracer.h"
+#include "photon/radiance_cache.h"
 #include "photon/rng.h"
+#include "photon/sampling.h"
+#include "photon/test_scenes.h"
 
 #if __has_include(<nanoflann.hpp>)
 #include <nanoflann.hpp>
@@ -72,6 +80,92 @@ void BM_RadianceEstimate(benchmark::State& state) {
                                                    benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RadianceEstimate);
+
+// Final-gather lookups: the nearest precomputed radiance record through the hashed grid, for
+// records at a quarter of the photons (as the integrator makes them), vs an 8-nearest query.
+void BM_RadianceCacheLookup(benchmark::State& state) {
+  static const RadianceCache cache = [] {
+    std::vector<RadianceRecord> records;
+    for (const Photon& ph : box_photons(250000)) {
+      RadianceRecord r;
+      r.p = ph.pos();
+      // The inward normal of the record's face of the box.
+      const Vec3 p = ph.pos();
+      const int axis = std::fabs(p.x) >= std::fabs(p.y) && std::fabs(p.x) >= std::fabs(p.z) ? 0
+                       : std::fabs(p.y) >= std::fabs(p.z)                                  ? 1
+                                                                                            : 2;
+      r.n = Vec3(0.0f);
+      (axis == 0 ? r.n.x : axis == 1 ? r.n.y : r.n.z) = (axis == 0 ? p.x : axis == 1 ? p.y : p.z) > 0 ? -1.0f : 1.0f;
+      r.radiance = Vec3(1.0f);
+      records.push_back(r);
+    }
+    // Two record spacings: 24 m^2 / 250k records.
+    return RadianceCache(std::move(records), 2.0f * std::sqrt(24.0f / 250000.0f));
+  }();
+  uint64_t i = 0;
+  for (auto _ : state) benchmark::DoNotOptimize(cache.nearest(query_point(i++), Vec3(0, 0, 1), 0.5f));
+  state.counters["queries/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
+                                                   benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_RadianceCacheLookup);
+
+// Photon tracing in the caustic box against bare Embree rays of the same lengths: photons per
+// second and the fraction of the raw ray rate that tracing keeps.
+struct TraceScene {
+  TraceScene() : scene(make_caustic_box()), accel(scene, &warnings), lights(scene.lights, &warnings),
+                 emissive(scene, accel) {
+    context = {&scene, &accel, &lights, &settings, &emissive};
+  }
+  Scene scene;
+  std::vector<std::string> warnings;
+  Accel accel;
+  LightSet lights;
+  EmissiveMeshes emissive;
+  RenderSettings settings;
+  RenderContext context;
+};
+
+void BM_TracePhotons(benchmark::State& state) {
+  static TraceScene t;
+  const PhotonSources sources(t.context);
+  PhotonTraceSettings ts;
+  ts.global_photons = 200000;
+  ts.caustic_photons = 0;
+  PrepareControl control;
+  uint64_t rays = 0, photons = 0;
+  for (auto _ : state) {
+    const PhotonTraceResult r = trace_photons(t.context, sources, ts, control);
+    rays += r.rays;
+    photons += r.global_emitted;
+  }
+  state.counters["photons/s"] = benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_TracePhotons)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The same number of incoherent rays (random origins in the box, random directions), one
+// rtcIntersect1 each, on all threads.
+void BM_BareIncoherentRays(benchmark::State& state) {
+  static TraceScene t;
+  constexpr uint64_t kRays = 400000;
+  uint64_t total = 0;
+  for (auto _ : state) {
+    tbb::parallel_for(tbb::blocked_range<uint64_t>(0, kRays, 2048), [&](const auto& r) {
+      for (uint64_t i = r.begin(); i != r.end(); ++i) {
+        const uint64_t h = mix64(i);
+        Ray ray;
+        ray.origin = Vec3(to_unit_float(h) * 1.8f - 0.9f, to_unit_float(h << 20) * 1.8f - 0.9f,
+                          0.1f + to_unit_float(mix64(h)) * 1.8f);
+        ray.direction = sample_uniform_sphere(Vec2(to_unit_float(mix64(h + 1)), to_unit_float(mix64(h + 2))));
+        Hit hit;
+        benchmark::DoNotOptimize(t.accel.intersect(ray, kVisibleAll, &hit));
+      }
+    });
+    total += kRays;
+  }
+  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(total), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_BareIncoherentRays)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 #ifdef PHOTON_HAVE_NANOFLANN
 struct Cloud {

@@ -100,9 +100,12 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
       if (control.cancelled()) return;
       std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
       for (size_t i = r.begin(); i != r.end(); ++i) {
-        records[i] = {points[i].p, points[i].n,
-                      global_.radiance_estimate(points[i].p, points[i].n, k, global_radius_,
-                                                kPhotonAny, &scratch)};
+        records[i].p = points[i].p;
+        records[i].n = points[i].n;
+        records[i].radiance = global_.radiance_estimate(points[i].p, points[i].n, k,
+                                                        global_radius_, kPhotonAny, &scratch);
+        // The same neighbours show where the indirect light comes from.
+        records[i].guide = build_guide(global_, scratch, Frame(points[i].n));
       }
     });
     if (control.cancelled()) return;
@@ -136,8 +139,8 @@ Vec3 PhotonMapIntegrator::gathered_radiance(const SurfaceInteraction& y,
                                             std::vector<PhotonNeighbor>* scratch) const {
   const Vec3& albedo = y.mat->color;
   if (is_black(albedo)) return Vec3(0.0f);
-  Vec3 l;
-  if (radiance_.lookup(y.p, y.ng, kGatherMinCos, &l)) return albedo * l;
+  if (const RadianceRecord* record = radiance_.nearest(y.p, y.ng, kGatherMinCos))
+    return albedo * record->radiance;
   return albedo * global_.radiance_estimate(y.p, y.ng, kFallbackCount,
                                             global_radius_, kPhotonAny, scratch);
 }
@@ -148,10 +151,16 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
   const Vec2 shift = sampler.get_2d();
   const Frame frame(x.ns);
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  // Directions from the nearest record's photon histogram mixed with cosine sampling; without
+  // a record, plain cosine sampling.
+  const RadianceRecord* record = radiance_.nearest(x.p, x.ng, kGatherMinCos);
+  const GuidedSquare guide(record ? record->guide : GuideHistogram{});
   Vec3 sum(0.0f);
   for (int j = 0; j < n; ++j) {
-    // Cosine-distributed: L_r = albedo / pi * integral L cos = albedo * mean(L).
-    const Vec3 wi = frame.to_world(sample_cosine_hemisphere(rotated_r2(static_cast<uint32_t>(j), shift)));
+    // pdf = density * cos / pi, so each ray adds (albedo / pi) L cos / pdf = albedo L / density.
+    float density;
+    const Vec2 u = guide.sample(rotated_r2(static_cast<uint32_t>(j), shift), &density);
+    const Vec3 wi = frame.to_world(sample_cosine_hemisphere(u));
     if (dot(wi, x.ng) <= 0.0f) continue;
     Ray ray;
     ray.origin = offset_ray_origin(x.p, x.ng, wi);
@@ -160,7 +169,7 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
     // the gather ray collects only light reflected by the diffuse surface it ends on.
     const DiffuseVertex y =
         trace_specular_chain(context, ray, nullptr, kVisibleDiffuse, sampler, nullptr, nullptr);
-    if (y.found) sum += y.throughput * gathered_radiance(y.si, &scratch);
+    if (y.found) sum += y.throughput * gathered_radiance(y.si, &scratch) / density;
   }
   return sum / static_cast<float>(n);
 }

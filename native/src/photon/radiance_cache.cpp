@@ -68,8 +68,8 @@ const RadianceCache::Slot* RadianceCache::find(uint64_t key) const {
   }
 }
 
-bool RadianceCache::lookup(const Vec3& p, const Vec3& n, float min_cos, Vec3* radiance) const {
-  if (records_.empty()) return false;
+const RadianceRecord* RadianceCache::nearest(const Vec3& p, const Vec3& n, float min_cos) const {
+  if (records_.empty()) return nullptr;
   int64_t cx, cy, cz;
   cell_of(p, &cx, &cy, &cz);
   float best = INFINITY;
@@ -94,9 +94,7 @@ bool RadianceCache::lookup(const Vec3& p, const Vec3& n, float min_cos, Vec3* ra
         for (int64_t dx = -1; dx <= 1; ++dx)
           if (dx || dy || dz) scan(cx + dx, cy + dy, cz + dz);
   }
-  if (!found) return false;
-  *radiance = found->radiance;
-  return true;
+  return found;
 }
 
 }  // namespace photon

@@ -2,12 +2,13 @@
 // Map Global Illumination"), looked up through a hashed uniform grid: a final-gather ray reads
 // the nearest record in its cell whose normal agrees with the surface it hit. A grid cell is
 // about two record spacings wide, so a lookup scans a handful of records instead of running a
-// k-nearest search (photon_map_bench: ~20x faster than an 8-nearest kd-tree query).
+// k-nearest search (photon_map_bench: 82 ns vs 1.4 us for an 8-nearest kd-tree query).
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "photon/gather_guide.h"
 #include "photon/math.h"
 
 namespace photon {
@@ -16,6 +17,7 @@ struct RadianceRecord {
   Vec3 p;
   Vec3 n;         // unit surface normal on the lit side
   Vec3 radiance;  // reflected radiance for albedo 1 (multiply by the surface's albedo)
+  GuideHistogram guide;  // where indirect light arrives from, for guided final gathering
 };
 
 class RadianceCache {
@@ -31,7 +33,7 @@ class RadianceCache {
 
   // Radiance of the nearest record to `p` in p's cell (or, if none fits, its 26 neighbours)
   // with dot(normal, n) >= min_cos. False if there is none.
-  bool lookup(const Vec3& p, const Vec3& n, float min_cos, Vec3* radiance) const;
+  const RadianceRecord* nearest(const Vec3& p, const Vec3& n, float min_cos) const;
 
  private:
   struct Slot {

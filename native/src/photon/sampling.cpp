@@ -16,6 +16,29 @@ Vec2 sample_concentric_disk(Vec2 u) {
   return {r * std::cos(theta), r * std::sin(theta)};
 }
 
+Vec2 invert_concentric_disk(Vec2 d) {
+  const float r = std::sqrt(d.x * d.x + d.y * d.y);
+  if (r == 0.0f) return {0.5f, 0.5f};
+  float phi = std::atan2(d.y, d.x);
+  if (phi < -kPi / 4.0f) phi += 2.0f * kPi;  // phi in [-pi/4, 7pi/4)
+  float a, b;  // the square point in [-1, 1]^2
+  if (phi < kPi / 4.0f) {
+    a = r;
+    b = phi * (4.0f / kPi) * r;
+  } else if (phi < 3.0f * kPi / 4.0f) {
+    b = r;
+    a = (kPi / 2.0f - phi) * (4.0f / kPi) * r;
+  } else if (phi < 5.0f * kPi / 4.0f) {
+    a = -r;
+    b = -(phi - kPi) * (4.0f / kPi) * r;
+  } else {
+    b = -r;
+    a = -(kPi / 2.0f - (phi - kPi)) * (4.0f / kPi) * r;
+  }
+  return {std::clamp(0.5f * (a + 1.0f), 0.0f, 0.99999994f),
+          std::clamp(0.5f * (b + 1.0f), 0.0f, 0.99999994f)};
+}
+
 Vec3 sample_cosine_hemisphere(Vec2 u) {
   Vec2 d = sample_concentric_disk(u);
   float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));

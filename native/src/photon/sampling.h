@@ -8,6 +8,8 @@ namespace photon {
 // Shirley and Chiu 1997, "A Low Distortion Map Between Disk and Square". Unit disk, pdf 1/pi.
 Vec2 sample_concentric_disk(Vec2 u);
 
+// The inverse of sample_concentric_disk: the unit-square point that maps to disk point `d`.
+Vec2 invert_concentric_disk(Vec2 d);
 // Malley's method: project a disk sample onto the hemisphere around +z. pdf = cos(theta) / pi.
 Vec3 sample_cosine_hemisphere(Vec2 u);
 inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0 ? cos_theta * kInvPi : 0; }

@@ -446,5 +446,15 @@ TEST(Sampler, DifferentStreamsAreUniformAcrossPixels) {
   EXPECT_LT(r.statistic, r.threshold);
 }
 
+TEST(Sampling, InvertConcentricDiskIsTheInverse) {
+  for (int i = 0; i < 32; ++i)
+    for (int j = 0; j < 32; ++j) {
+      const Vec2 u((i + 0.37f) / 32.0f, (j + 0.61f) / 32.0f);
+      const Vec2 back = invert_concentric_disk(sample_concentric_disk(u));
+      EXPECT_NEAR(back.x, u.x, 1e-4f) << i << "," << j;
+      EXPECT_NEAR(back.y, u.y, 1e-4f) << i << "," << j;
+    }
+}
+
 }  // namespace
 }  // namespace photon
