@@ -161,3 +161,38 @@ def cornell_box(width=256, height=256, samples=16, light_power=40.0):
     scene.photon.max_depth = 8
     scene.photon.seed = 0
     return scene
+
+
+# ---- Helpers added for the regression library (test_scenes/library.py) ----
+
+def cornell_walls(white=None):
+    """The five walls of cornell_box() (2 m wide, floor z=0, ceiling z=2, back wall y=+1),
+    without boxes or light. Returns the white material."""
+    white = white or diffuse_material("White", (0.73, 0.73, 0.73))
+    red = diffuse_material("Red", (0.65, 0.05, 0.05))
+    green = diffuse_material("Green", (0.12, 0.45, 0.15))
+    quad("Floor", (-1, -1, 0), (2, 0, 0), (0, 2, 0), white)
+    quad("Ceiling", (-1, -1, 2), (0, 2, 0), (2, 0, 0), white)
+    quad("Back", (-1, 1, 0), (2, 0, 0), (0, 0, 2), white)
+    quad("Left", (-1, -1, 0), (0, 2, 0), (0, 0, 2), red)
+    quad("Right", (1, -1, 0), (0, 0, 2), (0, 2, 0), green)
+    return white
+
+
+def glass_material(name="Glass", ior=1.5, color=(1.0, 1.0, 1.0)):
+    """A sharp Glass BSDF (Photon: dielectric with Fresnel)."""
+    return shader_material(name, "ShaderNodeBsdfGlass", Color=(*color, 1.0), Roughness=0.0,
+                           IOR=ior)
+
+
+def mirror_material(name="Mirror", color=(0.9, 0.9, 0.9)):
+    """A sharp Glossy BSDF (Photon: perfect mirror)."""
+    return shader_material(name, "ShaderNodeBsdfGlossy", Color=(*color, 1.0), Roughness=0.0)
+
+
+def aim(obj, target):
+    """Rotates obj (camera or light, looking down its local -Z) to look at `target`."""
+    from mathutils import Vector
+    direction = Vector(target) - obj.location
+    obj.rotation_euler = direction.to_track_quat('-Z', 'Y').to_euler()
+    return obj

@@ -9,7 +9,7 @@ PACKAGES=(
   blender
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools python3-openimageio
   pybind11-dev python3-dev python3-numpy python3-pytest
-  libgtest-dev libbenchmark-dev
+  libgtest-dev libbenchmark-dev libnanoflann-dev
 )
 
 install_packages() {

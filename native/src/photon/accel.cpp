@@ -144,7 +144,9 @@ bool Accel::intersect(const Ray& ray, uint32_t mask, Hit* hit) const {
 void Accel::intersect_coherent(const Ray* rays, size_t count, uint32_t mask, Hit* hits,
                                bool* found) const {
   constexpr size_t kBatch = 64;
-  RTCRayHit batch[kBatch];
+  // Aligned so Embree forms the same ray packets on every thread's stack: with a different
+  // alignment it may trace a few rays singly, with last-bit differences in t (Embree #149).
+  alignas(64) RTCRayHit batch[kBatch];
   for (size_t base = 0; base < count; base += kBatch) {
     const size_t n = std::min(kBatch, count - base);
     for (size_t i = 0; i < n; ++i) {

@@ -54,7 +54,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
           continue;
         }
         sums[i] += radiance;
-        alphas[i] += r.alpha;
+        // Without Film > Transparent the background is opaque too, as in Blender's engines.
+        alphas[i] += s.transparent_background ? r.alpha : 1.0f;
         if (passes) {
           Vec3* p = &pass_sums[i * kPassCount];
           p[0] += r.direct;

@@ -1,0 +1,2 @@
+"""Library behind tools/regress.py: render.py (scenes, sidecars, headless Blender), compare.py
+(images and metrics), report.py (PNGs, report.html, report.json)."""
