@@ -438,7 +438,7 @@ SCENES = {
                        "pixel_threshold": 0.5, "pixel_fraction": 0.03, "alpha_max": 0.001},
         # Floor pixels (x0, y0, x1, y1) around the caustic under the glass ball, for
         # tests/blender/test_photon_map.py.
-        "regions": {"caustic": [16, 92, 60, 124]},
+        "regions": {"caustic": [30, 100, 52, 114]},
         "description": "The caustic box against Cycles with caustics (16384 spp): the caustic "
                        "under the glass ball (tests/blender/test_photon_map.py compares its "
                        "position and power), the mirror ball's reflections and the diffuse "

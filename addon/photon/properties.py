@@ -28,15 +28,15 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
         default=0, min=0)
     photons: IntProperty(
         name="Photons", description="Photons emitted for the global photon map (indirect light)",
-        default=200000, min=0, soft_max=10000000, max=1000000000)
+        default=200000, min=0, soft_max=10000000, max=100000000)
     caustic_photons: IntProperty(
         name="Caustic Photons",
         description="Photons aimed at mirrors and glass for the caustic photon map",
-        default=100000, min=0, soft_max=10000000, max=1000000000)
+        default=100000, min=0, soft_max=10000000, max=100000000)
     gather_count: IntProperty(
         name="Gather Count",
         description="Nearest photons used in a global photon map estimate",
-        default=100, min=1, soft_max=500, max=10000)
+        default=100, min=1, soft_max=500, max=1000)
     gather_radius: FloatProperty(
         name="Gather Radius",
         description="Largest distance searched for photons (0 = automatic from the scene size)",
@@ -44,7 +44,7 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
     caustic_gather_count: IntProperty(
         name="Caustic Gather Count",
         description="Nearest photons used in a caustic estimate",
-        default=50, min=1, soft_max=500, max=10000)
+        default=50, min=1, soft_max=500, max=1000)
     final_gather_rays: IntProperty(
         name="Final Gather Rays",
         description="Rays gathering indirect light per camera sample "

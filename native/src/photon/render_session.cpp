@@ -45,10 +45,11 @@ RenderSettings sanitize(RenderSettings s) {
   s.max_depth = std::clamp(s.max_depth, 0, 1024);
   s.threads = std::max(s.threads, 0);
   s.tile_size = std::clamp(s.tile_size, 4, 4096);
-  s.photons = std::min<uint64_t>(s.photons, 1000000000ull);
-  s.caustic_photons = std::min<uint64_t>(s.caustic_photons, 1000000000ull);
-  s.gather_count = std::clamp(s.gather_count, 1, 10000);
-  s.caustic_gather_count = std::clamp(s.caustic_gather_count, 1, 10000);
+  // ~20-60 bytes per emitted photon are stored: 100M photons is already several GB.
+  s.photons = std::min<uint64_t>(s.photons, 100000000ull);
+  s.caustic_photons = std::min<uint64_t>(s.caustic_photons, 100000000ull);
+  s.gather_count = std::clamp(s.gather_count, 1, 1000);
+  s.caustic_gather_count = std::clamp(s.caustic_gather_count, 1, 1000);
   s.final_gather_rays = std::clamp(s.final_gather_rays, 0, 4096);
   if (!std::isfinite(s.gather_radius) || s.gather_radius < 0.0f) s.gather_radius = 0.0f;
   if (!std::isfinite(s.photon_time) || s.photon_time < 0.0f) s.photon_time = 0.0f;

@@ -52,6 +52,10 @@ def absurd_settings():
     scene = builders.cornell_box(width=64, height=64, samples=4)
     scene.photon.max_depth = 1000
     scene.photon.tile_size = 4096
+    scene.photon.gather_count = 1000
+    scene.photon.caustic_gather_count = 1000
+    scene.photon.gather_radius = 1e6
+    scene.photon.photon_time = 0.1
     cam = scene.camera.data
     cam.clip_start = 50.0          # past everything: only the world is visible
     cam.clip_end = 0.001
