@@ -364,6 +364,7 @@ def direct_lights():
     """A diffuse plane and objects lit by a point, a spot, a sun and an area light; the Cycles
     reference has max_bounces 0 (direct light only)."""
     scene = base_scene(VALIDATION_SIZE, VALIDATION_SIZE, VALIDATION_SAMPLES)
+    scene.photon.integrator = 'RAY_TRACE'  # direct light only, like the reference
     floor_and_objects()
     for name, (light_type, energy, location, settings) in {
             "Point": ('POINT', 60.0, (-1.5, -1.0, 1.6), {"shadow_soft_size": 0.2}),

@@ -68,6 +68,7 @@ py::dict finish_mesh(Scene& scene, Mesh&& mesh) {
   {
     py::gil_scoped_release release;
     report = clean_mesh(&mesh);
+    snap_normals(&mesh);
   }
   py::dict d;
   d["index"] = scene.meshes.size();

@@ -1,5 +1,7 @@
 #include "photon/mesh_import.h"
 
+#include <cmath>
+
 namespace photon {
 
 void gather_loop_mesh(const LoopMeshView& view, Mesh* mesh) {
@@ -27,6 +29,15 @@ void gather_loop_mesh(const LoopMeshView& view, Mesh* mesh) {
       const float* uv = loop_ok ? view.loop_uvs + 2 * static_cast<size_t>(loop) : nullptr;
       mesh->corner_uvs[k] = uv ? Vec2(uv[0], uv[1]) : Vec2(0.0f, 0.0f);
     }
+  }
+}
+
+void snap_normals(Mesh* mesh) {
+  constexpr float kScale = 65536.0f, kInv = 1.0f / 65536.0f;
+  for (Vec3& n : mesh->corner_normals) {
+    n.x = std::nearbyint(n.x * kScale) * kInv;
+    n.y = std::nearbyint(n.y * kScale) * kInv;
+    n.z = std::nearbyint(n.z * kScale) * kInv;
   }
 }
 

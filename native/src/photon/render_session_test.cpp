@@ -191,7 +191,8 @@ TEST(RenderSession, EmptySceneRendersBlack) {
   EXPECT_EQ(out.status, "Done");
   EXPECT_TRUE(out.warnings.empty()) << out.warnings.front();
   ASSERT_EQ(out.image.size(), 16u * 12u * 4u);
-  for (float v : out.image) EXPECT_EQ(v, 0.0f);
+  // Black, and opaque as Blender's engines are without Film > Transparent.
+  for (size_t i = 0; i < out.image.size(); ++i) EXPECT_EQ(out.image[i], i % 4 == 3 ? 1.0f : 0.0f);
 }
 
 TEST(RenderSession, WorldOnlySceneRendersTheWorldColour) {
@@ -204,7 +205,7 @@ TEST(RenderSession, WorldOnlySceneRendersTheWorldColour) {
     ASSERT_EQ(out.image[i + 0], w.x);
     ASSERT_EQ(out.image[i + 1], w.y);
     ASSERT_EQ(out.image[i + 2], w.z);
-    ASSERT_EQ(out.image[i + 3], 0.0f);  // background: transparent in alpha
+    ASSERT_EQ(out.image[i + 3], 1.0f);  // opaque without Film > Transparent
   }
   RenderSettings transparent = small_settings(16, 12, 4);
   transparent.transparent_background = true;
