@@ -21,16 +21,11 @@ constexpr double kPiD = 3.14159265358979323846;
                                        << b.x << ", " << b.y << ", " << b.z << "), distance " << d;
 }
 
-Transform translation(const Vec3& t) {
-  const float rows[12] = {1, 0, 0, t.x, 0, 1, 0, t.y, 0, 0, 1, t.z};
-  return Transform::from_rows(rows);
-}
-
 Light make_light(LightType type, const Vec3& position, float power) {
   Light l;
   l.name = "test_light";
   l.type = type;
-  l.light_to_world = translation(position);  // identity rotation: emits down world -Z
+  l.light_to_world = Transform::translation(position);  // identity rotation: emits down world -Z
   l.power = power;
   return l;
 }

@@ -93,6 +93,13 @@ struct Transform {
       for (int c = 0; c < 4; ++c) t.m[r][c] = rows12[r * 4 + c];
     return t;
   }
+  static Transform translation(const Vec3& t) {
+    Transform x;
+    x.m[0][3] = t.x;
+    x.m[1][3] = t.y;
+    x.m[2][3] = t.z;
+    return x;
+  }
   Vec3 point(const Vec3& p) const {
     return {m[0][0] * p.x + m[0][1] * p.y + m[0][2] * p.z + m[0][3],
             m[1][0] * p.x + m[1][1] * p.y + m[1][2] * p.z + m[1][3],

@@ -10,11 +10,6 @@
 namespace photon {
 namespace {
 
-Transform translation(float x, float y, float z) {
-  const float rows[12] = {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z};
-  return Transform::from_rows(rows);
-}
-
 RenderSettings settings_for(int size, int spp) {
   RenderSettings s;
   s.full_width = s.full_height = size;
@@ -82,11 +77,11 @@ TEST(PhotonMapIntegrator, PlaneUnderPointLightMatchesInverseSquareLaw) {
   light.type = LightType::kPoint;
   light.power = 100.0f;
   const float h = 1.0f;
-  light.light_to_world = translation(0, 0, h);
+  light.light_to_world = Transform::translation(Vec3(0, 0, h));
   scene.lights.push_back(light);
   // Orthographic, looking straight down on [-0.33, 0.33]^2 with 33 x 33 pixels of 0.02 m.
   scene.camera.projection = Projection::kOrthographic;
-  scene.camera.set_camera_to_world(translation(0, 0, 3));
+  scene.camera.set_camera_to_world(Transform::translation(Vec3(0, 0, 3)));
   scene.camera.window_min_x = scene.camera.window_min_y = -0.33f;
   scene.camera.window_max_x = scene.camera.window_max_y = 0.33f;
   RenderSettings s = settings_for(33, 16);

@@ -34,11 +34,6 @@ struct Fixture {
   RenderContext context;
 };
 
-Transform translation(float x, float y, float z) {
-  const float rows[12] = {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z};
-  return Transform::from_rows(rows);
-}
-
 // A closed 2 m box (all six faces) of albedo `albedo`, so every photon hits a wall.
 Scene closed_box(Vec3 albedo, Vec3 emission = Vec3(0.0f)) {
   Scene scene;
@@ -55,7 +50,7 @@ Light point_light(float power, Vec3 at, float radius = 0.0f) {
   l.type = LightType::kPoint;
   l.power = power;
   l.radius = radius;
-  l.light_to_world = translation(at.x, at.y, at.z);
+  l.light_to_world = Transform::translation(at);
   return l;
 }
 
@@ -75,7 +70,7 @@ TEST(PhotonTracer, DirectPhotonsCarryTheEmittedFlux) {
       area.power = 100.0f;
       area.size_x = 0.5f;
       area.size_y = 0.25f;
-      area.light_to_world = translation(0, 0, 0.9f);
+      area.light_to_world = Transform::translation(Vec3(0, 0, 0.9f));
       scene.lights.push_back(area);
       expected = 100.0f * kPi / 4.0f;  // Cycles' area-light units: L = P / (4 A), Phi = pi L A
     }

@@ -108,8 +108,7 @@ Scene make_cornell_box(float light_power) {
   light.power = light_power;
   light.size_x = light.size_y = 0.5f;
   // Local -Z (the emission direction) must point down: the identity already does that.
-  const float rows[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1.98f};
-  light.light_to_world = Transform::from_rows(rows);
+  light.light_to_world = Transform::translation(Vec3(0.0f, 0.0f, 1.98f));
   scene.lights.push_back(light);
 
   scene.camera = make_look_at_camera({0.0f, -3.9f, 1.0f}, {0.0f, 0.0f, 1.0f}, 0.69f, 1.0f);
@@ -142,8 +141,7 @@ Scene make_caustic_box(float light_power) {
   light.type = LightType::kPoint;
   light.power = light_power;
   light.radius = 0.05f;
-  const float rows[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1.8f};
-  light.light_to_world = Transform::from_rows(rows);
+  light.light_to_world = Transform::translation(Vec3(0.0f, 0.0f, 1.8f));
   scene.lights.push_back(light);
   return scene;
 }
