@@ -1,0 +1,111 @@
+// Plain-data material description: what the add-on reads out of a Blender node tree. A material
+// is a flat list of closures (BSDF and emission nodes); Mix Shader and Add Shader nodes become
+// each closure's weight, a product of mix factors. Every colour or scalar input is a constant or
+// an image texture lookup. material_eval.h turns this into a Bsdf at a hit point.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "photon/math.h"
+
+namespace photon {
+
+enum class TextureExtension : uint8_t { kRepeat, kExtend, kClip };
+enum class TextureInterpolation : uint8_t { kClosest, kLinear, kCubic };
+
+// An Image Texture node's image and sampling settings (Scene::textures).
+struct ImageTexture {
+  std::string path;  // a file OpenImageIO can read (packed images are written out by the add-on)
+  bool srgb = true;  // colour space: sRGB (converted to linear) or Non-Color / linear data
+  TextureExtension extension = TextureExtension::kRepeat;
+  TextureInterpolation interpolation = TextureInterpolation::kLinear;
+};
+
+enum class TextureChannel : uint8_t { kColor, kAlpha };
+
+// A shader input socket: a constant, or an image texture read at the hit's UV coordinates
+// (the mesh's active UV layer). Scalars use value.x.
+struct Input {
+  Vec3 value{0.0f};
+  int32_t texture = -1;  // Scene::textures index, or -1 for the constant
+  TextureChannel channel = TextureChannel::kColor;
+
+  static Input constant(float v) { return Input{Vec3(v), -1, TextureChannel::kColor}; }
+  static Input constant(const Vec3& v) { return Input{v, -1, TextureChannel::kColor}; }
+};
+
+enum class ClosureType : uint8_t {
+  kDiffuse,      // Diffuse BSDF: Lambert
+  kPrincipled,   // Principled BSDF (Cycles' 3.4 model, see material_eval.cpp)
+  kGlossy,       // Glossy BSDF: sharp or GGX reflection, F = 1 tinted by colour
+  kGlass,        // Glass BSDF: reflection + refraction
+  kRefraction,   // Refraction BSDF
+  kTransparent,  // Transparent BSDF
+  kTranslucent,  // Translucent BSDF
+  kEmission,     // Emission: colour x strength
+};
+
+// The inputs a closure reads, by role; each closure type uses a subset (the rest keep their
+// Blender defaults).
+enum class Param : uint8_t {
+  kColor,               // Base Color / Color
+  kRoughness,
+  kMetallic,
+  kSpecular,
+  kSpecularTint,
+  kTransmission,
+  kIor,
+  kEmission,            // Principled Emission colour
+  kStrength,            // Emission Strength (Principled) / Strength (Emission node)
+  kAlpha,
+  kClearcoat,
+  kClearcoatRoughness,
+  kCount,
+};
+
+// A Normal Map node (tangent space) feeding a closure's Normal input.
+struct NormalMap {
+  int32_t texture = -1;  // -1: no normal map, use the interpolated normal
+  float strength = 1.0f;
+};
+
+// One factor of a closure's weight: `fac` or (1 - fac) (the second input of a Mix Shader).
+struct WeightFactor {
+  Input fac;
+  bool complement = false;
+};
+
+struct Closure {
+  ClosureType type = ClosureType::kDiffuse;
+  std::array<Input, static_cast<size_t>(Param::kCount)> params = default_params();
+  bool sharp = false;  // Glossy / Glass / Refraction with the Sharp distribution
+  NormalMap normal;
+  std::vector<WeightFactor> weight;  // empty: weight 1
+
+  Input& operator[](Param p) { return params[static_cast<size_t>(p)]; }
+  const Input& operator[](Param p) const { return params[static_cast<size_t>(p)]; }
+  // Blender's defaults for every Param (Principled BSDF's where the nodes differ).
+  static std::array<Input, static_cast<size_t>(Param::kCount)> default_params();
+};
+
+struct Material {
+  std::string name;
+  std::vector<Closure> closures;  // empty: black (Cycles renders an empty output black)
+
+  // Single-closure materials for tests, the CLI and the built-in scenes.
+  static Material diffuse(const Vec3& color, const std::string& name = "diffuse");
+  static Material mirror(const Vec3& tint, const std::string& name = "mirror");
+  static Material glass(float ior, const Vec3& tint = Vec3(1.0f),
+                        const std::string& name = "glass");
+  static Material emission(const Vec3& radiance, const std::string& name = "emission");
+
+  // Whether any closure could emit, and whether any could be non-diffuse (glossy, specular,
+  // transmissive): a conservative answer without evaluating textures.
+  bool may_emit() const;
+  bool may_be_specular() const;
+};
+
+}  // namespace photon
