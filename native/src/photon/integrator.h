@@ -100,7 +100,16 @@ class Integrator {
   // camera rays in coherent batches). Must be thread-safe and deterministic in `sampler`.
   virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                            const CameraHit& first, Sampler& sampler) const = 0;
-
+  // View-independent radiance leaving a diffuse surface point (emission plus reflected light,
+  // averaged over outgoing directions as a Lambertian surface would), for baking lighting into
+  // Blender data. `hit` is the point on the scene, `si` its interaction. Integrators without a
+  // view-independent solution return false.
+  virtual bool baked_radiance(const RenderContext& context, const Hit& hit,
+                              const SurfaceInteraction& si, Sampler& sampler,
+                              Vec3* radiance) const {
+    (void)context, (void)hit, (void)si, (void)sampler, (void)radiance;
+    return false;
+  }
 };
 
 std::unique_ptr<Integrator> make_integrator(IntegratorType type);
