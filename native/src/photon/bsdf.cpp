@@ -17,6 +17,14 @@ bool is_unit_direction(const Vec3& w) {
   return std::isfinite(l2) && l2 > 1e-12f;
 }
 
+// Normalises only when needed, so a direction that sample() returned maps to bit-identical
+// local coordinates in pdf() and eval() (near total internal reflection 1 - F is steep enough
+// for an ulp to show).
+Vec3 unit(const Vec3& w) {
+  const float l2 = length_squared(w);
+  return std::fabs(l2 - 1.0f) < 4e-7f ? w : w / std::sqrt(l2);
+}
+
 bool is_delta(const Lobe& l) {
   switch (l.type) {
     case LobeType::kGgxReflection:
@@ -153,9 +161,12 @@ LobeEval eval_lobe(const Lobe& l, const Vec3& wo, const Vec3& wi, bool reflect, 
   return r;
 }
 
-// Samples a direction from one non-delta lobe (local frame, wo.z > 0). `u_choice` picks
-// reflection or transmission for glass. Returns false when no direction comes out.
-bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 u, Vec3* wi) {
+// Samples a direction from one non-delta lobe (local frame, wo.z > 0) and says whether it is a
+// reflection. `u_choice` picks reflection or transmission for glass. Returns false when no
+// direction comes out (refraction lobe at total internal reflection).
+bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 u, Vec3* wi,
+                 bool* reflection) {
+  *reflection = true;
   switch (l.type) {
     case LobeType::kLambert:
     case LobeType::kBurleyDiffuse:
@@ -163,6 +174,7 @@ bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 
       return true;
     case LobeType::kTranslucent:
       *wi = -sample_cosine_hemisphere(u);
+      *reflection = false;
       return true;
     case LobeType::kGgxReflection: {
       const Vec3 h = ggx_sample_visible_normal(wo, l.alpha, u);
@@ -177,6 +189,7 @@ bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 
         *wi = reflect(wo, h);
         return true;
       }
+      *reflection = false;
       return refract(wo, h, eta, wi);
     }
     case LobeType::kTransparent:
@@ -294,7 +307,7 @@ uint8_t Bsdf::flags() const {
 
 bool Bsdf::to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const {
   if (count_ == 0 || !is_unit_direction(wo)) return false;
-  *wo_world = normalize(wo);
+  *wo_world = unit(wo);
   *wo_local = frame_.to_local(*wo_world);
   // wo must be above both the shading and the geometric surface (grazing counts as below).
   return wo_local->z > 1e-7f && dot(*wo_world, ng_) != 0.0f;
@@ -337,7 +350,7 @@ void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_wor
 Vec3 Bsdf::eval(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
   Vec3 wo_l, wo_w;
   if (!to_local(wo, &wo_l, &wo_w) || !is_unit_direction(wi)) return Vec3(0.0f);
-  const Vec3 wi_w = normalize(wi);
+  const Vec3 wi_w = unit(wi);
   Vec3 f;
   float pdf;
   eval_mixture(wo_w, wo_l, wi_w, frame_.to_local(wi_w), mask, nullptr, &f, &pdf);
@@ -349,7 +362,7 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
   if (!to_local(wo, &wo_l, &wo_w) || !is_unit_direction(wi)) return 0.0f;
   float probs[kMaxLobes];
   if (selection_probabilities(wo_l, mask, probs) == 0) return 0.0f;
-  const Vec3 wi_w = normalize(wi);
+  const Vec3 wi_w = unit(wi);
   Vec3 f;
   float pdf;
   eval_mixture(wo_w, wo_l, wi_w, frame_.to_local(wi_w), mask, probs, &f, &pdf);
@@ -396,12 +409,16 @@ bool Bsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample
   }
 
   Vec3 wi_l;
-  if (!sample_lobe(lobe, wo_l, lobe_eta, u_choice, u, &wi_l)) return false;
+  bool reflection;
+  if (!sample_lobe(lobe, wo_l, lobe_eta, u_choice, u, &wi_l, &reflection)) return false;
   const Vec3 wi = normalize(frame_.to_world(wi_l));
   wi_l = frame_.to_local(wi);
   const bool reflect = dot(wi, ng_) * wo_ng > 0.0f;
-  // A direction the sampled lobe itself rejects (below the surface, or on the side the
-  // geometric normal disagrees with) is not returned, so sample() follows pdf() exactly.
+  // An event that ends on the wrong side of the shading or the geometric surface (a microfacet
+  // reflection below the horizon, say) is not returned: eval() and pdf() count neither, so
+  // sample() follows pdf() exactly. Glass must check the event itself, since a reflection
+  // below the surface lands where its own refraction density is not zero.
+  if (reflect != reflection || (reflection ? wi_l.z <= 0.0f : wi_l.z >= 0.0f)) return false;
   if (!(eval_lobe(lobe, wo_l, wi_l, reflect, lobe_eta).pdf > 0.0f)) return false;
   Vec3 f;
   float pdf;

@@ -4,18 +4,18 @@ namespace photon {
 
 float ggx_d(const Vec3& h, float alpha) {
   if (h.z <= 0.0f) return 0.0f;
-  // alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2) written without the tangent, which is finite at
-  // the pole and stable for small alpha.
+  // alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2) = alpha^2 / (pi (sin^2 + alpha^2 cos^2)^2), with
+  // sin^2 from the tangential components: 1 - cos^2 would cancel catastrophically near the
+  // pole, where a small-alpha lobe lives.
   const float a2 = alpha * alpha;
-  const float c2 = h.z * h.z;
-  const float t = c2 * (a2 - 1.0f) + 1.0f;
+  const float t = (h.x * h.x + h.y * h.y) + a2 * (h.z * h.z);
   return a2 / (kPi * t * t);
 }
 
 float ggx_lambda(const Vec3& w, float alpha) {
   const float c2 = w.z * w.z;
   if (c2 <= 0.0f) return INFINITY;
-  const float s2 = std::max(0.0f, 1.0f - c2);
+  const float s2 = w.x * w.x + w.y * w.y;  // not 1 - c2 (cancellation near the pole)
   const float a2_tan2 = alpha * alpha * s2 / c2;
   return 0.5f * (std::sqrt(1.0f + a2_tan2) - 1.0f);
 }
