@@ -22,7 +22,7 @@ enum class LobeType : uint8_t {
   kTranslucent,       // color / pi, to the other side
   kGgxReflection,     // GGX microfacet reflection (Walter et al. 2007), Fresnel per `fresnel`
   kGgxGlass,          // GGX reflection + transmission with dielectric Fresnel (Walter 2007)
-  kGgxRefraction,     // GGX transmission only, weighted by 1 - F (Cycles' Refraction BSDF)
+  kGgxRefraction,     // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
   kTransparent,       // straight through, unchanged direction (always a delta lobe)
 };
 
@@ -105,9 +105,21 @@ class Bsdf {
   bool front_facing() const { return front_facing_; }
 
  private:
-  Frame frame_;
+  // Normalises wo and maps it to the shading frame; false when it cannot be shaded (NaN,
+  // zero, at or below the shading or geometric horizon, or no lobes).
+  bool to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const;
+  // n_wi / n_wo of a transmission through this surface from wo's side.
+  float eta(const Lobe& lobe) const;
+  // Lobe choice probabilities at wo over the lobes in `mask`; returns how many are non-zero.
+  int selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const;
+  // Sum of f over the masked non-delta lobes and, when `probs` is given, the mixture pdf.
+  void eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
+                    uint8_t mask, const float* probs, Vec3* f, float* pdf) const;
+
+  Frame frame_{Vec3(0.0f, 0.0f, 1.0f)};
   Vec3 ng_{0.0f, 0.0f, 1.0f};
   bool front_facing_ = true;
+  bool valid_ = true;  // false when constructed without a usable normal: the BSDF is black
   Lobe lobes_[kMaxLobes];
   int count_ = 0;
 };
