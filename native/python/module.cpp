@@ -215,17 +215,17 @@ PYBIND11_MODULE(_photon, m) {
           "add_material",
           [](Scene& scene, const std::string& name, const std::string& type,
              const std::vector<float>& color, float ior, const std::vector<float>& emission) {
+            Vec3 c = max(vec3_from(color, "color"), Vec3(0.0f));
+            if (!is_finite(c)) c = Vec3(0.8f);
+            Vec3 e = max(vec3_from(emission, "emission"), Vec3(0.0f));
+            if (!is_finite(e)) e = Vec3(0.0f);
+            const float clamped_ior = std::isfinite(ior) ? std::clamp(ior, 1e-3f, 100.0f) : 1.45f;
             Material mat;
-            mat.name = name;
-            if (type == "DIFFUSE") mat.type = MaterialType::kDiffuse;
-            else if (type == "MIRROR") mat.type = MaterialType::kMirror;
-            else if (type == "GLASS") mat.type = MaterialType::kGlass;
+            if (type == "DIFFUSE") mat = Material::diffuse(c, name);
+            else if (type == "MIRROR") mat = Material::mirror(c, name);
+            else if (type == "GLASS") mat = Material::glass(clamped_ior, c, name);
             else throw std::invalid_argument("unknown material type " + type);
-            mat.color = max(vec3_from(color, "color"), Vec3(0.0f));
-            mat.ior = std::isfinite(ior) ? std::clamp(ior, 1e-3f, 100.0f) : 1.45f;
-            mat.emission = max(vec3_from(emission, "emission"), Vec3(0.0f));
-            if (!is_finite(mat.color)) mat.color = Vec3(0.8f);
-            if (!is_finite(mat.emission)) mat.emission = Vec3(0.0f);
+            if (!is_black(e)) mat.closures.push_back(Material::emission(e).closures.front());
             scene.materials.push_back(std::move(mat));
             return scene.materials.size() - 1;
           },

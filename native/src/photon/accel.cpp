@@ -199,7 +199,28 @@ SurfaceInteraction Accel::interaction(const Hit& hit) const {
     si.uv = uv[0] * b0 + uv[1] * hit.u + uv[2] * hit.v;
   }
   si.mat = &triangle_material(hit.instance, hit.primitive, &si.material);
+  si.instance = hit.instance;
+  si.primitive = hit.primitive;
   return si;
+}
+
+bool Accel::uv_tangents(uint32_t instance, uint32_t primitive, Vec3* dpdu, Vec3* dpdv) const {
+  if (instance >= instances_.size()) return false;
+  const InstanceData& inst = instances_[instance];
+  const Mesh& mesh = *inst.mesh;
+  if (mesh.corner_uvs.empty() || 3 * primitive + 2 >= mesh.indices.size()) return false;
+  const uint32_t* idx = &mesh.indices[3 * primitive];
+  const Vec2* uv = &mesh.corner_uvs[3 * primitive];
+  const Vec3 dp1 = mesh.positions[idx[1]] - mesh.positions[idx[0]];
+  const Vec3 dp2 = mesh.positions[idx[2]] - mesh.positions[idx[0]];
+  const float du1 = uv[1].x - uv[0].x, dv1 = uv[1].y - uv[0].y;
+  const float du2 = uv[2].x - uv[0].x, dv2 = uv[2].y - uv[0].y;
+  const float det = du1 * dv2 - dv1 * du2;
+  if (!(std::fabs(det) > 1e-12f)) return false;
+  const Transform& xf = scene_.instances[inst.scene_index].object_to_world;
+  *dpdu = xf.vector((dp1 * dv2 - dp2 * dv1) / det);
+  *dpdv = xf.vector((dp2 * du1 - dp1 * du2) / det);
+  return is_finite(*dpdu) && is_finite(*dpdv);
 }
 
 const Material& Accel::triangle_material(uint32_t instance, uint32_t primitive,

@@ -31,6 +31,7 @@ struct SurfaceInteraction {
   Vec2 uv;
   uint32_t material = 0;
   const Material* mat = nullptr;
+  uint32_t instance = 0, primitive = 0;  // Embree instance and triangle (for UV tangents)
 };
 
 class Accel {
@@ -53,6 +54,9 @@ class Accel {
   // when the slot maps to none), and its scene material index (UINT32_MAX for the default).
   const Material& triangle_material(uint32_t instance, uint32_t primitive,
                                     uint32_t* index = nullptr) const;
+  // World-space derivatives dp/du and dp/dv of the triangle's UV mapping (for tangent-space
+  // normal maps). False without UVs or for a degenerate UV triangle.
+  bool uv_tangents(uint32_t instance, uint32_t primitive, Vec3* dpdu, Vec3* dpdv) const;
   // Index into Scene::instances of Embree instance `instance` (instances whose transform was
   // unusable are skipped, so the two numberings can differ).
   uint32_t scene_instance(uint32_t instance) const { return instances_[instance].scene_index; }

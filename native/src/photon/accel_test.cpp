@@ -39,10 +39,7 @@ struct Affine {
 };
 
 Material named_material(const char* name, Vec3 color) {
-  Material m;
-  m.name = name;
-  m.color = color;
-  return m;
+  return Material::diffuse(color, name);
 }
 
 // The unit quad [-1, 1]^2 at z = 0, wound counter-clockwise seen from +z.
@@ -341,7 +338,7 @@ TEST(Accel, MaterialSlotsMapThroughTheInstance) {
   Accel bare_accel(plain, nullptr);
   ASSERT_TRUE(bare_accel.intersect(make_ray({0.5f, 0.5f, 1.0f}, {0, 0, -1}), kVisibleAll, &hit));
   EXPECT_EQ(bare_accel.interaction(hit).mat, &Scene::default_material());
-  EXPECT_EQ(Scene::default_material().type, MaterialType::kDiffuse);
+  EXPECT_FALSE(Scene::default_material().may_be_specular());
 }
 
 }  // namespace

@@ -17,7 +17,7 @@ std::vector<BoundingSphere> specular_targets(const Scene& scene, const Accel& ac
     Vec3 lo(INFINITY), hi(-INFINITY);
     std::vector<uint32_t> specular;
     for (uint32_t tri = 0; tri < mesh.triangle_count(); ++tri) {
-      if (accel.triangle_material(id, tri).type == MaterialType::kDiffuse) continue;
+      if (!accel.triangle_material(id, tri).may_be_specular()) continue;
       specular.push_back(tri);
       for (int c = 0; c < 3; ++c) {
         const Vec3 p = inst.object_to_world.point(mesh.positions[mesh.indices[3 * tri + c]]);

@@ -1,10 +1,12 @@
 #include "photon/direct_lighting.h"
 
 #include "photon/emissive_mesh.h"
-#include "photon/sampling.h"
+#include "photon/material_eval.h"
 
 namespace photon {
 namespace {
+
+constexpr uint8_t kRoughLobes = kLobeDiffuse | kLobeGlossy;
 
 inline float power_heuristic(float f, float g) {
   const float f2 = f * f, g2 = g * g;
@@ -20,31 +22,45 @@ bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, cons
   return !context.accel->occluded(shadow, kVisibleShadow);
 }
 
+// f |cos| towards a sampled light direction, and the BSDF's density of sampling it.
+Vec3 bsdf_towards(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float* pdf) {
+  const Vec3 f = bsdf.eval(wo, wi, kRoughLobes);
+  *pdf = bsdf.pdf(wo, wi, kRoughLobes);
+  return f * std::fabs(dot(bsdf.frame().n, wi));
+}
+
+// Light sample of light i (or of the emissive meshes), weighted against BSDF sampling.
+Vec3 light_sample_term(const RenderContext& context, const SurfaceInteraction& si,
+                       const Bsdf& bsdf, const Vec3& wo, const LightSample& ls) {
+  float pdf_bsdf;
+  const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, &pdf_bsdf);
+  if (is_black(f_cos) || !unoccluded(context, si, ls.wi, ls.distance)) return Vec3(0.0f);
+  const float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, pdf_bsdf) : 1.0f;
+  return f_cos * ls.weight * w;
+}
+
 }  // namespace
 
-Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& si,
-                       Sampler& sampler) {
-  Vec3 e(0.0f);
+Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
+                     const Bsdf& bsdf, const Vec3& wo, Sampler& sampler) {
+  Vec3 l(0.0f);
+  if (!(bsdf.flags() & kRoughLobes)) return l;
   const LightSet& lights = *context.lights;
-  const Frame frame(si.ns);
+  BsdfSample bs;
   for (size_t i = 0; i < lights.size(); ++i) {
     LightSample ls;
     const Vec2 u_light = sampler.get_2d();
-    if (lights.sample(i, si.p, u_light, &ls)) {
-      const float cos_theta = dot(si.ns, ls.wi);
-      if (cos_theta > 0.0f && dot(si.ng, ls.wi) > 0.0f && unoccluded(context, si, ls.wi, ls.distance)) {
-        const float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, cosine_hemisphere_pdf(cos_theta)) : 1.0f;
-        e += ls.weight * (cos_theta * w);
-      }
-    }
+    if (lights.sample(i, si.p, u_light, &ls)) l += light_sample_term(context, si, bsdf, wo, ls);
     if (!lights.has_area(i)) continue;
-    // BSDF sample: E = L cos / (cos / pi) = pi L, weighted against the light sample.
-    const Vec3 wi = frame.to_world(sample_cosine_hemisphere(sampler.get_2d()));
+    // BSDF sample, weighted against the light sample.
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    if (!bsdf.sample(wo, u_lobe, u, kRoughLobes, &bs)) continue;
     Vec3 le;
     float distance, pdf_light;
-    if (dot(si.ng, wi) <= 0.0f || !lights.eval(i, si.p, wi, &le, &distance, &pdf_light)) continue;
-    if (!unoccluded(context, si, wi, distance)) continue;
-    e += le * (kPi * power_heuristic(cosine_hemisphere_pdf(dot(si.ns, wi)), pdf_light));
+    if (!lights.eval(i, si.p, bs.wi, &le, &distance, &pdf_light)) continue;
+    if (!unoccluded(context, si, bs.wi, distance)) continue;
+    l += le * bs.weight * power_heuristic(bs.pdf, pdf_light);
   }
 
   const EmissiveMeshes* emissive = context.emissive;
@@ -52,39 +68,45 @@ Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& s
     LightSample ls;
     const float u_pick = sampler.get_1d();
     const Vec2 u_point = sampler.get_2d();
-    if (emissive->sample(si.p, u_pick, u_point, &ls)) {
-      const float cos_theta = dot(si.ns, ls.wi);
-      if (cos_theta > 0.0f && dot(si.ng, ls.wi) > 0.0f && unoccluded(context, si, ls.wi, ls.distance))
-        e += ls.weight * (cos_theta * power_heuristic(ls.pdf, cosine_hemisphere_pdf(cos_theta)));
-    }
-    const Vec3 wi = frame.to_world(sample_cosine_hemisphere(sampler.get_2d()));
-    if (dot(si.ng, wi) > 0.0f) {
+    if (emissive->sample(si.p, u_pick, u_point, &ls)) l += light_sample_term(context, si, bsdf, wo, ls);
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    if (bsdf.sample(wo, u_lobe, u, kRoughLobes, &bs)) {
       Ray ray;
-      ray.origin = offset_ray_origin(si.p, si.ng, wi);
-      ray.direction = wi;
+      ray.origin = offset_ray_origin(si.p, si.ng, bs.wi);
+      ray.direction = bs.wi;
       Hit hit;
       if (context.accel->intersect(ray, kVisibleShadow, &hit)) {
-        const Material& mat = context.accel->triangle_material(hit.instance, hit.primitive);
-        if (!is_black(mat.emission)) {
-          const SurfaceInteraction light_si = context.accel->interaction(hit);
-          const float pdf_light =
-              emissive->pdf(hit.instance, hit.primitive, hit.t, dot(wi, light_si.ng));
-          if (pdf_light > 0.0f)
-            e += mat.emission *
-                 (kPi * power_heuristic(cosine_hemisphere_pdf(dot(si.ns, wi)), pdf_light));
-        }
+        const SurfaceInteraction light_si = context.accel->interaction(hit);
+        const float pdf_light =
+            emissive->pdf(hit.instance, hit.primitive, hit.t, dot(bs.wi, light_si.ng));
+        if (pdf_light > 0.0f)
+          l += emitted_radiance(*light_si.mat, light_si, context.textures) * bs.weight *
+               power_heuristic(bs.pdf, pdf_light);
       }
     }
   }
 
-  // A uniform world is a light from every direction: cosine-weighted sampling gives
-  // E = pi * L_world * V with one shadow ray (the cosine and pdf cancel).
+  // A uniform world is a light from every direction: a BSDF sample and one shadow ray.
   const Vec3& world = context.scene->world.color;
   if (!is_black(world)) {
-    const Vec3 wi = frame.to_world(sample_cosine_hemisphere(sampler.get_2d()));
-    if (dot(si.ng, wi) > 0.0f && unoccluded(context, si, wi, INFINITY)) e += world * kPi;
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    if (bsdf.sample(wo, u_lobe, u, kRoughLobes, &bs) && unoccluded(context, si, bs.wi, INFINITY))
+      l += world * bs.weight;
   }
-  return e;
+  return is_finite(l) ? l : Vec3(0.0f);
+}
+
+Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& si,
+                       Sampler& sampler) {
+  // A Lambertian BSDF of albedo pi has f = 1, so its reflected radiance is the irradiance.
+  Bsdf lambert(si.ns, si.ng, true);
+  Lobe lobe;
+  lobe.type = LobeType::kLambert;
+  lobe.weight = Vec3(kPi);
+  lambert.add(lobe);
+  return direct_radiance(context, si, lambert, si.ns, sampler);
 }
 
 }  // namespace photon

@@ -1,15 +1,22 @@
-// Direct light at a Lambertian surface point: one sample of every light, plus multiple
-// importance sampling (Veach 1997, power heuristic) with a cosine-distributed BSDF sample for
-// lights that have an area (area lights, point and spot lights with a radius, emissive
-// meshes), and a cosine-distributed sample of a uniform world.
+// Direct light at a surface point: one sample of every light, plus multiple importance
+// sampling (Veach 1997, power heuristic) with a BSDF sample for lights that have an area (area
+// lights, point and spot lights with a radius, emissive meshes), and a BSDF sample of a uniform
+// world. Only the BSDF's non-delta lobes see direct light this way; delta lobes reach lights
+// by ray tracing.
 #pragma once
 
+#include "photon/bsdf.h"
 #include "photon/integrator.h"
 
 namespace photon {
 
-// Irradiance E at `si` from every light and the world (seed 000 eq. 2.14 with f_r = albedo/pi:
-// multiply by albedo / pi for the reflected radiance). `si.ng`/`si.ns` face the viewer.
+// Reflected (and transmitted) radiance towards `wo` from every light and the world, seed 000
+// eq. 2.14. `bsdf`'s normals face wo.
+Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
+                     const Bsdf& bsdf, const Vec3& wo, Sampler& sampler);
+
+// Irradiance E at `si` (as a Lambertian surface would receive it; `si.ng`/`si.ns` face the
+// side that is lit). Multiply by albedo / pi for the reflected radiance.
 Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& si,
                        Sampler& sampler);
 

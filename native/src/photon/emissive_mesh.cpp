@@ -1,10 +1,12 @@
 #include "photon/emissive_mesh.h"
 
+#include "photon/material_eval.h"
 #include "photon/sampling.h"
 
 namespace photon {
 
-EmissiveMeshes::EmissiveMeshes(const Scene& scene, const Accel& accel) {
+EmissiveMeshes::EmissiveMeshes(const Scene& scene, const Accel& accel,
+                               const TextureSet* textures) {
   std::vector<double> weights;
   double power[3] = {0, 0, 0};
   for (uint32_t id = 0; id < accel.instance_count(); ++id) {
@@ -12,7 +14,14 @@ EmissiveMeshes::EmissiveMeshes(const Scene& scene, const Accel& accel) {
     const Mesh& mesh = scene.meshes[inst.mesh];
     for (uint32_t tri = 0; tri < mesh.triangle_count(); ++tri) {
       const Material& mat = accel.triangle_material(id, tri);
-      const Vec3 le = max(mat.emission, Vec3(0.0f));
+      if (!mat.may_emit()) continue;
+      // Textured emission is sampled by its value at the triangle's centroid.
+      SurfaceInteraction centroid;
+      if (!mesh.corner_uvs.empty()) {
+        const Vec2* uv = &mesh.corner_uvs[3 * tri];
+        centroid.uv = (uv[0] + uv[1] + uv[2]) * (1.0f / 3.0f);
+      }
+      const Vec3 le = max(emitted_radiance(mat, centroid, textures), Vec3(0.0f));
       if (is_black(le) || !is_finite(le)) continue;
       EmissiveTriangle t;
       t.p0 = inst.object_to_world.point(mesh.positions[mesh.indices[3 * tri]]);

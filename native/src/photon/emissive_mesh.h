@@ -9,6 +9,7 @@
 #include "photon/accel.h"
 #include "photon/distribution.h"
 #include "photon/lights.h"
+#include "photon/textures.h"
 
 namespace photon {
 
@@ -22,7 +23,7 @@ struct EmissiveTriangle {
 class EmissiveMeshes {
  public:
   EmissiveMeshes() = default;
-  EmissiveMeshes(const Scene& scene, const Accel& accel);
+  EmissiveMeshes(const Scene& scene, const Accel& accel, const TextureSet* textures = nullptr);
 
   bool empty() const { return triangles_.empty(); }
   size_t size() const { return triangles_.size(); }

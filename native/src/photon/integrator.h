@@ -20,6 +20,7 @@ namespace photon {
 enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap };
 
 class EmissiveMeshes;
+class TextureSet;
 
 struct RenderSettings {
   int full_width = 64, full_height = 64;  // whole frame in pixels
@@ -51,6 +52,7 @@ struct RenderContext {
   const LightSet* lights = nullptr;
   const RenderSettings* settings = nullptr;
   const EmissiveMeshes* emissive = nullptr;  // emissive triangles as lights (may be empty)
+  const TextureSet* textures = nullptr;      // the scene's image textures (may be null)
 };
 
 // What one camera sample sees, split into light passes whose sum is the Combined image.

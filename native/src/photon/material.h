@@ -101,6 +101,8 @@ struct Material {
   static Material glass(float ior, const Vec3& tint = Vec3(1.0f),
                         const std::string& name = "glass");
   static Material emission(const Vec3& radiance, const std::string& name = "emission");
+  // This material plus an Emission closure of radiance `radiance` (an Add Shader).
+  Material with_emission(const Vec3& radiance) const;
 
   // Whether any closure could emit, and whether any could be non-diffuse (glossy, specular,
   // transmissive): a conservative answer without evaluating textures.

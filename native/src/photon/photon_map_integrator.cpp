@@ -5,10 +5,8 @@
 
 #include <chrono>
 
-#include "photon/direct_lighting.h"
 #include "photon/photon_tracer.h"
 #include "photon/sampling.h"
-#include "photon/specular_chain.h"
 
 namespace photon {
 namespace {
@@ -135,25 +133,70 @@ std::vector<std::pair<std::string, double>> PhotonMapIntegrator::prepare_stats()
   return stats_;
 }
 
-Vec3 PhotonMapIntegrator::gathered_radiance(const SurfaceInteraction& y,
+Vec3 PhotonMapIntegrator::gathered_radiance(const Vec3& p, const Vec3& n,
                                             std::vector<PhotonNeighbor>* scratch) const {
-  const Vec3& albedo = y.mat->color;
-  if (is_black(albedo)) return Vec3(0.0f);
-  if (const RadianceRecord* record = radiance_.nearest(y.p, y.ng, kGatherMinCos))
-    return albedo * record->radiance;
-  return albedo * global_.radiance_estimate(y.p, y.ng, kFallbackCount,
-                                            global_radius_, kPhotonAny, scratch);
+  if (const RadianceRecord* record = radiance_.nearest(p, n, kGatherMinCos)) return record->radiance;
+  return global_.radiance_estimate(p, n, kFallbackCount, global_radius_, kPhotonAny, scratch);
+}
+
+Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
+                                     std::vector<PhotonNeighbor>* scratch) const {
+  const int max_depth = context.settings->max_depth;
+  Vec3 sum(0.0f), throughput(1.0f);
+  uint32_t mask = kVisibleDiffuse;
+  // Light met on the way is direct light (light sampling) or a caustic (the caustic map),
+  // unless a rough glossy lobe was followed: neither of those holds such paths.
+  bool after_glossy = false;
+  for (int depth = 0;; ++depth) {
+    Hit hit;
+    const bool found = context.accel->intersect(ray, mask, &hit);
+    if (after_glossy) {
+      float t_light;
+      Vec3 lamp;
+      if (context.lights->intersect(ray, found ? hit.t : ray.tmax, mask, &t_light, &lamp))
+        return sum + throughput * lamp;
+      if (!found)
+        return sum + throughput * (context.scene->world.color +
+                                   context.lights->distant_radiance(ray.direction, mask));
+    }
+    if (!found) return sum;
+    const SurfaceInteraction y = context.accel->interaction(hit);
+    const Vec3 wo = -ray.direction;
+    const ShadingPoint sp = shade(context, y, wo);
+    if (after_glossy) sum += throughput * sp.emission;
+    const Bsdf& bsdf = sp.bsdf;
+    const Vec3 rd = bsdf.diffuse_reflectance();
+    if (!is_black(rd)) sum += throughput * rd * gathered_radiance(y.p, bsdf.ng(), scratch);
+    if (depth >= max_depth) return sum;
+    BsdfSample s;
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    if (!bsdf.sample(wo, u_lobe, u, kLobeGlossy | kLobeSpecular, &s) || is_black(s.weight))
+      return sum;
+    throughput *= s.weight;
+    if (depth >= 2) {
+      const float q = std::min(1.0f, max_component(throughput));
+      if (!(sampler.get_1d() < q)) return sum;
+      throughput = throughput / q;
+    }
+    after_glossy = after_glossy || !s.is_delta();
+    mask = visibility_after(s.flags);
+    ray.origin = offset_ray_origin(y.p, y.ng, s.wi);
+    ray.direction = s.wi;
+    ray.tmin = 0.0f;
+    ray.tmax = INFINITY;
+  }
 }
 
 Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const SurfaceInteraction& x,
-                                       Sampler& sampler) const {
+                                       const Bsdf& bsdf, Sampler& sampler) const {
   const int n = context.settings->final_gather_rays;
   const Vec2 shift = sampler.get_2d();
-  const Frame frame(x.ns);
+  const Frame& frame = bsdf.frame();
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
   // Directions from the nearest record's photon histogram mixed with cosine sampling; without
   // a record, plain cosine sampling.
-  const RadianceRecord* record = radiance_.nearest(x.p, x.ng, kGatherMinCos);
+  const RadianceRecord* record = radiance_.nearest(x.p, bsdf.ng(), kGatherMinCos);
   const GuidedSquare guide(record ? record->guide : GuideHistogram{});
   Vec3 sum(0.0f);
   for (int j = 0; j < n; ++j) {
@@ -161,15 +204,11 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
     float density;
     const Vec2 u = guide.sample(rotated_r2(static_cast<uint32_t>(j), shift), &density);
     const Vec3 wi = frame.to_world(sample_cosine_hemisphere(u));
-    if (dot(wi, x.ng) <= 0.0f) continue;
+    if (dot(wi, bsdf.ng()) <= 0.0f) continue;
     Ray ray;
     ray.origin = offset_ray_origin(x.p, x.ng, wi);
     ray.direction = wi;
-    // Light met on the way is direct light (light sampling) or a caustic (the caustic map):
-    // the gather ray collects only light reflected by the diffuse surface it ends on.
-    const DiffuseVertex y =
-        trace_specular_chain(context, ray, nullptr, kVisibleDiffuse, sampler, nullptr, nullptr);
-    if (y.found) sum += y.throughput * gathered_radiance(y.si, &scratch) / density;
+    sum += gather_ray(context, ray, sampler, &scratch) / density;
   }
   return sum / static_cast<float>(n);
 }
@@ -196,36 +235,41 @@ Vec3 PhotonMapIntegrator::photon_dots(const SurfaceInteraction& x) const {
   return Vec3(0.0f);
 }
 
+void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const PathVertex& v,
+                                        Sampler& sampler, RadianceSample* result) const {
+  const RenderSettings& s = *context.settings;
+  const SurfaceInteraction& x = *v.si;
+  const Bsdf& bsdf = v.shading->bsdf;
+  if (s.light_passes && v.depth == 0) result->photon_map = photon_dots(x);
+  const Vec3 weight = v.throughput * bsdf.diffuse_reflectance();
+  if (is_black(weight)) return;
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  if (!caustic_.empty())
+    result->caustic += weight * caustic_.radiance_estimate(
+                                    x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+                                    caustic_radius_, kPhotonCaustic, &scratch);
+  // Final gathering where it shows: at the first diffuse surface seen directly or through
+  // perfect mirrors and glass. After a rough glossy bounce the blur hides the global map.
+  if (s.final_gather_rays > 0 && !v.after_glossy) {
+    result->indirect += weight * final_gather(context, x, bsdf, sampler);
+  } else if (!global_.empty()) {
+    // Photons that bounced off a diffuse or glossy surface at least once; direct light and
+    // caustics come from the other two estimates.
+    result->indirect += weight * global_.radiance_estimate(
+                                     x.p, bsdf.ng(), static_cast<size_t>(std::max(s.gather_count, 1)),
+                                     global_radius_, kPhotonIndirect, &scratch);
+  }
+}
+
 RadianceSample PhotonMapIntegrator::radiance_from_hit(const RenderContext& context,
                                                       const Ray& camera_ray,
                                                       const CameraHit& first,
                                                       Sampler& sampler) const {
   RadianceSample result;
-  const DiffuseVertex v = trace_specular_chain(context, camera_ray, &first, kVisibleCamera,
-                                               sampler, &result.direct, &result.alpha);
-  if (!v.found) return result;
-  const RenderSettings& s = *context.settings;
-  const SurfaceInteraction& x = v.si;
-  if (s.light_passes && v.depth == 0) result.photon_map = photon_dots(x);
-  const Vec3& albedo = x.mat->color;
-  if (is_black(albedo)) return result;
-  const Vec3 weight = v.throughput * albedo;
-  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
-
-  result.direct += weight * kInvPi * direct_irradiance(context, x, sampler);
-  if (!caustic_.empty())
-    result.caustic += weight * caustic_.radiance_estimate(
-                                   x.p, x.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
-                                   caustic_radius_, kPhotonCaustic, &scratch);
-  if (s.final_gather_rays > 0) {
-    result.indirect += weight * final_gather(context, x, sampler);
-  } else if (!global_.empty()) {
-    // Preview: photons that bounced off a diffuse surface at least once; direct light and
-    // caustics come from the other two estimates.
-    result.indirect += weight * global_.radiance_estimate(
-                                    x.p, x.ng, static_cast<size_t>(std::max(s.gather_count, 1)),
-                                    global_radius_, kPhotonIndirect, &scratch);
-  }
+  trace_camera_path(
+      context, camera_ray, first, sampler,
+      [&](const PathVertex& v, RadianceSample* r) { shade_diffuse(context, v, sampler, r); },
+      &result);
   return result;
 }
 

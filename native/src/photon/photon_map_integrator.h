@@ -3,13 +3,14 @@
 // at a subset of the global photons (Christensen 1999). The second pass splits the light
 // leaving each visible diffuse point into
 //   I1 direct light: light sampling with MIS (direct_lighting.h),
-//   I2 specular reflection and refraction: traced exactly (specular_chain.h),
+//   I2 specular and glossy reflection and refraction: ray traced (camera_path.h),
 //   I3 caustics: a radiance estimate from the caustic map,
 //   I4 indirect diffuse light: final gathering, cosine-distributed rays whose hit points read
 //      the precomputed radiance; or, with final_gather_rays = 0, a direct estimate from the
 //      global map (a fast preview).
 #pragma once
 
+#include "photon/camera_path.h"
 #include "photon/integrator.h"
 #include "photon/photon_map.h"
 #include "photon/radiance_cache.h"
@@ -29,10 +30,17 @@ class PhotonMapIntegrator : public Integrator {
   float caustic_radius() const { return caustic_radius_; }
 
  private:
-  // Reflected radiance at a diffuse point y reached by a final-gather ray.
-  Vec3 gathered_radiance(const SurfaceInteraction& y, std::vector<PhotonNeighbor>* scratch) const;
-  Vec3 final_gather(const RenderContext& context, const SurfaceInteraction& x,
+  // Radiance (for albedo 1) leaving a diffuse point p with normal n: the nearest precomputed
+  // record, else a small global-map estimate.
+  Vec3 gathered_radiance(const Vec3& p, const Vec3& n, std::vector<PhotonNeighbor>* scratch) const;
+  // Radiance reaching the origin of a final-gather ray (seed 000 eq. 2.17's integrand).
+  Vec3 gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
+                  std::vector<PhotonNeighbor>* scratch) const;
+  Vec3 final_gather(const RenderContext& context, const SurfaceInteraction& x, const Bsdf& bsdf,
                     Sampler& sampler) const;
+  // Caustics and indirect light of the diffuse lobes at a camera-path vertex.
+  void shade_diffuse(const RenderContext& context, const PathVertex& vertex, Sampler& sampler,
+                     RadianceSample* result) const;
   Vec3 photon_dots(const SurfaceInteraction& x) const;
 
   PhotonMap global_, caustic_;

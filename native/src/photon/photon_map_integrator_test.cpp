@@ -44,10 +44,7 @@ double mean_channel(const std::vector<float>& rgba, int c) {
 // rendering equation, all four terms together).
 Scene emissive_furnace(float rho, float le) {
   Scene scene;
-  Material wall;
-  wall.color = Vec3(rho);
-  wall.emission = Vec3(le);
-  scene.materials.push_back(wall);
+  scene.materials.push_back(Material::diffuse(Vec3(rho)).with_emission(Vec3(le)));
   add_mesh_instance(&scene, make_box({-1, -1, -1}, {1, 1, 1}), 0);
   scene.camera = make_look_at_camera({0, -0.5f, 0}, {0, 1, 0.2f}, 1.2f, 1.0f);
   return scene;
@@ -69,9 +66,7 @@ TEST(PhotonMapIntegrator, EmissiveFurnaceConvergesToLeOverOneMinusAlbedo) {
 // with nothing else in the scene, no indirect light.
 TEST(PhotonMapIntegrator, PlaneUnderPointLightMatchesInverseSquareLaw) {
   Scene scene;
-  Material m;
-  m.color = Vec3(0.5f);
-  scene.materials.push_back(m);
+  scene.materials.push_back(Material::diffuse(Vec3(0.5f)));
   add_mesh_instance(&scene, make_quad({-10, -10, 0}, {20, 0, 0}, {0, 20, 0}), 0);
   Light light;
   light.type = LightType::kPoint;

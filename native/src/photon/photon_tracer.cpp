@@ -6,8 +6,7 @@
 #include <chrono>
 #include <cstdio>
 
-#include "photon/optics.h"
-#include "photon/sampling.h"
+#include "photon/camera_path.h"
 
 namespace photon {
 namespace {
@@ -30,82 +29,66 @@ struct PathSetup {
   float power_scale;  // 1 / photons emitted when known up front, else 1 (rescaled later)
 };
 
-// Russian roulette survival: the largest channel, so a photon's power never grows (Jensen
-// 2001 sec. 5.2); the survivor's power is multiplied by reflectance / probability per channel.
-float survival_probability(const Vec3& reflectance) {
-  return std::clamp(max_component(reflectance), 0.0f, 1.0f);
+// Seed 000 eq. 2.2 / Jensen 2001 sec. 5.2: the BSDF picks a lobe by albedo and samples it; the
+// photon survives with probability q = max channel of the sampled weight (so its power never
+// grows) and carries power * weight / q per channel.
+bool scatter(const Bsdf& bsdf, const Vec3& wo, uint8_t mask, Sampler& sampler, Vec3* power,
+             BsdfSample* s) {
+  const float u_lobe = sampler.get_1d();
+  const Vec2 u = sampler.get_2d();
+  const float u_survive = sampler.get_1d();
+  if (!bsdf.sample(wo, u_lobe, u, mask, s) || is_black(s->weight)) return false;
+  const float q = std::min(1.0f, max_component(s->weight));
+  if (!(u_survive < q)) return false;
+  *power = *power * s->weight / q;
+  return true;
 }
+
+// Where a path stands for the photon maps: at the light's first hit (direct), after perfectly
+// specular bounces only (caustic: L S+ D), or after a diffuse or rough glossy bounce (indirect).
+// Rough glossy paths are not caustics here: final gathering collects them (see
+// photon_map_integrator.cpp), so the two never count the same light twice.
+enum class PathKind : uint8_t { kDirect, kCaustic, kIndirect };
 
 void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emitted,
                 Sampler& sampler, ChunkOutput* out) {
   const RenderContext& context = *setup.context;
   Ray ray = emitted.ray;
   Vec3 power = emitted.power * setup.power_scale;
-  int specular_bounces = 0;
-  bool diffuse_seen = false;
+  PathKind kind = PathKind::kDirect;
   uint32_t mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
+  // Caustic photons follow perfectly specular lobes only; global photons every lobe.
+  const uint8_t scatter_mask = setup.caustic_pass ? kLobeSpecular : kLobeAll;
   for (int bounce = 0; bounce < setup.settings->max_bounces; ++bounce) {
     Hit hit;
     ++out->rays;
     if (!context.accel->intersect(ray, mask, &hit)) return;
-    SurfaceInteraction si = context.accel->interaction(hit);
-    const Material& mat = *si.mat;
+    const SurfaceInteraction si = context.accel->interaction(hit);
     const Vec3 wo = -ray.direction;
-    if (mat.type != MaterialType::kGlass && dot(si.ng, wo) < 0.0f) {
-      si.ng = -si.ng;
-      si.ns = -si.ns;
-    }
-
-    Vec3 wi;
-    if (mat.type == MaterialType::kDiffuse) {
-      const bool caustic_path = !diffuse_seen && specular_bounces > 0;
-      if (setup.caustic_pass) {
-        if (caustic_path)
-          out->photons.push_back(Photon::make(si.p, ray.direction, power, kPhotonCaustic));
-        return;  // caustic photons end at their first diffuse surface
+    const ShadingPoint sp = shade(context, si, wo);
+    const Bsdf& bsdf = sp.bsdf;
+    if (bsdf.flags() & kLobeDiffuse) {
+      if (!setup.caustic_pass) {
+        const uint8_t flags = kind == PathKind::kDirect    ? kPhotonDirect
+                              : kind == PathKind::kCaustic ? kPhotonCaustic
+                                                           : kPhotonIndirect;
+        out->photons.push_back(Photon::make(si.p, ray.direction, power, flags));
+        if (hash_combine(index, static_cast<uint64_t>(bounce)) % setup.settings->gather_point_stride == 0)
+          out->gather_points.push_back({si.p, bsdf.ng()});
+      } else if (kind == PathKind::kCaustic) {
+        out->photons.push_back(Photon::make(si.p, ray.direction, power, kPhotonCaustic));
       }
-      const uint8_t flags = bounce == 0 ? kPhotonDirect
-                            : caustic_path ? kPhotonCaustic
-                                           : kPhotonIndirect;
-      out->photons.push_back(Photon::make(si.p, ray.direction, power, flags));
-      if (hash_combine(index, static_cast<uint64_t>(bounce)) % setup.settings->gather_point_stride == 0)
-        out->gather_points.push_back({si.p, si.ng});
-      const float p = survival_probability(mat.color);
-      if (!(sampler.get_1d() < p)) return;  // absorbed
-      power = power * mat.color / p;
-      wi = Frame(si.ns).to_world(sample_cosine_hemisphere(sampler.get_2d()));
-      if (dot(wi, si.ng) <= 0.0f) return;
-      diffuse_seen = true;
-      mask = kVisibleDiffuse;
+    }
+    BsdfSample s;
+    if (!scatter(bsdf, wo, scatter_mask, sampler, &power, &s)) return;
+    if (s.is_delta()) {
+      if (kind == PathKind::kDirect) kind = PathKind::kCaustic;
     } else {
-      if (setup.caustic_pass && diffuse_seen) return;
-      const float p = survival_probability(mat.color);
-      const float u = sampler.get_1d();
-      if (!(u < p)) return;
-      power = power * mat.color / p;
-      if (mat.type == MaterialType::kMirror) {
-        wi = reflect(wo, si.ns);
-        if (dot(wi, si.ng) <= 0.0f) wi = reflect(wo, si.ng);
-        mask = kVisibleGlossy;
-      } else {
-        // Dielectric: reflect with the Fresnel probability, else refract (eq. 2.2's s and t).
-        const bool entering = dot(wo, si.ng) > 0.0f;
-        const Vec3 n = entering ? si.ns : -si.ns;
-        const float ior = std::max(mat.ior, 1e-3f);
-        const float eta = entering ? ior : 1.0f / ior;
-        Vec3 wt;
-        if (sampler.get_1d() < fresnel_dielectric(dot(wo, n), eta) || !refract(wo, n, eta, &wt)) {
-          wi = reflect(wo, n);
-          mask = kVisibleGlossy;
-        } else {
-          wi = wt;
-          mask = kVisibleTransmission;
-        }
-      }
-      ++specular_bounces;
+      kind = PathKind::kIndirect;
     }
-    ray.origin = offset_ray_origin(si.p, si.ng, wi);
-    ray.direction = wi;
+    mask = visibility_after(s.flags);
+    ray.origin = offset_ray_origin(si.p, si.ng, s.wi);
+    ray.direction = s.wi;
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;
   }

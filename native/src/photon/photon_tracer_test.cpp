@@ -37,10 +37,7 @@ struct Fixture {
 // A closed 2 m box (all six faces) of albedo `albedo`, so every photon hits a wall.
 Scene closed_box(Vec3 albedo, Vec3 emission = Vec3(0.0f)) {
   Scene scene;
-  Material m;
-  m.color = albedo;
-  m.emission = emission;
-  scene.materials.push_back(m);
+  scene.materials.push_back(Material::diffuse(albedo).with_emission(emission));
   add_mesh_instance(&scene, make_box({-1, -1, -1}, {1, 1, 1}), 0);
   return scene;
 }
@@ -89,11 +86,9 @@ TEST(PhotonTracer, DirectPhotonsCarryTheEmittedFlux) {
 }
 
 TEST(PhotonTracer, EmissiveTrianglesEmitTwoPiLATimesArea) {
-  Scene scene = closed_box(Vec3(0.0f));
-  Material lamp;
-  lamp.color = Vec3(0.0f);
-  lamp.emission = Vec3(2.0f, 1.0f, 0.5f);
-  scene.materials.push_back(lamp);
+  // Walls of albedo 0.5 (photons are stored only where a surface reflects diffusely).
+  Scene scene = closed_box(Vec3(0.5f));
+  scene.materials.push_back(Material::emission(Vec3(2.0f, 1.0f, 0.5f)));
   // A 0.4 x 0.4 emissive quad in the middle of the box, both sides emitting.
   add_mesh_instance(&scene, make_quad({-0.2f, -0.2f, 0.0f}, {0.4f, 0, 0}, {0, 0.4f, 0}), 1);
   Fixture f(std::move(scene));
@@ -132,14 +127,8 @@ TEST(PhotonTracer, MapsDoNotDependOnThreadCount) {
 // carry about the flux the ball intercepts times its transmittance.
 TEST(PhotonTracer, CausticPhotonsAreAimedAndFocusedUnderAGlassBall) {
   Scene scene;
-  Material floor;
-  floor.color = Vec3(0.8f);
-  scene.materials.push_back(floor);
-  Material glass;
-  glass.type = MaterialType::kGlass;
-  glass.color = Vec3(1.0f);
-  glass.ior = 1.5f;
-  scene.materials.push_back(glass);
+  scene.materials.push_back(Material::diffuse(Vec3(0.8f)));
+  scene.materials.push_back(Material::glass(1.5f));
   add_mesh_instance(&scene, make_quad({-5, -5, 0}, {10, 0, 0}, {0, 10, 0}), 0);
   add_mesh_instance(&scene, make_uv_sphere({0, 0, 0.3f}, 0.3f, 96, 48), 1);
   scene.lights.push_back(point_light(100.0f, {0, 0, 1.8f}));

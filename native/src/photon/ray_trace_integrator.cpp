@@ -1,20 +1,18 @@
 #include "photon/ray_trace_integrator.h"
 
-#include "photon/direct_lighting.h"
-#include "photon/specular_chain.h"
+#include "photon/camera_path.h"
 
 namespace photon {
 
+// Whitted-style ray tracing with glossy lobes: direct light at every surface, specular and
+// glossy paths traced, no indirect diffuse light.
 RadianceSample RayTraceIntegrator::radiance_from_hit(const RenderContext& context,
                                                      const Ray& camera_ray,
                                                      const CameraHit& first,
                                                      Sampler& sampler) const {
   RadianceSample result;
-  const DiffuseVertex v = trace_specular_chain(context, camera_ray, &first, kVisibleCamera,
-                                               sampler, &result.direct, &result.alpha);
-  if (v.found && !is_black(v.si.mat->color))
-    result.direct += v.throughput * v.si.mat->color * kInvPi *
-                     direct_irradiance(context, v.si, sampler);
+  trace_camera_path(context, camera_ray, first, sampler,
+                    [](const PathVertex&, RadianceSample*) {}, &result);
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include <pmmintrin.h>
 
 #include "photon/emissive_mesh.h"
+#include "photon/textures.h"
 #include "photon/pixel_renderer.h"
 
 namespace photon {
@@ -163,7 +164,9 @@ void RenderSession::run_render() {
   std::unique_ptr<Accel> accel;
   arena.execute([&] { accel = std::make_unique<Accel>(*scene_, &warnings); });
   LightSet lights(scene_->lights, &warnings);
-  const EmissiveMeshes emissive(*scene_, *accel);
+  set_status("Loading textures");
+  const TextureSet textures(scene_->textures, &warnings);
+  const EmissiveMeshes emissive(*scene_, *accel, &textures);
   const double build_seconds = seconds_since(t0);
 
   RenderContext context;
@@ -172,6 +175,7 @@ void RenderSession::run_render() {
   context.lights = &lights;
   context.settings = &settings_;
   context.emissive = &emissive;
+  context.textures = &textures;
   std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
 
   set_status("Preparing");

@@ -216,10 +216,7 @@ TEST(RenderSession, WorldOnlySceneRendersTheWorldColour) {
 // down (its -Z is world -Z) with a tiny field of view.
 std::shared_ptr<Scene> floor_scene(const Vec3& albedo, float camera_height) {
   auto scene = std::make_shared<Scene>();
-  Material floor;
-  floor.name = "floor";
-  floor.color = albedo;
-  scene->materials.push_back(floor);
+  scene->materials.push_back(Material::diffuse(albedo, "floor"));
   add_mesh_instance(scene.get(), make_quad({-100, -100, 0}, {200, 0, 0}, {0, 200, 0}), 0);
   const float cam_rows[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, camera_height};
   scene->camera.camera_to_world = Transform::from_rows(cam_rows);
@@ -305,11 +302,8 @@ TEST(RenderSession, DiffuseFloorUnderAUniformWorldReflectsAlbedoTimesWorld) {
 // point is symmetric about 0 and the pixel's exact value is 1/2, whatever the seed.
 TEST(RenderSession, DepthOfFieldConvergesToTheExactPixelValue) {
   auto scene = std::make_shared<Scene>();
-  Material glow;
-  glow.name = "glow";
-  glow.color = Vec3(0.0f);  // no reflection: the pixel sees emission only
-  glow.emission = Vec3(1.0f);
-  scene->materials.push_back(glow);
+  // No reflection: the pixel sees emission only.
+  scene->materials.push_back(Material::emission(Vec3(1.0f), "glow"));
   add_mesh_instance(scene.get(), make_quad({-100, -100, 0}, {100, 0, 0}, {0, 200, 0}), 0);
   Camera& cam = scene->camera;
   cam.projection = Projection::kOrthographic;

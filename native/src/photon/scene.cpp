@@ -3,7 +3,7 @@
 namespace photon {
 
 const Material& Scene::default_material() {
-  static const Material kDefault{"default", MaterialType::kDiffuse, Vec3(0.8f), 1.45f, Vec3(0.0f)};
+  static const Material kDefault = Material::diffuse(Vec3(0.8f), "default");
   return kDefault;
 }
 

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "photon/material.h"
 #include "photon/math.h"
 
 namespace photon {
@@ -18,16 +19,6 @@ enum Visibility : uint32_t {
   kVisibleTransmission = 1u << 3,
   kVisibleShadow = 1u << 4,
   kVisibleAll = 0x1Fu,
-};
-
-enum class MaterialType : uint8_t { kDiffuse, kMirror, kGlass };
-
-struct Material {
-  std::string name;
-  MaterialType type = MaterialType::kDiffuse;
-  Vec3 color{0.8f, 0.8f, 0.8f};  // diffuse albedo, mirror tint or glass tint
-  float ior = 1.45f;
-  Vec3 emission{0.0f, 0.0f, 0.0f};  // emitted radiance (W / m^2 / sr), both sides
 };
 
 struct Mesh {
@@ -106,6 +97,7 @@ struct Scene {
   std::vector<Mesh> meshes;
   std::vector<Instance> instances;
   std::vector<Material> materials;
+  std::vector<ImageTexture> textures;  // images read by materials' Input::texture
   std::vector<Light> lights;
   Camera camera;
   World world;

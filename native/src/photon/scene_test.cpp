@@ -179,11 +179,13 @@ TEST(CleanMesh, EverythingDroppedLeavesAnEmptyMesh) {
 TEST(Scene, DefaultMaterialIsAGreyDiffuse) {
   const Material& m = Scene::default_material();
   EXPECT_EQ(&m, &Scene::default_material());
-  EXPECT_EQ(m.type, MaterialType::kDiffuse);
-  EXPECT_TRUE(is_black(m.emission));
-  EXPECT_GT(m.color.x, 0.0f);
-  EXPECT_EQ(m.color.x, m.color.y);
-  EXPECT_EQ(m.color.y, m.color.z);
+  ASSERT_EQ(m.closures.size(), 1u);
+  EXPECT_EQ(m.closures[0].type, ClosureType::kDiffuse);
+  EXPECT_FALSE(m.may_emit());
+  const Vec3 c = m.closures[0][Param::kColor].value;
+  EXPECT_GT(c.x, 0.0f);
+  EXPECT_EQ(c.x, c.y);
+  EXPECT_EQ(c.y, c.z);
 }
 
 }  // namespace

@@ -83,10 +83,7 @@ Camera make_look_at_camera(const Vec3& eye, const Vec3& target, float fov_y, flo
 Scene make_cornell_box(float light_power) {
   Scene scene;
   auto material = [&](const char* name, Vec3 color) {
-    Material m;
-    m.name = name;
-    m.color = color;
-    scene.materials.push_back(m);
+    scene.materials.push_back(Material::diffuse(color, name));
     return static_cast<int32_t>(scene.materials.size() - 1);
   };
   const int32_t white = material("white", Vec3(0.73f, 0.73f, 0.73f));
@@ -121,19 +118,10 @@ Scene make_caustic_box(float light_power) {
   scene.instances.resize(5);
   scene.meshes.resize(5);
   scene.lights.clear();
-  Material glass;
-  glass.name = "glass";
-  glass.type = MaterialType::kGlass;
-  glass.color = Vec3(1.0f);
-  glass.ior = 1.5f;
-  scene.materials.push_back(glass);
+  scene.materials.push_back(Material::glass(1.5f, Vec3(1.0f), "glass"));
   add_mesh_instance(&scene, make_uv_sphere({-0.45f, 0.2f, 0.35f}, 0.35f, 64, 32),
                     static_cast<int32_t>(scene.materials.size() - 1));
-  Material mirror;
-  mirror.name = "mirror";
-  mirror.type = MaterialType::kMirror;
-  mirror.color = Vec3(0.95f);
-  scene.materials.push_back(mirror);
+  scene.materials.push_back(Material::mirror(Vec3(0.95f), "mirror"));
   add_mesh_instance(&scene, make_uv_sphere({0.45f, -0.2f, 0.35f}, 0.35f, 64, 32),
                     static_cast<int32_t>(scene.materials.size() - 1));
   Light light;

@@ -1,0 +1,105 @@
+#include "photon/camera_path.h"
+
+#include "photon/direct_lighting.h"
+
+namespace photon {
+namespace {
+
+constexpr int kRouletteDepth = 3;  // Russian roulette on the throughput after this many bounces
+
+// Lamp surfaces, the world and suns that a segment reaches, if it counts emission.
+bool add_escaped_or_lamp(const RenderContext& context, const Ray& ray, bool found, float t_hit,
+                         uint32_t mask, const Vec3& throughput, bool count_emission,
+                         bool camera_primary, Vec3* direct) {
+  float t_light;
+  Vec3 lamp;
+  if (context.lights->intersect(ray, found ? t_hit : ray.tmax, mask, &t_light, &lamp)) {
+    if (count_emission) *direct += throughput * lamp;
+    return true;
+  }
+  if (!found && count_emission) {
+    // The ray left the scene (camera rays too, whatever their clip distance): world and suns.
+    if (!(camera_primary && context.settings->transparent_background))
+      *direct += throughput * context.scene->world.color;
+    *direct += throughput * context.lights->distant_radiance(ray.direction, mask);
+  }
+  return false;
+}
+
+}  // namespace
+
+uint32_t visibility_after(uint8_t flags) {
+  if (flags & kLobeTransmission) return kVisibleTransmission;
+  if (flags & kLobeDiffuse) return kVisibleDiffuse;
+  return kVisibleGlossy;
+}
+
+void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
+                       const CameraHit& first, Sampler& sampler, const DiffuseShader& shade_diffuse,
+                       RadianceSample* result) {
+  const int max_depth = context.settings->max_depth;
+  Ray ray = camera_ray;
+  uint32_t mask = kVisibleCamera;
+  Vec3 throughput(1.0f);
+  bool count_emission = true;  // false after a rough lobe: light sampling counted that light
+  bool after_glossy = false;
+  bool see_through = true;  // only Transparent BSDFs so far (for alpha)
+  for (int depth = 0;; ++depth) {
+    Hit hit;
+    const bool found = depth == 0 ? first.found : context.accel->intersect(ray, mask, &hit);
+    if (depth == 0 && found) hit = first.hit;
+    const bool primary = see_through && mask == kVisibleCamera;
+    if (add_escaped_or_lamp(context, ray, found, hit.t, mask, throughput, count_emission,
+                            primary, &result->direct)) {
+      if (depth == 0) result->alpha = 1.0f;
+      return;
+    }
+    if (!found) {
+      // Alpha: what the camera sees of the background through transparent surfaces.
+      if (primary && depth > 0)
+        result->alpha = std::clamp(1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f,
+                                   0.0f, 1.0f);
+      return;
+    }
+    if (depth == 0) result->alpha = 1.0f;
+
+    const SurfaceInteraction si = context.accel->interaction(hit);
+    const Vec3 wo = -ray.direction;
+    const ShadingPoint sp = shade(context, si, wo);
+    if (count_emission) result->direct += throughput * sp.emission;
+    const Bsdf& bsdf = sp.bsdf;
+    if (bsdf.empty()) return;
+
+    const PathVertex vertex{&si, &sp, wo, throughput, depth, after_glossy};
+    if (bsdf.flags() & (kLobeDiffuse | kLobeGlossy))
+      result->direct += throughput * direct_radiance(context, si, bsdf, wo, sampler);
+    if (bsdf.flags() & kLobeDiffuse) shade_diffuse(vertex, result);
+
+    // Continue through the lobes that are ray traced: specular and glossy.
+    if (depth >= max_depth) return;
+    const uint8_t traced = kLobeGlossy | kLobeSpecular;
+    if (!(bsdf.flags() & traced)) return;
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    BsdfSample s;
+    if (!bsdf.sample(wo, u_lobe, u, traced, &s) || is_black(s.weight)) return;
+    throughput *= s.weight;
+    if (depth + 1 >= kRouletteDepth) {
+      const float q = std::min(1.0f, max_component(throughput));
+      if (!(sampler.get_1d() < q)) return;
+      throughput = throughput / q;
+    }
+    const bool transparent = s.is_delta() && !(s.flags & kLobeReflection) &&
+                             dot(s.wi, ray.direction) > 0.9999f;
+    see_through = see_through && transparent;
+    count_emission = s.is_delta();
+    after_glossy = after_glossy || !s.is_delta();
+    if (!transparent) mask = visibility_after(s.flags);  // through Transparent: same ray type
+    ray.origin = offset_ray_origin(si.p, si.ng, s.wi);
+    ray.direction = s.wi;
+    ray.tmin = 0.0f;
+    ray.tmax = INFINITY;
+  }
+}
+
+}  // namespace photon
