@@ -405,6 +405,97 @@ def mirror_glass():
     return scene
 
 
+def principled_material(name, **inputs):
+    """A Principled BSDF material with the given input values (socket name -> value)."""
+    mat = bpy.data.materials.new(name)
+    mat.use_nodes = True
+    node = mat.node_tree.nodes["Principled BSDF"]
+    for key, value in inputs.items():
+        node.inputs[key].default_value = value
+    return mat
+
+
+SPHERES = {  # name -> (centre, Principled inputs); radius 0.4 each
+    "Gold": ((-1.35, 0.0, 0.4), {"Base Color": (1.0, 0.766, 0.336, 1.0), "Metallic": 1.0,
+                                  "Roughness": 0.25}),
+    "BluePlastic": ((-0.45, 0.0, 0.4), {"Base Color": (0.05, 0.12, 0.6, 1.0), "Roughness": 0.4}),
+    "Clay": ((0.45, 0.0, 0.4), {"Base Color": (0.65, 0.38, 0.28, 1.0), "Roughness": 1.0,
+                                "Specular": 0.2}),
+    "Glass": ((1.35, 0.0, 0.4), {"Base Color": (1.0, 1.0, 1.0, 1.0), "Transmission": 1.0,
+                                 "Roughness": 0.0, "IOR": 1.45}),
+}
+
+
+def material_spheres(folder):
+    """Principled spheres (gold metal rough 0.25, blue plastic rough 0.4, clay, glass) on an
+    image-textured Principled floor, lit by an area light and an emissive panel, against Cycles
+    (tests/blender/test_material_spheres.py compares each object's mean colour)."""
+    scene = base_scene(192, 128, 64)
+    scene.photon.final_gather_rays = 16
+    os.makedirs(os.path.join(folder, "textures"), exist_ok=True)
+    checker = checker_png(os.path.join(folder, "textures", "checker.png"))
+    floor = image_material("Checker", checker)
+    floor.node_tree.nodes["Principled BSDF"].inputs["Roughness"].default_value = 0.8
+    plane = builders.quad("Floor", (-6, -4, 0), (12, 0, 0), (0, 8, 0), floor)
+    plane.data.uv_layers.new(name="UVMap").data.foreach_set("uv", [0, 0, 6, 0, 6, 4, 0, 4])
+    for name, (centre, inputs) in SPHERES.items():
+        builders.uv_sphere(name, centre, 0.4, segments=64, rings=32,
+                           material=principled_material(name, **inputs))
+    panel = principled_material("Panel", **{"Base Color": (0.0, 0.0, 0.0, 1.0),
+                                            "Emission": (1.0, 0.85, 0.6, 1.0),
+                                            "Emission Strength": 6.0, "Specular": 0.0})
+    builders.quad("Panel", (-1.2, 1.6, 0.3), (2.4, 0, 0), (0, 0, 1.0), panel)
+    lamp = builders.light("Key", 'AREA', 300.0, (1.2, -2.0, 3.0), shape='DISK', size=1.0)
+    builders.aim(lamp, (0.0, 0.0, 0.3))
+    world = bpy.data.worlds.new("Grey")
+    world.color = (0.05, 0.05, 0.05)
+    scene.world = world
+    cam = builders.camera(location=(0.0, -5.2, 1.9), lens=45.0)
+    builders.aim(cam, (0.0, 0.0, 0.35))
+    cycles_reference(scene, samples=2048, max_bounces=16, caustics=True)
+    return scene
+
+
+def projected_regions(scene):
+    """Pixel regions of each sphere (a disc inside its silhouette: [cx, cy, r], y down) and of
+    the emissive panel and the floor (rectangles [x0, y0, x1, y1]), for per-object means."""
+    from bpy_extras.object_utils import world_to_camera_view
+    from mathutils import Vector
+    width, height = scene.render.resolution_x, scene.render.resolution_y
+    cam = scene.camera
+
+    def pixel(point):
+        v = world_to_camera_view(scene, cam, Vector(point))
+        return v.x * width, (1.0 - v.y) * height
+
+    right = cam.matrix_world.to_3x3() @ Vector((1.0, 0.0, 0.0))
+    regions = {}
+    for name, (centre, _) in SPHERES.items():
+        cx, cy = pixel(centre)
+        ex, ey = pixel(Vector(centre) + 0.4 * right)
+        regions[name] = [round(cx, 2), round(cy, 2), round(0.8 * math.hypot(ex - cx, ey - cy), 2)]
+    x0, y0 = pixel((-1.0, 1.6, 1.2))
+    x1, y1 = pixel((1.0, 1.6, 0.95))  # above the spheres' silhouettes
+    regions["Panel"] = [int(x0) + 1, int(y0) + 1, int(x1) - 1, int(y1) - 1]
+    fx0, fy0 = pixel((-1.8, -1.4, 0.0))
+    fx1, fy1 = pixel((1.8, -0.7, 0.0))
+    regions["Floor"] = [int(fx0) + 1, int(fy1) + 1, int(fx1) - 1, int(fy0) - 1]
+    return regions
+
+
+def material_spheres_sidecar(scene):
+    return {
+        "reference_engine": "CYCLES", "reference_samples": 2048, "timeout": 400,
+        "thresholds": {"mean_diff": 0.03, "rel_rmse": 0.2, "mean_rel": 0.05,
+                       "pixel_threshold": 0.5, "pixel_fraction": 0.05, "alpha_max": 0.001},
+        "regions": projected_regions(scene),
+        "description": "Principled materials against Cycles (2048 spp, 16 bounces, caustics "
+                       "on): gold metal roughness 0.25, blue plastic roughness 0.4, clay, glass, "
+                       "an image-textured floor and an emissive panel. The image mean within 3%; "
+                       "tests/blender/test_material_spheres.py checks each object's mean colour "
+                       "(the 'regions') within 5%."}
+
+
 # name -> (folder, builder, sidecar). Builders taking a folder argument get the output folder.
 REGRESSION = "regression"
 VALIDATION = "validation"
@@ -454,6 +545,7 @@ SCENES = {
                        "light only): checks light units, falloff, spot cone and blend, sun and "
                        "soft shadows. Image mean within 1%, relative RMSE below 0.02 (Cycles' "
                        "own noise: 0.006), fewer than 1% of pixels off by more than 10%."}),
+    "material_spheres": (VALIDATION, material_spheres, material_spheres_sidecar),
     "mirror_glass": (VALIDATION, mirror_glass, {
         "reference_engine": "CYCLES", "reference_samples": 8192, "timeout": 300,
         "thresholds": {"mean_diff": 0.02, "rel_rmse": 0.08, "mean_rel": 0.05,

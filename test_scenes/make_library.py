@@ -41,7 +41,7 @@ def write_scene(name, folder_name, build, sidecar):
     bpy.ops.wm.save_mainfile(compress=True)
     if os.path.exists(path + "1"):  # the backup the second save leaves
         os.remove(path + "1")
-    data = dict(sidecar)
+    data = dict(sidecar(scene) if callable(sidecar) else sidecar)
     data.setdefault("description", describe(build))
     with open(os.path.join(folder, f"{name}.json"), "w") as f:
         json.dump(data, f, indent=2)

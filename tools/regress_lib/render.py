@@ -14,7 +14,8 @@ from pathlib import Path
 PHOTON_LINE = re.compile(r"^Photon: rendered frame (-?\d+) ", re.MULTILINE)
 DEFAULT_TIMEOUT = 120.0
 DEFAULT_REFERENCE_TIMEOUT = 3600.0  # Cycles references at thousands of samples are slow
-# "regions": named pixel rectangles [x0, y0, x1, y1] that tests read (not used here).
+# "regions": named pixel rectangles [x0, y0, x1, y1] or discs [cx, cy, r] (y down) that tests
+# read (not used here).
 SIDECAR_KEYS = {"thresholds", "frames", "timeout", "reference_engine", "reference_samples",
                 "reference_timeout", "description", "regions"}
 
