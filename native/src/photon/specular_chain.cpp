@@ -30,6 +30,7 @@ DiffuseVertex trace_specular_chain(const RenderContext& context, Ray ray, const 
       }
     }
     if (!found) {
+      v.escaped = true;
       // The ray left the scene (camera rays too, whatever their clip distance): world and suns.
       if (emitted) {
         if (!(camera && depth == 0 && context.settings->transparent_background))
@@ -53,6 +54,7 @@ DiffuseVertex trace_specular_chain(const RenderContext& context, Ray ray, const 
     if (mat.type == MaterialType::kDiffuse) {
       v.found = true;
       v.si = si;
+      v.hit = hit;
       v.depth = depth;
       return v;
     }

@@ -12,6 +12,8 @@ struct DiffuseVertex {
   SurfaceInteraction si;  // normals flipped to face the arriving ray
   Vec3 throughput{1.0f};  // product of the specular tints along the chain
   int depth = 0;          // specular bounces before the diffuse surface
+  Hit hit;                // the diffuse surface's hit (when found)
+  bool escaped = false;   // the chain left the scene (not found, and not stopped by max depth)
 };
 
 // `first` (optional) is the already traced first hit of `ray`. When `emitted` is given, light
