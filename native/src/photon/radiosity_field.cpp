@@ -47,8 +47,8 @@ RadiosityPower RadiosityField::radiosity_at(const RadiosityLocation& where, uint
   RadiosityPower b;
   if (empty()) return b;
   for (int k = 0; k < 3; ++k)
-    add(&b, scaled(vertex_[2 * where.vertex[k] + (side ^ (where.flip[k] ? 1u : 0u))],
-                   where.weight[k]));
+    add(&b,
+        scaled(vertex_[2 * where.vertex[k] + (side ^ (where.flip[k] ? 1u : 0u))], where.weight[k]));
   return b;
 }
 

@@ -1,8 +1,8 @@
 // The radiosity solution as a function on the surfaces: per-element radiosity B = P / A (seed
 // 002 sec. 1.2: B_i constant on patch i), and a continuous version for display, with B at every
 // welded vertex the area-weighted average of the elements around it, interpolated linearly
-// across each element (Gouraud shading of radiosity; Cohen & Wallace 1993, the chapter on rendering), so patch
-// edges do not show.
+// across each element (Gouraud shading of radiosity; Cohen & Wallace 1993, the chapter on
+// rendering), so patch edges do not show.
 #pragma once
 
 #include <vector>

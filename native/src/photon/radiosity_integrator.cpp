@@ -25,8 +25,8 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
   mesh_settings.patch_size =
       std::isfinite(s.radiosity_patch_size) ? std::max(s.radiosity_patch_size, 0.0f) : 0.0f;
   std::vector<std::string> warnings;
-  mesh_ = RadiosityMesh(*context.scene, *context.accel, mesh_settings, is_radiosity_surface,
-                        &warnings);
+  mesh_ =
+      RadiosityMesh(*context.scene, *context.accel, mesh_settings, is_radiosity_surface, &warnings);
   if (control.warn)
     for (const std::string& w : warnings) control.warn(w);
   const double mesh_seconds =
@@ -80,12 +80,11 @@ bool RadiosityIntegrator::reflected_radiance(const Hit& hit, const Vec3& towards
 }
 
 RadianceSample RadiosityIntegrator::radiance_from_hit(const RenderContext& context,
-                                                      const Ray& camera_ray,
-                                                      const CameraHit& first,
+                                                      const Ray& camera_ray, const CameraHit& first,
                                                       Sampler& sampler) const {
   RadianceSample result;
-  const DiffuseVertex v = trace_specular_chain(context, camera_ray, &first, kVisibleCamera,
-                                               sampler, &result.direct, &result.alpha);
+  const DiffuseVertex v = trace_specular_chain(context, camera_ray, &first, kVisibleCamera, sampler,
+                                               &result.direct, &result.alpha);
   RadiosityPower l;
   if (!v.found || !reflected_radiance(v.hit, v.si.ng, &l)) return result;
   result.direct += v.throughput * l.direct;

@@ -9,7 +9,9 @@ namespace photon {
 
 // Whether a surface takes part in the radiosity solution (gets elements, receives and
 // reflects power): the Lambertian surfaces. Mirrors and glass only redirect rays.
-inline bool is_radiosity_surface(const Material& m) { return m.type == MaterialType::kDiffuse; }
+inline bool is_radiosity_surface(const Material& m) {
+  return m.type == MaterialType::kDiffuse;
+}
 
 // Per-channel Lambertian reflectance rho in [0, 1] (seed 002 eq. 7's rho_i, one per channel).
 inline Vec3 diffuse_reflectance_of(const Material& m) {

@@ -37,7 +37,8 @@ size_t element_count_for(const std::vector<TriangleInput>& tris, float patch_siz
 float size_for_count(const std::vector<TriangleInput>& tris, size_t target, float largest,
                      uint32_t max_subdivisions) {
   if (element_count_for(tris, largest, max_subdivisions) >= target) return largest;
-  double lo = std::log(static_cast<double>(largest) * 1e-6), hi = std::log(static_cast<double>(largest));
+  double lo = std::log(static_cast<double>(largest) * 1e-6),
+         hi = std::log(static_cast<double>(largest));
   for (int k = 0; k < 40 && hi - lo > 0.01; ++k) {
     const double mid = 0.5 * (lo + hi);
     if (element_count_for(tris, static_cast<float>(std::exp(mid)), max_subdivisions) > target)
@@ -53,7 +54,9 @@ float size_for_count(const std::vector<TriangleInput>& tris, size_t target, floa
 // for bit.
 struct PositionKey {
   uint32_t bits[3];
-  bool operator==(const PositionKey& o) const { return std::memcmp(bits, o.bits, sizeof bits) == 0; }
+  bool operator==(const PositionKey& o) const {
+    return std::memcmp(bits, o.bits, sizeof bits) == 0;
+  }
 };
 struct PositionKeyHash {
   size_t operator()(const PositionKey& k) const {
@@ -108,8 +111,8 @@ struct WeldCluster {
   Vec3 geometric;  // winding normal of the first triangle, for the side flip
 };
 
-constexpr float kSmoothWeldCos = 0.9f;   // smooth meshes: shading normals within ~25 degrees
-constexpr float kFlatWeldCos = 0.999f;   // flat meshes: (nearly) coplanar faces only
+constexpr float kSmoothWeldCos = 0.9f;  // smooth meshes: shading normals within ~25 degrees
+constexpr float kFlatWeldCos = 0.999f;  // flat meshes: (nearly) coplanar faces only
 
 }  // namespace
 
@@ -257,8 +260,11 @@ Vec3 RadiosityMesh::corner(uint32_t e, int k) const {
 Vec3 RadiosityMesh::sample_point(uint32_t e, Vec2 u) const {
   const Vec3 c0 = corner(e, 0), c1 = corner(e, 1), c2 = corner(e, 2);
   // Uniform barycentrics by the square-root warp (Shirley 1990).
+  // Shrunk by 1e-3 towards the centroid: a point computed exactly on an element's edge can
+  // round to just behind the neighbouring face of a crease, and its ray would start outside.
+  constexpr float kShrink = 1.0f - 1e-3f, kCentre = (1.0f - kShrink) / 3.0f;
   const float su = std::sqrt(u.x);
-  const float b1 = su * (1.0f - u.y), b2 = su * u.y;
+  const float b1 = kCentre + kShrink * su * (1.0f - u.y), b2 = kCentre + kShrink * su * u.y;
   return c0 + (c1 - c0) * b1 + (c2 - c0) * b2;
 }
 

@@ -17,8 +17,8 @@
 namespace photon {
 
 struct RadiosityTriangle {
-  Vec3 p0, e1, e2;  // world space: p = p0 + b1 e1 + b2 e2 (Embree's u = b1, v = b2)
-  Vec3 normal;      // unit, as wound
+  Vec3 p0, e1, e2;            // world space: p = p0 + b1 e1 + b2 e2 (Embree's u = b1, v = b2)
+  Vec3 normal;                // unit, as wound
   float element_area = 0.0f;  // area / n^2
   uint32_t n = 0;             // subdivisions per edge; 0 = not meshed (not diffuse)
   uint32_t first_element = 0;
@@ -44,10 +44,10 @@ struct RadiosityLocation {
 };
 
 struct RadiosityMeshSettings {
-  float patch_size = 0.0f;          // target element edge length; <= 0: automatic
-  size_t auto_elements = 20000;     // automatic size: about this many elements
-  size_t max_elements = 4000000;    // larger meshes are coarsened (with a warning)
-  uint32_t max_subdivisions = 1024; // per triangle edge
+  float patch_size = 0.0f;           // target element edge length; <= 0: automatic
+  size_t auto_elements = 20000;      // automatic size: about this many elements
+  size_t max_elements = 4000000;     // larger meshes are coarsened (with a warning)
+  uint32_t max_subdivisions = 1024;  // per triangle edge
 };
 
 class RadiosityMesh {
@@ -66,7 +66,9 @@ class RadiosityMesh {
   double total_area() const { return total_area_; }
 
   const RadiosityElement& element(uint32_t e) const { return elements_[e]; }
-  const RadiosityTriangle& triangle_of(uint32_t e) const { return triangles_[elements_[e].triangle]; }
+  const RadiosityTriangle& triangle_of(uint32_t e) const {
+    return triangles_[elements_[e].triangle];
+  }
   float area(uint32_t e) const { return triangle_of(e).element_area; }
   Vec3 normal(uint32_t e) const { return triangle_of(e).normal; }
   // World-space corner k (0..2) of element e, and a uniform point on it.

@@ -15,13 +15,16 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr size_t kChunkRays = 4096;     // rays per task; fixed, so results ignore thread count
-constexpr size_t kBatchChunks = 64;     // chunks traced between two cancel checks / progress
-constexpr uint64_t kMinStepRays = 4096; // an incremental step never shoots fewer rays
+constexpr size_t kChunkRays = 4096;      // rays per task; fixed, so results ignore thread count
+constexpr size_t kBatchChunks = 64;      // chunks traced between two cancel checks / progress
+constexpr uint64_t kMinStepRays = 4096;  // an incremental step never shoots fewer rays
 constexpr int kMaxIncrementalSteps = 500;
-constexpr uint32_t kLightMask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
+constexpr uint32_t kLightMask =
+    kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
 
-double scalar(const Vec3& v) { return (static_cast<double>(v.x) + v.y + v.z) / 3.0; }
+double scalar(const Vec3& v) {
+  return (static_cast<double>(v.x) + v.y + v.z) / 3.0;
+}
 
 struct DVec3 {
   double x = 0, y = 0, z = 0;
@@ -29,7 +32,8 @@ struct DVec3 {
   void add(const DVec3& v) { x += v.x, y += v.y, z += v.z; }
   double mean() const { return (x + y + z) / 3.0; }
   Vec3 to_float(double scale = 1.0) const {
-    return {static_cast<float>(x * scale), static_cast<float>(y * scale), static_cast<float>(z * scale)};
+    return {static_cast<float>(x * scale), static_cast<float>(y * scale),
+            static_cast<float>(z * scale)};
   }
 };
 
@@ -70,7 +74,8 @@ void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, const Ra
                const Vec3& power, uint32_t mask, bool from_light, Sampler& sampler,
                ChunkOutput* out) {
   out->shot.add(power);
-  const DiffuseVertex v = trace_specular_chain(context, ray, nullptr, mask, sampler, nullptr, nullptr);
+  const DiffuseVertex v =
+      trace_specular_chain(context, ray, nullptr, mask, sampler, nullptr, nullptr);
   const Vec3 arriving = power * v.throughput;
   out->absorbed_specular.add(power - arriving);
   if (!v.found) {
@@ -92,13 +97,14 @@ void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, const Ra
 }
 
 void shoot_chunk(const RenderContext& context, const RadiosityMesh& mesh,
-                 const PhotonSources& sources, const StepPlan& plan, uint64_t begin,
-                 uint64_t end, ChunkOutput* out) {
+                 const PhotonSources& sources, const StepPlan& plan, uint64_t begin, uint64_t end,
+                 ChunkOutput* out) {
   const double element_total = plan.cdf.empty() ? 0.0 : plan.cdf.back();
   const double offset = to_unit_float(mix64(plan.seed ^ 0x5157u));
   for (uint64_t r = begin; r < end; ++r) {
     if (r < plan.light_rays) {
-      Sampler sampler(plan.seed, 1, static_cast<uint32_t>(r), static_cast<uint32_t>(plan.light_rays));
+      Sampler sampler(plan.seed, 1, static_cast<uint32_t>(r),
+                      static_cast<uint32_t>(plan.light_rays));
       EmittedPhoton photon;
       if (!sources.emit_global(sampler, &photon)) continue;
       trace_ray(context, mesh, photon.ray, photon.power / static_cast<float>(plan.light_rays),
@@ -106,7 +112,8 @@ void shoot_chunk(const RenderContext& context, const RadiosityMesh& mesh,
       continue;
     }
     const uint64_t k = r - plan.light_rays;
-    Sampler sampler(plan.seed, 2, static_cast<uint32_t>(k), static_cast<uint32_t>(plan.element_rays));
+    Sampler sampler(plan.seed, 2, static_cast<uint32_t>(k),
+                    static_cast<uint32_t>(plan.element_rays));
     // Systematic sampling: ray k takes the (k + offset) / N quantile of the power CDF, so
     // every source gets its expected number of rays to within one.
     const double target = (static_cast<double>(k) + offset) / plan.element_rays * element_total;
@@ -131,8 +138,8 @@ void shoot_chunk(const RenderContext& context, const RadiosityMesh& mesh,
 
 // Traces a step in fixed chunks, in parallel, and adds the chunks' deposits in chunk order.
 StepResult shoot(const RenderContext& context, const RadiosityMesh& mesh,
-                 const PhotonSources& sources, const StepPlan& plan,
-                 const PrepareControl& control, const std::function<void(uint64_t)>& progress) {
+                 const PhotonSources& sources, const StepPlan& plan, const PrepareControl& control,
+                 const std::function<void(uint64_t)>& progress) {
   StepResult result;
   const size_t slots = 2 * mesh.element_count();
   for (auto& r : result.received) r.assign(slots, DVec3());
@@ -175,10 +182,33 @@ std::string percent(double x) {
   return buf;
 }
 
+// The power still unshot when shooting stops would, bounced on, add about
+// U r / (1 - r) more reflected power, r being the fraction of shot power that the last step
+// returned as reflected power. Like the ambient term of progressive refinement radiosity
+// (Cohen, Chen, Wallace, Greenberg 1988), that estimate is added up front, per channel, here
+// spread in proportion to the solution, so stopping at a threshold does not darken bright,
+// closed scenes; the regular iterations that follow correct its distribution.
+void add_ambient(const DVec3& last_shot, std::vector<RadiosityPower>* solution,
+                 const std::vector<Vec3>& unshot) {
+  DVec3 u, total;
+  for (size_t s = 0; s < unshot.size(); ++s) {
+    u.add(unshot[s]);
+    total.add((*solution)[s].total());
+  }
+  const double shot[3] = {last_shot.x, last_shot.y, last_shot.z};
+  const double remaining[3] = {u.x, u.y, u.z}, sum[3] = {total.x, total.y, total.z};
+  Vec3 scale(0.0f);
+  for (int c = 0; c < 3; ++c) {
+    if (!(shot[c] > 0.0) || !(sum[c] > 0.0)) continue;
+    const double r = std::clamp(remaining[c] / shot[c], 0.0, 0.95);
+    scale[c] = static_cast<float>(remaining[c] * r / (1.0 - r) / sum[c]);
+  }
+  for (RadiosityPower& p : *solution) p.indirect += p.total() * scale;
+}
+
 }  // namespace
 
-std::vector<RadiosityPower> solve_radiosity(const RenderContext& context,
-                                            const RadiosityMesh& mesh,
+std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const RadiosityMesh& mesh,
                                             const RadiositySolveSettings& settings,
                                             const PrepareControl& control,
                                             RadiositySolveStats* stats_out) {
@@ -205,7 +235,8 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context,
   const double threshold = std::clamp(static_cast<double>(settings.threshold), 1e-6, 1.0);
   uint64_t rays_done = 0;
   auto report = [&](const std::string& what, uint64_t step_rays) {
-    control.report(what, static_cast<float>(std::min(1.0, static_cast<double>(rays_done + step_rays) / budget)));
+    control.report(what, static_cast<float>(
+                             std::min(1.0, static_cast<double>(rays_done + step_rays) / budget)));
   };
   auto accumulate_balance = [&](const StepResult& r) {
     stats.absorbed += r.absorbed.mean();
@@ -213,13 +244,15 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context,
     stats.escaped += r.escaped.mean();
   };
   auto step_seed = [&](int phase, int step) {
-    return hash_combine(settings.seed, (static_cast<uint64_t>(phase) << 32) | static_cast<uint32_t>(step));
+    return hash_combine(settings.seed,
+                        (static_cast<uint64_t>(phase) << 32) | static_cast<uint32_t>(step));
   };
 
   // ---- Phase 1: incremental shooting, first from the lights themselves. ----
   std::vector<Vec3> unshot(slots);
   double unshot_total = emitted;
   double rays_per_watt = 0.0;
+  DVec3 last_shot;  // power shot by the last completed step, per channel
   for (int step = 0;; ++step) {
     StepPlan plan;
     plan.seed = step_seed(1, step);
@@ -242,9 +275,10 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context,
     }
     const std::string status = "Radiosity: iteration " + std::to_string(step + 1) + ", unshot " +
                                percent(unshot_total / emitted);
-    const StepResult r = shoot(context, mesh, sources, plan, control,
-                               [&](uint64_t n) { report(status, n); });
+    const StepResult r =
+        shoot(context, mesh, sources, plan, control, [&](uint64_t n) { report(status, n); });
     if (!r.complete) break;  // stopped: keep the total of the completed steps
+    last_shot = r.shot;
     rays_done += r.rays;
     stats.rays += r.rays;
     ++stats.incremental_iterations;
@@ -270,6 +304,7 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context,
   }
   stats.unshot = unshot_total;
   if (control.cancelled()) return finish({});
+  add_ambient(last_shot, &solution, unshot);
   if (control.should_stop() || iterations == 0) {
     stats.stopped_early = control.should_stop();
     return finish(std::move(solution));
@@ -288,17 +323,17 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context,
     plan.cdf = power_cdf(current);
     const double element_total = plan.cdf.back();
     plan.light_rays = std::max<uint64_t>(
-        1, static_cast<uint64_t>(std::llround(regular_budget * emitted / (emitted + element_total))));
+        1,
+        static_cast<uint64_t>(std::llround(regular_budget * emitted / (emitted + element_total))));
     plan.element_rays = element_total > 0.0 && regular_budget > plan.light_rays
                             ? regular_budget - plan.light_rays
                             : 0;
-    const std::string status = "Radiosity: iteration " +
-                               std::to_string(stats.incremental_iterations + it + 1) +
-                               " (averaging " + std::to_string(it + 1) + "/" +
-                               std::to_string(iterations) + "), unshot " +
-                               percent(unshot_total / emitted);
-    const StepResult r = shoot(context, mesh, sources, plan, control,
-                               [&](uint64_t n) { report(status, n); });
+    const std::string status =
+        "Radiosity: iteration " + std::to_string(stats.incremental_iterations + it + 1) +
+        " (averaging " + std::to_string(it + 1) + "/" + std::to_string(iterations) + "), unshot " +
+        percent(unshot_total / emitted);
+    const StepResult r =
+        shoot(context, mesh, sources, plan, control, [&](uint64_t n) { report(status, n); });
     if (!r.complete) break;
     rays_done += r.rays;
     stats.rays += r.rays;

@@ -11,8 +11,8 @@
 // (AGI sec. 6.3, solving the system of eq. 6.6). Two phases:
 //  1. incremental shooting (AGI sec. 6.3; its variance: appendix C): shoot the unshot power dP
 //     of the last step (first the lights themselves: Blender lights, emissive meshes, a uniform
-//     world, through PhotonSources), add what lands to the total, repeat until the unshot power is below
-//     `threshold` times the emitted power;
+//     world, through PhotonSources), add what lands to the total, repeat until the unshot power is
+//     below `threshold` times the emitted power;
 //  2. regular Jacobi iterations P(k+1) = Pe + rho F^T P(k), each estimated with fresh rays
 //     (lights re-shot too), and averaged to cut the noise (AGI sec. 6.3, "regular
 //     shooting").
@@ -61,8 +61,7 @@ struct RadiositySolveStats {
 // Solves for the reflected power of every element side (2 per element: front = the side
 // cross(e1, e2) points to, then back). Returns the best solution when stopped early; an empty
 // vector when cancelled.
-std::vector<RadiosityPower> solve_radiosity(const RenderContext& context,
-                                            const RadiosityMesh& mesh,
+std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const RadiosityMesh& mesh,
                                             const RadiositySolveSettings& settings,
                                             const PrepareControl& control,
                                             RadiositySolveStats* stats);
