@@ -172,3 +172,29 @@ TEST(RadiosityIntegrator, RendersTheClosedBoxValue) {
 
 }  // namespace
 }  // namespace photon
+
+namespace photon {
+namespace {
+
+// Light reaches diffuse patches through the glass and mirror balls (caustics), and the power
+// still balances with specular surfaces in the way.
+TEST(RadiositySolver, RaysFollowMirrorsAndGlass) {
+  RadiosityFixture f(make_caustic_box());
+  const RadiosityMesh mesh = f.mesh(0.1f);
+  RadiositySolveSettings s;
+  s.rays = 1000000;
+  s.iterations = 0;
+  RadiositySolveStats stats;
+  const std::vector<RadiosityPower> power = solve(f, mesh, s, &stats);
+  double caustic = 0.0, direct = 0.0;
+  for (const RadiosityPower& p : power) {
+    caustic += p.caustic.x + p.caustic.y + p.caustic.z;
+    direct += p.direct.x + p.direct.y + p.direct.z;
+  }
+  EXPECT_GT(caustic, 0.002 * direct);
+  EXPECT_NEAR(stats.absorbed + stats.absorbed_specular + stats.escaped + stats.unshot,
+              stats.emitted, 1e-3 * stats.emitted);
+}
+
+}  // namespace
+}  // namespace photon
