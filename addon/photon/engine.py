@@ -39,6 +39,10 @@ def make_settings(native, scene, full_width, full_height, region):
     settings.caustic_gather_count = max(1, int(props.caustic_gather_count))
     settings.final_gather_rays = max(0, int(props.final_gather_rays))
     settings.photon_time = max(0.0, float(props.photon_time))
+    settings.radiosity_patch_size = max(0.0, float(props.radiosity_patch_size))
+    settings.radiosity_rays = max(10, int(props.radiosity_rays)) * 1000
+    settings.radiosity_threshold = min(max(float(props.radiosity_threshold), 1e-4), 1.0)
+    settings.radiosity_iterations = min(max(int(props.radiosity_iterations), 0), 100)
     return settings
 
 
@@ -107,8 +111,12 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                         # here on, so the rest of this render cannot be cancelled).
                         session.stop_preparation()
                         photons_stopped = True
-                        reporter.warning("Esc: photon tracing stopped, rendering with the "
-                                         "photons traced so far")
+                        if scene.photon.integrator == "RADIOSITY":
+                            reporter.warning("Esc: radiosity solve stopped, rendering the "
+                                             "solution so far")
+                        else:
+                            reporter.warning("Esc: photon tracing stopped, rendering with the "
+                                             "photons traced so far")
                     else:
                         session.cancel()
                         cancelled = True
@@ -148,6 +156,18 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 f"{stats['photon_map_build_seconds']:.3f} s, radiance precomputed in "
                 f"{stats['radiance_precompute_seconds']:.3f} s "
                 f"({stats['photon_map_bytes'] / 1e6:.1f} MB)")
+        if "radiosity_elements" in stats:
+            reporter.info(
+                f"radiosity: {int(stats['radiosity_elements']):,} patches (size "
+                f"{stats['radiosity_patch_size']:.4g}), {int(stats['radiosity_rays']):,} rays in "
+                f"{stats['radiosity_solve_seconds']:.3f} s "
+                f"({stats['radiosity_rays_per_second'] / 1e6:.2f} M rays/s), "
+                f"{int(stats['radiosity_shooting_iterations'])} shooting + "
+                f"{int(stats['radiosity_averaged_iterations'])} averaged iterations; power: "
+                f"emitted {stats['radiosity_emitted_power']:.4g} W, absorbed "
+                f"{stats['radiosity_absorbed_power'] + stats['radiosity_absorbed_specular_power']:.4g}"
+                f" W, escaped {stats['radiosity_escaped_power']:.4g} W, unshot "
+                f"{stats['radiosity_unshot_power']:.4g} W")
         # Free native memory now rather than when Python collects: -a renders many frames.
         del session, native_scene
 

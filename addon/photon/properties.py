@@ -14,6 +14,9 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
              "final gathering"),
             ("RAY_TRACE", "Ray Tracing",
              "Whitted ray tracing: direct light, perfect mirrors and glass"),
+            ("RADIOSITY", "Radiosity",
+             "Diffuse global illumination solved once on a mesh of patches (stochastic "
+             "Jacobi radiosity) and viewed from anywhere; mirrors and glass are ray traced"),
         ],
         default="PHOTON_MAP",
     )
@@ -56,6 +59,28 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
                     "(0 = use the counts). Esc during photon tracing renders with the "
                     "photons traced so far",
         default=0.0, min=0.0, soft_max=600.0, max=86400.0, subtype="TIME_ABSOLUTE", unit="TIME")
+    radiosity_patch_size: FloatProperty(
+        name="Patch Size",
+        description="Edge length of the radiosity patches (elements) surfaces are split into; "
+                    "smaller patches show sharper shadows but need more rays "
+                    "(0 = automatic: about 20000 patches for the whole scene)",
+        default=0.0, min=0.0, soft_max=1.0, max=1e6, subtype="DISTANCE", unit="LENGTH")
+    radiosity_rays: IntProperty(
+        name="Rays",
+        description="Rays the radiosity solve traces in total, in thousands; the solve time is "
+                    "about proportional, and the noise falls as 1 / sqrt(rays). Use more rays "
+                    "for more (smaller) patches",
+        default=8000, min=10, soft_max=200000, max=10000000)
+    radiosity_threshold: FloatProperty(
+        name="Unshot Threshold",
+        description="Light is shot on from patch to patch until the power not yet shot is "
+                    "below this fraction of the emitted power",
+        default=0.01, min=0.0001, max=1.0, soft_max=0.1, precision=4)
+    radiosity_iterations: IntProperty(
+        name="Averaged Iterations",
+        description="Jacobi iterations after shooting, each re-estimating the whole solution "
+                    "with fresh rays, averaged to reduce noise (0 = shooting only)",
+        default=4, min=0, soft_max=16, max=100)
     threads: IntProperty(
         name="Threads", description="Render threads (0 = all cores)",
         default=0, min=0, soft_max=256)

@@ -88,6 +88,26 @@ class PHOTON_PT_photon_mapping(PhotonPanel, bpy.types.Panel):
         layout.prop(props, "final_gather_rays")
 
 
+class PHOTON_PT_radiosity(PhotonPanel, bpy.types.Panel):
+    bl_label = "Radiosity"
+    bl_parent_id = "PHOTON_PT_render"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.scene.photon.integrator == "RADIOSITY"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        props = context.scene.photon
+        layout.prop(props, "radiosity_patch_size")
+        layout.prop(props, "radiosity_rays", text="Rays (thousands)")
+        col = layout.column(align=True)
+        col.prop(props, "radiosity_threshold")
+        col.prop(props, "radiosity_iterations")
+
+
 class PHOTON_PT_passes(bpy.types.Panel):
     bl_label = "Photon Passes"
     bl_space_type = "PROPERTIES"
@@ -126,7 +146,8 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
         layout.prop(props, "tile_size")
 
 
-classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_performance, PHOTON_PT_passes)
+classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_performance,
+           PHOTON_PT_passes)
 
 
 def register():

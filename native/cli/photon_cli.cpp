@@ -17,9 +17,12 @@ static void usage() {
   std::printf(
       "usage: photon_cli [--scene cornell|caustic] [--width N] [--height N] [--samples N]\n"
       "                  [--max-depth N] [--seed N] [--threads N] [--tile-size N]\n"
-      "                  [--integrator photon_map|ray_trace] [--photons N] [--caustic-photons N]\n"
+      "                  [--integrator photon_map|ray_trace|radiosity] [--photons N]\n"
+      "                  [--caustic-photons N]\n"
       "                  [--gather-count N] [--gather-radius R] [--caustic-gather-count N]\n"
       "                  [--final-gather-rays N] [--photon-time SECONDS]\n"
+      "                  [--patch-size S] [--radiosity-rays N] [--radiosity-threshold F]\n"
+      "                  [--radiosity-iterations N]\n"
       "                  [--passes PREFIX (writes PREFIX_direct.exr, ...)] --out FILE\n");
 }
 
@@ -48,6 +51,7 @@ int main(int argc, char** argv) {
       const std::string name = next("--integrator");
       if (name == "ray_trace") settings.integrator = IntegratorType::kRayTrace;
       else if (name == "photon_map") settings.integrator = IntegratorType::kPhotonMap;
+      else if (name == "radiosity") settings.integrator = IntegratorType::kRadiosity;
       else {
         usage();
         return 2;
@@ -60,6 +64,10 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--caustic-gather-count")) settings.caustic_gather_count = std::atoi(next("--caustic-gather-count"));
     else if (!std::strcmp(argv[i], "--final-gather-rays")) settings.final_gather_rays = std::atoi(next("--final-gather-rays"));
     else if (!std::strcmp(argv[i], "--photon-time")) settings.photon_time = std::strtof(next("--photon-time"), nullptr);
+    else if (!std::strcmp(argv[i], "--patch-size")) settings.radiosity_patch_size = std::strtof(next("--patch-size"), nullptr);
+    else if (!std::strcmp(argv[i], "--radiosity-rays")) settings.radiosity_rays = std::strtoull(next("--radiosity-rays"), nullptr, 10);
+    else if (!std::strcmp(argv[i], "--radiosity-threshold")) settings.radiosity_threshold = std::strtof(next("--radiosity-threshold"), nullptr);
+    else if (!std::strcmp(argv[i], "--radiosity-iterations")) settings.radiosity_iterations = std::atoi(next("--radiosity-iterations"));
     else if (!std::strcmp(argv[i], "--passes")) {
       passes_prefix = next("--passes");
       settings.light_passes = true;

@@ -306,7 +306,8 @@ PYBIND11_MODULE(_photon, m) {
 
   py::enum_<IntegratorType>(m, "Integrator")
       .value("RAY_TRACE", IntegratorType::kRayTrace)
-      .value("PHOTON_MAP", IntegratorType::kPhotonMap);
+      .value("PHOTON_MAP", IntegratorType::kPhotonMap)
+      .value("RADIOSITY", IntegratorType::kRadiosity);
   m.attr("PASS_NAMES") = py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics",
                                         "Photon Map");
 
@@ -332,7 +333,11 @@ PYBIND11_MODULE(_photon, m) {
       .def_readwrite("gather_radius", &RenderSettings::gather_radius)
       .def_readwrite("caustic_gather_count", &RenderSettings::caustic_gather_count)
       .def_readwrite("final_gather_rays", &RenderSettings::final_gather_rays)
-      .def_readwrite("photon_time", &RenderSettings::photon_time);
+      .def_readwrite("photon_time", &RenderSettings::photon_time)
+      .def_readwrite("radiosity_patch_size", &RenderSettings::radiosity_patch_size)
+      .def_readwrite("radiosity_rays", &RenderSettings::radiosity_rays)
+      .def_readwrite("radiosity_threshold", &RenderSettings::radiosity_threshold)
+      .def_readwrite("radiosity_iterations", &RenderSettings::radiosity_iterations);
 
   py::class_<RenderSession>(m, "RenderSession")
       .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings) {

@@ -201,6 +201,7 @@ SurfaceInteraction Accel::interaction(const Hit& hit) const {
   si.mat = &triangle_material(hit.instance, hit.primitive, &si.material);
   si.instance = hit.instance;
   si.primitive = hit.primitive;
+  si.barycentric = Vec2(hit.u, hit.v);
   return si;
 }
 

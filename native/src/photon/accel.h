@@ -32,6 +32,7 @@ struct SurfaceInteraction {
   uint32_t material = 0;
   const Material* mat = nullptr;
   uint32_t instance = 0, primitive = 0;  // Embree instance and triangle (for UV tangents)
+  Vec2 barycentric;                      // Embree's (u, v) on that triangle
 };
 
 class Accel {

@@ -36,7 +36,7 @@ uint32_t visibility_after(uint8_t flags) {
 
 void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
                        const CameraHit& first, Sampler& sampler, const DiffuseShader& shade_diffuse,
-                       RadianceSample* result) {
+                       RadianceSample* result, uint8_t light_sampled) {
   const int max_depth = context.settings->max_depth;
   Ray ray = camera_ray;
   uint32_t mask = kVisibleCamera;
@@ -71,8 +71,8 @@ void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
     if (bsdf.empty()) return;
 
     const PathVertex vertex{&si, &sp, wo, throughput, depth, after_glossy};
-    if (bsdf.flags() & (kLobeDiffuse | kLobeGlossy))
-      result->direct += throughput * direct_radiance(context, si, bsdf, wo, sampler);
+    if (bsdf.flags() & light_sampled)
+      result->direct += throughput * direct_radiance(context, si, bsdf, wo, sampler, light_sampled);
     if (bsdf.flags() & kLobeDiffuse) shade_diffuse(vertex, result);
 
     // Continue through the lobes that are ray traced: specular and glossy.

@@ -24,9 +24,11 @@ struct PathVertex {
 using DiffuseShader = std::function<void(const PathVertex& vertex, RadianceSample* result)>;
 
 // Traces the path of one camera sample. `first` is the camera ray's already traced first hit.
+// `light_sampled` are the lobes lit by light sampling at every vertex (radiosity leaves out
+// the diffuse lobes: its solution already holds their direct light).
 void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
                        const CameraHit& first, Sampler& sampler, const DiffuseShader& shade_diffuse,
-                       RadianceSample* result);
+                       RadianceSample* result, uint8_t light_sampled = kLobeDiffuse | kLobeGlossy);
 
 // The ray visibility class of the next segment after a sampled lobe (Cycles' ray types).
 uint32_t visibility_after(uint8_t lobe_flags);

@@ -6,8 +6,6 @@
 namespace photon {
 namespace {
 
-constexpr uint8_t kRoughLobes = kLobeDiffuse | kLobeGlossy;
-
 inline float power_heuristic(float f, float g) {
   const float f2 = f * f, g2 = g * g;
   return f2 + g2 > 0.0f ? f2 / (f2 + g2) : 0.0f;
@@ -23,17 +21,18 @@ bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, cons
 }
 
 // f |cos| towards a sampled light direction, and the BSDF's density of sampling it.
-Vec3 bsdf_towards(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, float* pdf) {
-  const Vec3 f = bsdf.eval(wo, wi, kRoughLobes);
-  *pdf = bsdf.pdf(wo, wi, kRoughLobes);
+Vec3 bsdf_towards(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, uint8_t lobes, float* pdf) {
+  const Vec3 f = bsdf.eval(wo, wi, lobes);
+  *pdf = bsdf.pdf(wo, wi, lobes);
   return f * std::fabs(dot(bsdf.frame().n, wi));
 }
 
 // Light sample of light i (or of the emissive meshes), weighted against BSDF sampling.
 Vec3 light_sample_term(const RenderContext& context, const SurfaceInteraction& si,
-                       const Bsdf& bsdf, const Vec3& wo, const LightSample& ls) {
+                       const Bsdf& bsdf, const Vec3& wo, uint8_t lobes,
+                       const LightSample& ls) {
   float pdf_bsdf;
-  const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, &pdf_bsdf);
+  const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, lobes, &pdf_bsdf);
   if (is_black(f_cos) || !unoccluded(context, si, ls.wi, ls.distance)) return Vec3(0.0f);
   const float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, pdf_bsdf) : 1.0f;
   return f_cos * ls.weight * w;
@@ -42,20 +41,21 @@ Vec3 light_sample_term(const RenderContext& context, const SurfaceInteraction& s
 }  // namespace
 
 Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
-                     const Bsdf& bsdf, const Vec3& wo, Sampler& sampler) {
+                     const Bsdf& bsdf, const Vec3& wo, Sampler& sampler, uint8_t lobes) {
   Vec3 l(0.0f);
-  if (!(bsdf.flags() & kRoughLobes)) return l;
+  lobes &= kLobeDiffuse | kLobeGlossy;  // delta lobes reach lights by ray tracing
+  if (!(bsdf.flags() & lobes)) return l;
   const LightSet& lights = *context.lights;
   BsdfSample bs;
   for (size_t i = 0; i < lights.size(); ++i) {
     LightSample ls;
     const Vec2 u_light = sampler.get_2d();
-    if (lights.sample(i, si.p, u_light, &ls)) l += light_sample_term(context, si, bsdf, wo, ls);
+    if (lights.sample(i, si.p, u_light, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
     if (!lights.has_area(i)) continue;
     // BSDF sample, weighted against the light sample.
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
-    if (!bsdf.sample(wo, u_lobe, u, kRoughLobes, &bs)) continue;
+    if (!bsdf.sample(wo, u_lobe, u, lobes, &bs)) continue;
     Vec3 le;
     float distance, pdf_light;
     if (!lights.eval(i, si.p, bs.wi, &le, &distance, &pdf_light)) continue;
@@ -68,10 +68,10 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
     LightSample ls;
     const float u_pick = sampler.get_1d();
     const Vec2 u_point = sampler.get_2d();
-    if (emissive->sample(si.p, u_pick, u_point, &ls)) l += light_sample_term(context, si, bsdf, wo, ls);
+    if (emissive->sample(si.p, u_pick, u_point, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
-    if (bsdf.sample(wo, u_lobe, u, kRoughLobes, &bs)) {
+    if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) {
       Ray ray;
       ray.origin = offset_ray_origin(si.p, si.ng, bs.wi);
       ray.direction = bs.wi;
@@ -92,7 +92,7 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
   if (!is_black(world)) {
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
-    if (bsdf.sample(wo, u_lobe, u, kRoughLobes, &bs) && unoccluded(context, si, bs.wi, INFINITY))
+    if (bsdf.sample(wo, u_lobe, u, lobes, &bs) && unoccluded(context, si, bs.wi, INFINITY))
       l += world * bs.weight;
   }
   return is_finite(l) ? l : Vec3(0.0f);

@@ -12,8 +12,10 @@ namespace photon {
 
 // Reflected (and transmitted) radiance towards `wo` from every light and the world, seed 000
 // eq. 2.14. `bsdf`'s normals face wo.
+// Only the lobes in `lobes` (diffuse and / or glossy) are lit this way.
 Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
-                     const Bsdf& bsdf, const Vec3& wo, Sampler& sampler);
+                     const Bsdf& bsdf, const Vec3& wo, Sampler& sampler,
+                     uint8_t lobes = kLobeDiffuse | kLobeGlossy);
 
 // Irradiance E at `si` (as a Lambertian surface would receive it; `si.ng`/`si.ns` face the
 // side that is lit). Multiply by albedo / pi for the reflected radiance.

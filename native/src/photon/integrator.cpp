@@ -1,6 +1,7 @@
 #include "photon/integrator.h"
 
 #include "photon/photon_map_integrator.h"
+#include "photon/radiosity_integrator.h"
 #include "photon/ray_trace_integrator.h"
 
 namespace photon {
@@ -11,6 +12,8 @@ std::unique_ptr<Integrator> make_integrator(IntegratorType type) {
       return std::make_unique<RayTraceIntegrator>();
     case IntegratorType::kPhotonMap:
       return std::make_unique<PhotonMapIntegrator>();
+    case IntegratorType::kRadiosity:
+      return std::make_unique<RadiosityIntegrator>();
   }
   return std::make_unique<PhotonMapIntegrator>();
 }

@@ -17,7 +17,7 @@
 
 namespace photon {
 
-enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap };
+enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity };
 
 class EmissiveMeshes;
 class TextureSet;
@@ -43,6 +43,12 @@ struct RenderSettings {
   int caustic_gather_count = 50;      // k nearest photons in a caustic estimate
   int final_gather_rays = 16;         // per camera sample; 0 = read the global map directly
   float photon_time = 0.0f;           // > 0: trace photons for this many seconds instead
+
+  // Radiosity (seed 002; radiosity_solver.h).
+  float radiosity_patch_size = 0.0f;     // element edge length; 0 = automatic (~20k elements)
+  uint64_t radiosity_rays = 8000000;     // rays traced by the whole solve
+  float radiosity_threshold = 0.01f;     // shooting stops below this unshot fraction
+  int radiosity_iterations = 4;          // averaged Jacobi iterations after shooting
 };
 
 // Read-only state shared by all threads during a render.

@@ -1,0 +1,109 @@
+// The elements (patches) of the radiosity solution: every diffuse triangle of every instance,
+// in world space, split by a regular barycentric subdivision into n x n congruent sub-triangles
+// (n from the target patch size), so the element under an Embree hit follows from its (u, v)
+// without a search. Each element has two sides (Blender faces are two-sided), each with its own
+// radiosity. Element corners are welded into shared vertices within an instance (same position,
+// agreeing normals), and vertex radiosity is the area-weighted average of the elements around
+// it, so interpolating it across an element (Gouraud) hides the patch edges.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "photon/accel.h"
+
+namespace photon {
+
+struct RadiosityTriangle {
+  Vec3 p0, e1, e2;            // world space: p = p0 + b1 e1 + b2 e2 (Embree's u = b1, v = b2)
+  Vec3 normal;                // unit, as wound
+  float element_area = 0.0f;  // area / n^2
+  uint32_t n = 0;             // subdivisions per edge; 0 = not meshed (not diffuse)
+  uint32_t first_element = 0;
+  uint32_t first_lattice = 0;  // (n + 1)(n + 2) / 2 lattice points
+};
+
+// An element's place in its triangle: cell (i, j) of the subdivision, upward (corners
+// (i,j), (i+1,j), (i,j+1)) or downward (corners (i+1,j+1), (i,j+1), (i+1,j)).
+struct RadiosityElement {
+  uint32_t triangle = 0;
+  uint16_t i = 0, j = 0;
+  bool up = true;
+};
+
+// Where a surface point lies: its element, the element's three welded vertices with the side
+// flip of each (a vertex welded from a triangle wound the other way swaps front and back), and
+// the point's barycentric weights in the element.
+struct RadiosityLocation {
+  uint32_t element = 0;
+  uint32_t vertex[3] = {0, 0, 0};
+  bool flip[3] = {false, false, false};
+  float weight[3] = {1.0f, 0.0f, 0.0f};
+};
+
+struct RadiosityMeshSettings {
+  float patch_size = 0.0f;           // target element edge length; <= 0: automatic
+  size_t auto_elements = 20000;      // automatic size: about this many elements
+  size_t max_elements = 4000000;     // larger meshes are coarsened (with a warning)
+  uint32_t max_subdivisions = 1024;  // per triangle edge
+};
+
+class RadiosityMesh {
+ public:
+  RadiosityMesh() = default;
+  // `meshed(material)`: whether triangles of this material get elements (diffuse surfaces);
+  // the others (mirrors, glass) only redirect rays. Warnings are appended to `warnings`.
+  RadiosityMesh(const Scene& scene, const Accel& accel, const RadiosityMeshSettings& settings,
+                const std::function<bool(const Material&)>& meshed,
+                std::vector<std::string>* warnings);
+
+  size_t element_count() const { return elements_.size(); }
+  size_t vertex_count() const { return vertex_count_; }
+  size_t triangle_count() const { return triangles_.size(); }
+  float patch_size() const { return patch_size_; }
+  double total_area() const { return total_area_; }
+
+  const RadiosityElement& element(uint32_t e) const { return elements_[e]; }
+  const RadiosityTriangle& triangle_of(uint32_t e) const {
+    return triangles_[elements_[e].triangle];
+  }
+  float area(uint32_t e) const { return triangle_of(e).element_area; }
+  Vec3 normal(uint32_t e) const { return triangle_of(e).normal; }
+  // World-space corner k (0..2) of element e, and a uniform point on it.
+  Vec3 corner(uint32_t e, int k) const;
+  Vec3 sample_point(uint32_t e, Vec2 u) const;
+
+  // The element hit by Embree at (instance, primitive, u, v); false for unmeshed triangles.
+  bool locate(uint32_t instance, uint32_t primitive, float u, float v,
+              RadiosityLocation* out) const;
+  // The three welded vertices of element e (and their side flips).
+  void element_vertices(uint32_t e, uint32_t vertex[3], bool flip[3]) const;
+
+ private:
+  uint32_t triangle_index(uint32_t instance, uint32_t primitive) const;
+  uint32_t lattice_vertex(const RadiosityTriangle& t, uint32_t a, uint32_t b, bool* flip) const;
+
+  std::vector<RadiosityTriangle> triangles_;
+  std::vector<uint32_t> instance_first_triangle_;  // by Embree instance id
+  std::vector<RadiosityElement> elements_;
+  std::vector<uint32_t> lattice_;  // welded vertex << 1 | flip, per lattice point
+  size_t vertex_count_ = 0;
+  float patch_size_ = 0.0f;
+  double total_area_ = 0.0;
+};
+
+// Index of element (i, j, up) within a triangle subdivided n times (n^2 elements: the upward
+// ones row by row, then the downward ones).
+inline uint32_t subdivision_element(uint32_t n, uint32_t i, uint32_t j, bool up) {
+  if (up) return i * n - i * (i - 1) / 2 + j;
+  return n * (n + 1) / 2 + i * (n - 1) - i * (i - 1) / 2 + j;
+}
+
+// Index of lattice point (a, b), a + b <= n, within a triangle subdivided n times.
+inline uint32_t subdivision_lattice(uint32_t n, uint32_t a, uint32_t b) {
+  return a * (n + 1) - a * (a - 1) / 2 + b;
+}
+
+}  // namespace photon
