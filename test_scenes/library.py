@@ -458,9 +458,9 @@ def material_spheres(folder):
                            material=principled_material(name, **inputs))
     panel = principled_material("Panel", **{"Base Color": (0.0, 0.0, 0.0, 1.0),
                                             "Emission": (1.0, 0.85, 0.6, 1.0),
-                                            "Emission Strength": 6.0, "Specular": 0.0})
+                                            "Emission Strength": 4.0, "Specular": 0.0})
     builders.quad("Panel", (-1.2, 1.6, 0.3), (2.4, 0, 0), (0, 0, 1.0), panel)
-    lamp = builders.light("Key", 'AREA', 300.0, (1.2, -2.0, 3.0), shape='DISK', size=1.0)
+    lamp = builders.light("Key", 'AREA', 150.0, (1.2, -2.0, 3.0), shape='DISK', size=1.0)
     builders.aim(lamp, (0.0, 0.0, 0.3))
     world = bpy.data.worlds.new("Grey")
     world.color = (0.05, 0.05, 0.05)
