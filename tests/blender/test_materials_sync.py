@@ -252,3 +252,30 @@ def test_describe_material_defaults_clamps_and_fallbacks(native):
 def test_describe_material_rejects_what_the_addon_never_sends(native, closure, message):
     with pytest.raises(ValueError, match=message):
         native.describe_material("bad", [closure])
+
+
+# ---- A render through the engine: needs Scene.add_material / add_texture ----
+
+def test_render_with_textures_and_unsupported_nodes_finishes_with_warnings(
+        blender, tmp_path, monkeypatch):
+    temp = tmp_path / "tmp"
+    temp.mkdir()
+    monkeypatch.setenv("TMPDIR", str(temp))  # where the packed image is written
+    blend = tmp_path / "materials.blend"
+    blender.run_script("make_material_scene.py", tmp_path / "images", blend)
+    proc = blender.run([str(blend), "-E", "PHOTON", "-o", str(tmp_path / "out_####"),
+                        "-F", "OPEN_EXR", "-x", "1", "-f", "1"], check=False)
+    assert proc.returncode == 0, proc.log
+    assert "Photon: rendered frame 1" in proc.stdout, proc.log
+    assert np.isfinite(read_image(tmp_path / "out_0001.exr")).all()
+    for expected in [
+            "Material 'WaveMat': node 'Wave Texture' (ShaderNodeTexWave) is not supported yet; "
+            "using the value of the 'Base Color' input it feeds",
+            f"Material 'WaveMat': node 'Lost Texture': image file "
+            f"'{tmp_path / 'images' / 'lost.png'}' is missing; using a constant instead",
+            "Material 'ToonMat': node 'Toon BSDF' (ShaderNodeBsdfToon) is not supported yet; "
+            "rendering it as diffuse"]:
+        assert f"Photon: warning: {expected}" in proc.stdout, f"missing {expected!r}\n{proc.log}"
+    assert "TexturedMix" not in proc.stdout, proc.log  # nothing to say about it
+    # The packed image was written for the render and deleted after it.
+    assert not list(temp.glob("photon_textures_*")), list(temp.iterdir())
