@@ -55,7 +55,9 @@ constexpr TypeName kTypes[] = {
     {"TRANSLUCENT", ClosureType::kTranslucent}, {"EMISSION", ClosureType::kEmission},
 };
 
-[[noreturn]] void fail(const std::string& message) { throw py::value_error(message); }
+[[noreturn]] void fail(const std::string& message) {
+  throw py::value_error(message);
+}
 
 float clamp_scalar(float v, float lo, float hi, float fallback) {
   return std::isfinite(v) ? std::clamp(v, lo, hi) : fallback;
@@ -86,9 +88,9 @@ Input parse_input(const py::handle& value, Kind kind, float lo, float hi, const 
   if (is_number(value)) {
     const float v = clamp_scalar(value.cast<float>(), lo, hi, fallback.value.x);
     // A number for a colour is a grey (Blender's float -> colour conversion).
-    return kind == Kind::kScalar ? Input::constant(v)
-                                 : Input::constant(clamp_color(Vec3(value.cast<float>()), lo, hi,
-                                                               fallback.value));
+    return kind == Kind::kScalar
+               ? Input::constant(v)
+               : Input::constant(clamp_color(Vec3(value.cast<float>()), lo, hi, fallback.value));
   }
   if (py::isinstance<py::dict>(value)) {
     py::dict d = py::reinterpret_borrow<py::dict>(value);
@@ -102,8 +104,10 @@ Input parse_input(const py::handle& value, Kind kind, float lo, float hi, const 
     in.channel = TextureChannel::kColor;
     if (d.contains("channel")) {
       const std::string channel = py::str(d["channel"]);
-      if (channel == "ALPHA") in.channel = TextureChannel::kAlpha;
-      else if (channel != "COLOR") fail(what + ": unknown channel '" + channel + "'");
+      if (channel == "ALPHA")
+        in.channel = TextureChannel::kAlpha;
+      else if (channel != "COLOR")
+        fail(what + ": unknown channel '" + channel + "'");
     }
     return in;
   }
@@ -139,9 +143,9 @@ Closure parse_closure(const py::handle& item, int64_t texture_count, const std::
       const auto* info = std::find_if(std::begin(kParams), std::end(kParams),
                                       [&](const ParamInfo& i) { return key == i.key; });
       if (info == std::end(kParams)) fail(what + ": unknown param '" + key + "'");
-      closure[info->param] = parse_input(p.second, info->kind, info->lo, info->hi,
-                                         closure[info->param], texture_count,
-                                         what + " param '" + key + "'");
+      closure[info->param] =
+          parse_input(p.second, info->kind, info->lo, info->hi, closure[info->param], texture_count,
+                      what + " param '" + key + "'");
     }
   }
 
@@ -209,14 +213,22 @@ ImageTexture parse_texture(const std::string& path, bool srgb, const std::string
   ImageTexture t;
   t.path = path;
   t.srgb = srgb;
-  if (extension == "REPEAT") t.extension = TextureExtension::kRepeat;
-  else if (extension == "EXTEND") t.extension = TextureExtension::kExtend;
-  else if (extension == "CLIP") t.extension = TextureExtension::kClip;
-  else fail("unknown texture extension '" + extension + "'");
-  if (interpolation == "Closest") t.interpolation = TextureInterpolation::kClosest;
-  else if (interpolation == "Linear") t.interpolation = TextureInterpolation::kLinear;
-  else if (interpolation == "Cubic") t.interpolation = TextureInterpolation::kCubic;
-  else fail("unknown texture interpolation '" + interpolation + "'");
+  if (extension == "REPEAT")
+    t.extension = TextureExtension::kRepeat;
+  else if (extension == "EXTEND")
+    t.extension = TextureExtension::kExtend;
+  else if (extension == "CLIP")
+    t.extension = TextureExtension::kClip;
+  else
+    fail("unknown texture extension '" + extension + "'");
+  if (interpolation == "Closest")
+    t.interpolation = TextureInterpolation::kClosest;
+  else if (interpolation == "Linear")
+    t.interpolation = TextureInterpolation::kLinear;
+  else if (interpolation == "Cubic")
+    t.interpolation = TextureInterpolation::kCubic;
+  else
+    fail("unknown texture interpolation '" + interpolation + "'");
   return t;
 }
 
@@ -224,12 +236,13 @@ py::dict describe_material(const Material& material) {
   py::list closures;
   for (const Closure& c : material.closures) {
     py::dict d;
-    d["type"] = std::find_if(std::begin(kTypes), std::end(kTypes),
-                             [&](const TypeName& t) { return t.type == c.type; })
-                    ->name;
+    d["type"] = std::find_if(std::begin(kTypes), std::end(kTypes), [&](const TypeName& t) {
+                  return t.type == c.type;
+                })->name;
     d["sharp"] = c.sharp;
     py::dict params;
-    for (const ParamInfo& info : kParams) params[info.key] = describe_input(c[info.param], info.kind);
+    for (const ParamInfo& info : kParams)
+      params[info.key] = describe_input(c[info.param], info.kind);
     d["params"] = params;
     if (c.normal.texture >= 0) {
       py::dict n;

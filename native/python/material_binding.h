@@ -20,8 +20,7 @@ photon::Material parse_material(const std::string& name, const pybind11::handle&
                                 int64_t texture_count);
 
 // An Image Texture's settings; unknown extension / interpolation names raise ValueError.
-photon::ImageTexture parse_texture(const std::string& path, bool srgb,
-                                   const std::string& extension,
+photon::ImageTexture parse_texture(const std::string& path, bool srgb, const std::string& extension,
                                    const std::string& interpolation);
 
 // The Material as closure dicts: every param is listed (defaults included).
