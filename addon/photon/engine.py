@@ -80,6 +80,14 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
 
         self.update_stats("", "Photon | Syncing scene")
         native_scene, sync_stats = sync.sync_scene(native, depsgraph, reporter)
+        try:
+            self._render_scene(native, depsgraph, reporter, native_scene, sync_stats, t_start)
+        finally:
+            # Packed and generated images were written for this render only.
+            sync_stats.release()
+
+    def _render_scene(self, native, depsgraph, reporter, native_scene, sync_stats, t_start):
+        scene = depsgraph.scene
         if self.test_break():
             return
 

@@ -14,15 +14,32 @@ class SyncStats:
         self.triangles = 0
         self.lights = 0
         self.seconds = 0.0
+        self._release = []
+
+    def release(self):
+        """Frees what the render needed until its end (textures written to a temp folder)."""
+        for release in self._release:
+            release()
+        self._release = []
 
 
 def sync_scene(native, depsgraph, reporter):
-    """Returns (native Scene, SyncStats)."""
+    """Returns (native Scene, SyncStats); call stats.release() once the render has ended."""
+    stats = SyncStats()
+    try:
+        return _sync(native, depsgraph, reporter, stats), stats
+    except BaseException:
+        stats.release()
+        raise
+
+
+def _sync(native, depsgraph, reporter, stats):
     t0 = time.perf_counter()
     scene = depsgraph.scene
     native_scene = native.Scene()
-    stats = SyncStats()
-    materials = sync_materials.MaterialTable(native_scene, reporter)
+    materials = sync_materials.MaterialTable(native_scene, reporter,
+                                             getattr(native, "write_texture", None))
+    stats._release.append(materials.release)
 
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
     pending = {}           # (mesh index, slot tuple, visibility) -> list of 4x4 matrices
@@ -78,4 +95,4 @@ def sync_scene(native, depsgraph, reporter):
     if stats.lights == 0 and max(world) <= 0.0:
         reporter.warning("The scene has no lights and a black world: only emissive surfaces will show")
     stats.seconds = time.perf_counter() - t0
-    return native_scene, stats
+    return native_scene

@@ -1,151 +1,257 @@
-"""Blender materials and world to native parameters.
+"""Blender materials to native closure lists, and the world colour.
 
-Foundation scope: Principled BSDF base colour (plus its glass, mirror-metal and emission
-extremes), Diffuse, Glossy (as a mirror), Glass and Emission. Everything else is reported once by
-material and node name and falls back to its nearest meaning, never to black.
+A material becomes a flat list of closures (see native/src/photon/material.h): Mix Shader and
+Add Shader nodes are flattened into each closure's weight, a product of mix factors (`fac`, or
+`1 - fac` for a Mix Shader's first input). Each closure is a dict
+    {"type": "PRINCIPLED", "sharp": False, "params": {"color": [r, g, b] | {"texture": i,
+     "channel": "COLOR"}, "roughness": 0.5, ...}, "normal_map": {"texture": i, "strength": 1.0},
+     "weight": [{"fac": 0.3 | {"texture": i, "channel": "ALPHA"}, "complement": True}, ...]}
+which Scene.add_material parses. Unsupported nodes are reported once per material and node and
+fall back to their nearest meaning (a shader: diffuse of its colour), never to silent black.
 """
 
-DEFAULT_COLOR = (0.8, 0.8, 0.8)
+from . import sync_nodes
+from .sync_inputs import (DEFAULT_COLOR, MaterialContext, Param, clamp_constant, read_input,
+                          read_normal_map)
+from .sync_textures import TextureTable
+
+MAX_DEPTH = 32  # nested Mix / Add shaders
+INF = 1e6       # bound for "absurd" emission values
+
+# Native params by node input name(s) (3.4 names first, 4.x names after).
+COLOR = Param("color", 'color', 0.0, 1.0, [0.8, 0.8, 0.8])
+WHITE = Param("color", 'color', 0.0, 1.0, [1.0, 1.0, 1.0])
+ROUGHNESS = Param("roughness", 'scalar', 0.0, 1.0, 0.5)
+IOR = Param("ior", 'scalar', 1e-3, 100.0, 1.45)
+PRINCIPLED_PARAMS = [
+    (("Base Color",), COLOR),
+    (("Metallic",), Param("metallic", 'scalar', 0.0, 1.0, 0.0)),
+    (("Roughness",), ROUGHNESS),
+    (("Specular", "Specular IOR Level"), Param("specular", 'scalar', 0.0, 10.0, 0.5)),
+    (("Specular Tint",), Param("specular_tint", 'scalar', 0.0, 1.0, 0.0)),
+    (("Transmission", "Transmission Weight"), Param("transmission", 'scalar', 0.0, 1.0, 0.0)),
+    (("IOR",), IOR),
+    (("Emission", "Emission Color"), Param("emission", 'color', 0.0, INF, [0.0, 0.0, 0.0])),
+    (("Emission Strength",), Param("strength", 'scalar', 0.0, INF, 1.0)),
+    (("Alpha",), Param("alpha", 'scalar', 0.0, 1.0, 1.0)),
+    (("Clearcoat", "Coat Weight"), Param("clearcoat", 'scalar', 0.0, 1.0, 0.0)),
+    (("Clearcoat Roughness", "Coat Roughness"),
+     Param("clearcoat_roughness", 'scalar', 0.0, 1.0, 0.03)),
+]
+# Closure type, input params and whether a Normal input applies, for the other BSDF nodes.
+SIMPLE_NODES = {
+    'BSDF_DIFFUSE': ("DIFFUSE", [(("Color",), COLOR),
+                                 (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0, 0.0))]),
+    'BSDF_GLOSSY': ("GLOSSY", [(("Color",), COLOR), (("Roughness",), ROUGHNESS)]),
+    'BSDF_GLASS': ("GLASS", [(("Color",), WHITE),
+                             (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0, 0.0)),
+                             (("IOR",), IOR)]),
+    'BSDF_REFRACTION': ("REFRACTION", [(("Color",), WHITE),
+                                       (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0,
+                                                              0.0)),
+                                       (("IOR",), IOR)]),
+    'BSDF_TRANSPARENT': ("TRANSPARENT", [(("Color",), WHITE)]),
+    'BSDF_TRANSLUCENT': ("TRANSLUCENT", [(("Color",), COLOR)]),
+    'EMISSION': ("EMISSION", [(("Color",), Param("color", 'color', 0.0, INF, [1.0, 1.0, 1.0])),
+                              (("Strength",), Param("strength", 'scalar', 0.0, INF, 1.0))]),
+}
+# Microfacet distributions rendered as GGX without comment; others warn.
+GGX_LIKE = {'GGX', 'MULTI_GGX'}
+# Principled inputs Photon does not render: (input names, Blender default, whether the input
+# itself is ignored, inputs that only matter when this one is active: (name, default or None
+# for "only a link counts")). Linked counts as active.
+PRINCIPLED_IGNORED = [
+    (("Subsurface", "Subsurface Weight"), 0.0, True,
+     [("Subsurface Radius", (1.0, 0.2, 0.1)), ("Subsurface Color", (0.8, 0.8, 0.8, 1.0)),
+      ("Subsurface IOR", 1.4), ("Subsurface Anisotropy", 0.0)]),
+    (("Anisotropic",), 0.0, True, [("Anisotropic Rotation", 0.0), ("Tangent", None)]),
+    (("Sheen", "Sheen Weight"), 0.0, True, [("Sheen Tint", 0.5)]),
+    (("Transmission Roughness",), 0.0, True, []),
+    (("Clearcoat", "Coat Weight"), 0.0, False, [("Clearcoat Normal", None)]),
+]
 
 
-def _input(node, *names):
-    """First input socket with one of `names` (Blender renames sockets between versions)."""
-    for name in names:
-        socket = node.inputs.get(name)
-        if socket is not None:
-            return socket
-    return None
-
-
-def _color(node, material_name, reporter, *names, default=DEFAULT_COLOR):
-    socket = _input(node, *names)
+def _differs(socket, default):
+    """Whether an input is active: linked, or its value is not Blender's default (default None:
+    only a link counts)."""
     if socket is None:
-        return list(default)
+        return False
     if socket.is_linked:
-        reporter.warning(f"Material '{material_name}': the '{socket.name}' input of node "
-                         f"'{node.name}' is connected to a texture or node, which is not "
-                         f"supported yet; using its colour value")
+        return True
+    if default is None:
+        return False
     value = socket.default_value
-    return [float(value[0]), float(value[1]), float(value[2])]
+    if isinstance(default, tuple):
+        return any(abs(float(value[i]) - d) > 1e-6 for i, d in enumerate(default))
+    return abs(float(value) - default) > 1e-6
 
 
-def _value(node, default, *names):
-    socket = _input(node, *names)
-    if socket is None:
-        return default
-    return float(socket.default_value)
+def _note_ignored_principled(node, stack, ctx):
+    for names, default, ignored, dependents in PRINCIPLED_IGNORED:
+        main = sync_nodes.find_input(node, *names)
+        if not _differs(main, default):
+            continue
+        if ignored:
+            ctx.ignored_principled.append(main.name)
+        for name, dep_default in dependents:
+            if _differs(node.inputs.get(name), dep_default):
+                ctx.ignored_principled.append(name)
 
 
-def _output_node(node_tree, output_type):
-    outputs = [n for n in node_tree.nodes if n.type == output_type]
-    for node in outputs:
-        if getattr(node, "is_active_output", False) and getattr(node, "target", "ALL") in {
-                'ALL', 'CYCLES'}:
-            return node
-    return outputs[0] if outputs else None
-
-
-def _linked_node(socket):
-    if socket is None or not socket.is_linked:
-        return None
-    node = socket.links[0].from_node
-    # Follow reroutes to the real node.
-    while node is not None and node.type == 'REROUTE':
-        if not node.inputs[0].is_linked:
-            return None
-        node = node.inputs[0].links[0].from_node
-    return node
-
-
-def _from_shader_node(node, material_name, reporter):
-    """Native material parameters for the shader node feeding the Material Output."""
-    params = {"type": "DIFFUSE", "color": list(DEFAULT_COLOR), "ior": 1.45,
-              "emission": [0.0, 0.0, 0.0]}
-    kind = node.type
-    if kind == 'BSDF_PRINCIPLED':
-        base = _color(node, material_name, reporter, "Base Color")
-        params["color"] = base
-        metallic = _value(node, 0.0, "Metallic")
-        roughness = _value(node, 0.5, "Roughness")
-        transmission = _value(node, 0.0, "Transmission", "Transmission Weight")
-        if transmission >= 0.5:
-            params["type"] = "GLASS"
-            params["ior"] = _value(node, 1.45, "IOR")
-        elif metallic >= 0.5:
-            params["type"] = "MIRROR"
-            if roughness > 0.05:
-                reporter.warning(f"Material '{material_name}': rough metal (roughness "
-                                 f"{roughness:.2f}) renders as a perfect mirror for now")
-        strength = _value(node, 1.0, "Emission Strength")
-        emission = _color(node, material_name, reporter, "Emission", "Emission Color",
-                          default=(0.0, 0.0, 0.0))
-        params["emission"] = [c * strength for c in emission]
-    elif kind == 'BSDF_DIFFUSE':
-        params["color"] = _color(node, material_name, reporter, "Color")
-    elif kind == 'BSDF_GLOSSY':
-        params["type"] = "MIRROR"
-        params["color"] = _color(node, material_name, reporter, "Color")
-        roughness = _value(node, 0.0, "Roughness")
-        if roughness > 0.0:
-            reporter.warning(f"Material '{material_name}': Glossy BSDF with roughness "
-                             f"{roughness:.2f} renders as a perfect mirror for now")
-    elif kind == 'BSDF_GLASS':
-        params["type"] = "GLASS"
-        params["color"] = _color(node, material_name, reporter, "Color")
-        params["ior"] = _value(node, 1.45, "IOR")
-    elif kind == 'EMISSION':
-        color = _color(node, material_name, reporter, "Color", default=(1.0, 1.0, 1.0))
-        strength = _value(node, 1.0, "Strength")
-        params["color"] = [0.0, 0.0, 0.0]
-        params["emission"] = [c * strength for c in color]
-    else:
-        # Nearest meaning: a diffuse surface of the node's own colour, if it has one.
-        reporter.warning(f"Material '{material_name}': node '{node.name}' ({node.bl_idname}) "
-                         f"is not supported yet; rendering it as diffuse")
-        params["color"] = _color(node, material_name, reporter, "Color", "Base Color")
+def _read_params(node, stack, table, ctx):
+    params = {}
+    for names, param in table:
+        socket = sync_nodes.find_input(node, *names)
+        if socket is not None:
+            params[param.name] = read_input(socket, stack, param, ctx)
     return params
 
 
-def convert_material(material, reporter):
-    """Returns (name, params) for Scene.add_material."""
+def _bsdf_closure(node, stack, ctx):
+    """The closure of a supported BSDF / emission node, or None if the node is unsupported."""
+    kind = node.type
+    if kind == 'BSDF_PRINCIPLED':
+        closure = {"type": "PRINCIPLED", "sharp": False,
+                   "params": _read_params(node, stack, PRINCIPLED_PARAMS, ctx)}
+        _note_ignored_principled(node, stack, ctx)
+    elif kind in SIMPLE_NODES:
+        closure_type, table = SIMPLE_NODES[kind]
+        closure = {"type": closure_type, "sharp": False,
+                   "params": _read_params(node, stack, table, ctx)}
+        distribution = getattr(node, "distribution", None)
+        if distribution == 'SHARP':
+            closure["sharp"] = True
+        elif distribution is not None and distribution not in GGX_LIKE:
+            where = ctx.where(node, stack)
+            ctx.warn_once(("distribution", where),
+                          f"{where}: the {distribution.replace('_', ' ').title()} "
+                          f"distribution is rendered as GGX")
+    else:
+        return None
+    normal = node.inputs.get("Normal")
+    if normal is not None:
+        normal_map = read_normal_map(normal, stack, ctx)
+        if normal_map is not None:
+            closure["normal_map"] = normal_map
+    return closure
+
+
+def _fallback_closure(node, stack, ctx):
+    """Nearest meaning of an unsupported shader node: diffuse of its own colour."""
+    path = sync_nodes.node_path(node, stack)
+    ctx.warn_once(("node", path), f"Material '{ctx.name}': node '{path}' ({node.bl_idname}) "
+                                  f"is not supported yet; rendering it as diffuse")
+    socket = sync_nodes.find_input(node, "Color", "Base Color")
+    color = (read_input(socket, stack, COLOR, ctx) if socket is not None and
+             socket.type == 'RGBA' else list(DEFAULT_COLOR))
+    return {"type": "DIFFUSE", "sharp": False, "params": {"color": color}}
+
+
+def _weighted(closure, factors):
+    closure["weight"] = [{"fac": fac, "complement": complement} for fac, complement in factors]
+    return closure
+
+
+def _collect(socket, stack, factors, ctx, out, depth):
+    """Appends the closures feeding shader input `socket`, each weighted by `factors`."""
+    src = sync_nodes.source(socket, stack)
+    node = src.node
+    if node is None:
+        return  # an unlinked shader input adds nothing (Cycles: black)
+    if depth > MAX_DEPTH:
+        ctx.warn_once(("depth",), f"Material '{ctx.name}': shaders nested deeper than "
+                                  f"{MAX_DEPTH} levels are ignored")
+        return
+    if node.type == 'ADD_SHADER':
+        for shader in (node.inputs[0], node.inputs[1]):
+            _collect(shader, src.stack, factors, ctx, out, depth + 1)
+        return
+    if node.type == 'MIX_SHADER':
+        fac = read_input(node.inputs["Fac"], src.stack, Param("fac", 'scalar', 0.0, 1.0, 0.5),
+                         ctx)
+        # Mix Shader: (1 - fac) * first + fac * second. Constant factors of 0 or 1 prune.
+        for shader, complement in ((node.inputs[1], True), (node.inputs[2], False)):
+            if isinstance(fac, float):
+                weight = 1.0 - fac if complement else fac
+                if weight <= 0.0:
+                    continue
+                more = factors if weight >= 1.0 else factors + [(fac, complement)]
+            else:
+                more = factors + [(fac, complement)]
+            _collect(shader, src.stack, more, ctx, out, depth + 1)
+        return
+    closure = _bsdf_closure(node, src.stack, ctx)
+    if closure is None:
+        closure = _fallback_closure(node, src.stack, ctx)
+    out.append(_weighted(closure, factors))
+
+
+def _diffuse_of(color):
+    return [{"type": "DIFFUSE", "sharp": False,
+             "params": {"color": [float(color[0]), float(color[1]), float(color[2])]},
+             "weight": []}]
+
+
+def convert_material(material, reporter, textures):
+    """(name, closures) for Scene.add_material; textures is a TextureTable."""
     if material is None:
-        return "default", {"type": "DIFFUSE", "color": list(DEFAULT_COLOR)}
+        return "default", _diffuse_of(DEFAULT_COLOR)
     name = material.name
+    ctx = MaterialContext(name, reporter, textures)
     if not material.use_nodes or material.node_tree is None:
-        color = material.diffuse_color
-        return name, {"type": "DIFFUSE", "color": [color[0], color[1], color[2]]}
-    output = _output_node(material.node_tree, 'OUTPUT_MATERIAL')
-    shader = _linked_node(output.inputs.get("Surface")) if output else None
-    if shader is None:
+        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
+    output = sync_nodes.output_node(material.node_tree, 'OUTPUT_MATERIAL')
+    surface = output.inputs.get("Surface") if output else None
+    if surface is None or sync_nodes.source(surface).node is None:
         # Cycles renders an unconnected output black; keep the artist's viewport colour instead
         # of a silent black object, and say so.
         reporter.warning(f"Material '{name}' has no shader connected to its output; "
                          f"rendering its viewport colour")
-        color = material.diffuse_color
-        return name, {"type": "DIFFUSE", "color": [color[0], color[1], color[2]]}
-    return name, _from_shader_node(shader, name, reporter)
+        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
+    closures = []
+    _collect(surface, (), [], ctx, closures, 0)
+    for socket_name in ("Volume", "Displacement"):
+        socket = output.inputs.get(socket_name)
+        if socket is not None and sync_nodes.source(socket).node is not None:
+            reporter.warning(f"Material '{name}': {socket_name.lower()} is not supported yet "
+                             f"and is ignored")
+    if ctx.ignored_principled:
+        unique = list(dict.fromkeys(ctx.ignored_principled))
+        reporter.warning(f"Material '{name}': Principled BSDF inputs not supported yet are "
+                         f"rendered at their defaults: {', '.join(unique)}")
+    return name, closures
+
+
+def read_constant_color(value, ctx):
+    return clamp_constant([value[0], value[1], value[2]], 'color', 0.0, 1.0,
+                          list(DEFAULT_COLOR), ctx, "the viewport colour")
 
 
 class MaterialTable:
     """Converts each Blender material once per render and hands out native indices."""
 
-    def __init__(self, native_scene, reporter):
+    def __init__(self, native_scene, reporter, write_image=None):
         self._scene = native_scene
         self._reporter = reporter
         self._index = {}
+        self.textures = TextureTable(native_scene, reporter, write_image)
 
     def index(self, material):
         key = material.name_full if material is not None else None
         found = self._index.get(key)
         if found is None:
-            name, params = convert_material(material, self._reporter)
-            found = self._scene.add_material(name, **params)
+            name, closures = convert_material(material, self._reporter, self.textures)
+            found = self._scene.add_material(name, closures)
             self._index[key] = found
         return found
 
     def slot_indices(self, obj):
         slots = [self.index(slot.material) for slot in obj.material_slots]
         return slots or [self.index(None)]
+
+    def release(self):
+        """Deletes the textures written for this render (call after the render ends)."""
+        self.textures.release()
 
 
 def world_color(world, reporter):
@@ -154,14 +260,20 @@ def world_color(world, reporter):
         return [0.0, 0.0, 0.0]
     if not world.use_nodes or world.node_tree is None:
         return [float(c) for c in world.color]
-    output = _output_node(world.node_tree, 'OUTPUT_WORLD')
-    node = _linked_node(output.inputs.get("Surface")) if output else None
+    output = sync_nodes.output_node(world.node_tree, 'OUTPUT_WORLD')
+    src = sync_nodes.source(output.inputs.get("Surface")) if output else None
+    node = src.node if src is not None else None
     if node is None:
         return [0.0, 0.0, 0.0]
     if node.type != 'BACKGROUND':
         reporter.warning(f"World '{world.name}': node '{node.name}' is not supported; "
                          f"using a black background")
         return [0.0, 0.0, 0.0]
-    color = _color(node, world.name, reporter, "Color", default=(0.05, 0.05, 0.05))
-    strength = _value(node, 1.0, "Strength")
+    color_socket = node.inputs.get("Color")
+    if color_socket.is_linked:
+        reporter.warning(f"World '{world.name}': the 'Color' input of node '{node.name}' is "
+                         f"connected to a texture or node, which is not supported yet; using "
+                         f"its colour value")
+    color = [float(color_socket.default_value[i]) for i in range(3)]
+    strength = float(node.inputs.get("Strength").default_value)
     return [c * strength for c in color]

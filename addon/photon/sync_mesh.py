@@ -49,7 +49,10 @@ def mesh_arrays(mesh):
     if smooth.all() and not split:
         vertex_normals = _get(mesh.vertices, "normal", np.float32, vertex_count, 3)
 
-    uv_layer = mesh.uv_layers.active
+    # Image textures without a UV Map node read the layer marked for render (the camera icon
+    # in Object Data > UV Maps), as in Cycles; it is usually also the active one.
+    uv_layer = next((layer for layer in mesh.uv_layers if layer.active_render),
+                    mesh.uv_layers.active)
     has_uvs = uv_layer is not None and len(uv_layer.data) == loop_count
     if not has_uvs and not split:
         triangles = _get(mesh.loop_triangles, "vertices", np.int32, tri_count, 3)

@@ -1,0 +1,299 @@
+#include "material_binding.h"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "photon/image_io.h"
+
+namespace py = pybind11;
+using namespace photon;
+
+namespace photon_python {
+namespace {
+
+enum class Kind { kScalar, kColor };
+
+// A param's dict key, whether it is a colour, and the range constants are clamped to. Colours
+// may exceed 1 natively (emission colours); the add-on keeps reflectances within [0, 1].
+struct ParamInfo {
+  const char* key;
+  Param param;
+  Kind kind;
+  float lo, hi;
+};
+
+constexpr float kHuge = 1e6f;
+constexpr ParamInfo kParams[] = {
+    {"color", Param::kColor, Kind::kColor, 0.0f, kHuge},
+    {"roughness", Param::kRoughness, Kind::kScalar, 0.0f, 1.0f},
+    {"metallic", Param::kMetallic, Kind::kScalar, 0.0f, 1.0f},
+    {"specular", Param::kSpecular, Kind::kScalar, 0.0f, 10.0f},
+    {"specular_tint", Param::kSpecularTint, Kind::kScalar, 0.0f, 1.0f},
+    {"transmission", Param::kTransmission, Kind::kScalar, 0.0f, 1.0f},
+    {"ior", Param::kIor, Kind::kScalar, 1e-3f, 100.0f},
+    {"emission", Param::kEmission, Kind::kColor, 0.0f, kHuge},
+    {"strength", Param::kStrength, Kind::kScalar, 0.0f, kHuge},
+    {"alpha", Param::kAlpha, Kind::kScalar, 0.0f, 1.0f},
+    {"clearcoat", Param::kClearcoat, Kind::kScalar, 0.0f, 1.0f},
+    {"clearcoat_roughness", Param::kClearcoatRoughness, Kind::kScalar, 0.0f, 1.0f},
+};
+static_assert(std::size(kParams) == static_cast<size_t>(Param::kCount), "every Param has a key");
+
+struct TypeName {
+  const char* name;
+  ClosureType type;
+};
+constexpr TypeName kTypes[] = {
+    {"DIFFUSE", ClosureType::kDiffuse},         {"PRINCIPLED", ClosureType::kPrincipled},
+    {"GLOSSY", ClosureType::kGlossy},           {"GLASS", ClosureType::kGlass},
+    {"REFRACTION", ClosureType::kRefraction},   {"TRANSPARENT", ClosureType::kTransparent},
+    {"TRANSLUCENT", ClosureType::kTranslucent}, {"EMISSION", ClosureType::kEmission},
+};
+
+[[noreturn]] void fail(const std::string& message) {
+  throw py::value_error(message);
+}
+
+float clamp_scalar(float v, float lo, float hi, float fallback) {
+  return std::isfinite(v) ? std::clamp(v, lo, hi) : fallback;
+}
+
+Vec3 clamp_color(const Vec3& v, float lo, float hi, const Vec3& fallback) {
+  return {clamp_scalar(v.x, lo, hi, fallback.x), clamp_scalar(v.y, lo, hi, fallback.y),
+          clamp_scalar(v.z, lo, hi, fallback.z)};
+}
+
+void check_keys(const py::dict& d, std::initializer_list<const char*> allowed,
+                const std::string& what) {
+  for (auto item : d) {
+    const std::string key = py::str(item.first);
+    if (std::none_of(allowed.begin(), allowed.end(), [&](const char* a) { return key == a; }))
+      fail(what + ": unknown key '" + key + "'");
+  }
+}
+
+bool is_number(const py::handle& h) {
+  return py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h);
+}
+
+// value = float | [r, g, b] | {"texture": int, "channel": "COLOR" | "ALPHA"}. A texture index
+// outside [0, texture_count) falls back to `fallback`.
+Input parse_input(const py::handle& value, Kind kind, float lo, float hi, const Input& fallback,
+                  int64_t texture_count, const std::string& what) {
+  if (is_number(value)) {
+    const float v = clamp_scalar(value.cast<float>(), lo, hi, fallback.value.x);
+    // A number for a colour is a grey (Blender's float -> colour conversion).
+    return kind == Kind::kScalar
+               ? Input::constant(v)
+               : Input::constant(clamp_color(Vec3(value.cast<float>()), lo, hi, fallback.value));
+  }
+  if (py::isinstance<py::dict>(value)) {
+    py::dict d = py::reinterpret_borrow<py::dict>(value);
+    check_keys(d, {"texture", "channel"}, what);
+    if (!d.contains("texture") || !py::isinstance<py::int_>(d["texture"]))
+      fail(what + ": a texture input needs an integer 'texture'");
+    Input in = fallback;
+    const int64_t index = d["texture"].cast<int64_t>();
+    if (index < 0 || (texture_count >= 0 && index >= texture_count)) return fallback;
+    in.texture = static_cast<int32_t>(index);
+    in.channel = TextureChannel::kColor;
+    if (d.contains("channel")) {
+      const std::string channel = py::str(d["channel"]);
+      if (channel == "ALPHA")
+        in.channel = TextureChannel::kAlpha;
+      else if (channel != "COLOR")
+        fail(what + ": unknown channel '" + channel + "'");
+    }
+    return in;
+  }
+  if (py::isinstance<py::sequence>(value) && !py::isinstance<py::str>(value)) {
+    if (kind == Kind::kScalar) fail(what + " expects a number or a texture, not a colour");
+    auto seq = py::reinterpret_borrow<py::sequence>(value);
+    if (seq.size() != 3) fail(what + ": a colour needs 3 values");
+    for (auto item : seq)
+      if (!is_number(item)) fail(what + ": colour values must be numbers");
+    const Vec3 c{seq[0].cast<float>(), seq[1].cast<float>(), seq[2].cast<float>()};
+    return Input::constant(clamp_color(c, lo, hi, fallback.value));
+  }
+  fail(what + ": expected a number, [r, g, b] or {'texture': index}");
+}
+
+Closure parse_closure(const py::handle& item, int64_t texture_count, const std::string& what) {
+  if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
+  py::dict d = py::reinterpret_borrow<py::dict>(item);
+  check_keys(d, {"type", "sharp", "params", "normal_map", "weight"}, what);
+  if (!d.contains("type")) fail(what + " has no 'type'");
+  const std::string type = py::str(d["type"]);
+  const auto* found = std::find_if(std::begin(kTypes), std::end(kTypes),
+                                   [&](const TypeName& t) { return type == t.name; });
+  if (found == std::end(kTypes)) fail(what + ": unknown closure type '" + type + "'");
+  Closure closure;
+  closure.type = found->type;
+  if (d.contains("sharp")) closure.sharp = d["sharp"].cast<bool>();
+
+  if (d.contains("params")) {
+    if (!py::isinstance<py::dict>(d["params"])) fail(what + ": 'params' must be a dict");
+    for (auto p : py::reinterpret_borrow<py::dict>(d["params"])) {
+      const std::string key = py::str(p.first);
+      const auto* info = std::find_if(std::begin(kParams), std::end(kParams),
+                                      [&](const ParamInfo& i) { return key == i.key; });
+      if (info == std::end(kParams)) fail(what + ": unknown param '" + key + "'");
+      closure[info->param] =
+          parse_input(p.second, info->kind, info->lo, info->hi, closure[info->param], texture_count,
+                      what + " param '" + key + "'");
+    }
+  }
+
+  if (d.contains("normal_map") && !d["normal_map"].is_none()) {
+    if (!py::isinstance<py::dict>(d["normal_map"])) fail(what + ": 'normal_map' must be a dict");
+    py::dict n = d["normal_map"];
+    check_keys(n, {"texture", "strength"}, what + " normal_map");
+    if (!n.contains("texture") || !py::isinstance<py::int_>(n["texture"]))
+      fail(what + ": normal_map needs an integer 'texture'");
+    const int64_t index = n["texture"].cast<int64_t>();
+    if (index >= 0 && (texture_count < 0 || index < texture_count)) {
+      closure.normal.texture = static_cast<int32_t>(index);
+      if (n.contains("strength"))
+        closure.normal.strength = clamp_scalar(n["strength"].cast<float>(), 0.0f, 100.0f, 1.0f);
+    }
+  }
+
+  if (d.contains("weight")) {
+    if (!py::isinstance<py::list>(d["weight"])) fail(what + ": 'weight' must be a list");
+    for (auto w : py::reinterpret_borrow<py::list>(d["weight"])) {
+      if (!py::isinstance<py::dict>(w)) fail(what + ": weight factors must be dicts");
+      py::dict f = py::reinterpret_borrow<py::dict>(w);
+      check_keys(f, {"fac", "complement"}, what + " weight");
+      if (!f.contains("fac")) fail(what + ": a weight factor needs 'fac'");
+      WeightFactor factor;
+      factor.fac = parse_input(f["fac"], Kind::kScalar, 0.0f, 1.0f, Input::constant(0.5f),
+                               texture_count, what + " weight fac");
+      if (f.contains("complement")) factor.complement = f["complement"].cast<bool>();
+      closure.weight.push_back(factor);
+    }
+  }
+  return closure;
+}
+
+py::object describe_input(const Input& in, Kind kind) {
+  if (in.texture >= 0) {
+    py::dict d;
+    d["texture"] = in.texture;
+    d["channel"] = in.channel == TextureChannel::kAlpha ? "ALPHA" : "COLOR";
+    return std::move(d);
+  }
+  if (kind == Kind::kScalar) return py::float_(in.value.x);
+  py::list rgb;
+  for (float c : {in.value.x, in.value.y, in.value.z}) rgb.append(c);
+  return std::move(rgb);
+}
+
+}  // namespace
+
+Material parse_material(const std::string& name, const py::handle& closures,
+                        int64_t texture_count) {
+  if (!py::isinstance<py::list>(closures) && !py::isinstance<py::tuple>(closures))
+    fail("closures must be a list of dicts");
+  Material material;
+  material.name = name;
+  size_t i = 0;
+  for (auto item : py::reinterpret_borrow<py::sequence>(closures))
+    material.closures.push_back(parse_closure(
+        item, texture_count, "material '" + name + "' closure " + std::to_string(i++)));
+  return material;
+}
+
+ImageTexture parse_texture(const std::string& path, bool srgb, const std::string& extension,
+                           const std::string& interpolation) {
+  ImageTexture t;
+  t.path = path;
+  t.srgb = srgb;
+  if (extension == "REPEAT")
+    t.extension = TextureExtension::kRepeat;
+  else if (extension == "EXTEND")
+    t.extension = TextureExtension::kExtend;
+  else if (extension == "CLIP")
+    t.extension = TextureExtension::kClip;
+  else
+    fail("unknown texture extension '" + extension + "'");
+  if (interpolation == "Closest")
+    t.interpolation = TextureInterpolation::kClosest;
+  else if (interpolation == "Linear")
+    t.interpolation = TextureInterpolation::kLinear;
+  else if (interpolation == "Cubic")
+    t.interpolation = TextureInterpolation::kCubic;
+  else
+    fail("unknown texture interpolation '" + interpolation + "'");
+  return t;
+}
+
+py::dict describe_material(const Material& material) {
+  py::list closures;
+  for (const Closure& c : material.closures) {
+    py::dict d;
+    d["type"] = std::find_if(std::begin(kTypes), std::end(kTypes), [&](const TypeName& t) {
+                  return t.type == c.type;
+                })->name;
+    d["sharp"] = c.sharp;
+    py::dict params;
+    for (const ParamInfo& info : kParams)
+      params[info.key] = describe_input(c[info.param], info.kind);
+    d["params"] = params;
+    if (c.normal.texture >= 0) {
+      py::dict n;
+      n["texture"] = c.normal.texture;
+      n["strength"] = c.normal.strength;
+      d["normal_map"] = n;
+    }
+    py::list weight;
+    for (const WeightFactor& f : c.weight) {
+      py::dict w;
+      w["fac"] = describe_input(f.fac, Kind::kScalar);
+      w["complement"] = f.complement;
+      weight.append(w);
+    }
+    d["weight"] = weight;
+    closures.append(d);
+  }
+  py::dict out;
+  out["name"] = material.name;
+  out["closures"] = closures;
+  return out;
+}
+
+void register_material_functions(py::module_& m) {
+  m.def(
+      "describe_material",
+      [](const std::string& name, const py::list& closures, int64_t texture_count) {
+        return describe_material(parse_material(name, closures, texture_count));
+      },
+      py::arg("name"), py::arg("closures"), py::arg("texture_count") = -1,
+      "Parses closure dicts as Scene.add_material does and returns the Material as dicts "
+      "(every param listed, clamped values and fallbacks applied).");
+  m.def(
+      "write_texture",
+      [](const std::string& path,
+         const py::array_t<float, py::array::c_style | py::array::forcecast>& rgba) {
+        if (rgba.ndim() != 3 || rgba.shape(2) != 4)
+          throw py::value_error("rgba must have shape (height, width, 4)");
+        const int height = static_cast<int>(rgba.shape(0));
+        const int width = static_cast<int>(rgba.shape(1));
+        std::vector<float> pixels(rgba.data(), rgba.data() + rgba.size());
+        std::string error;
+        bool ok;
+        {
+          py::gil_scoped_release release;
+          ok = write_rgba_image(path, pixels, width, height, &error);
+        }
+        if (!ok) throw std::runtime_error("cannot write " + path + ": " + error);
+      },
+      py::arg("path"), py::arg("rgba"),
+      "Writes float RGBA pixels (top row first) to an image file (EXR keeps the values).");
+}
+
+}  // namespace photon_python
