@@ -7,6 +7,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "material_binding.h"
 #include "photon/mesh_import.h"
 #include "photon/pixel_renderer.h"
 #include "photon/render_session.h"
@@ -212,26 +213,26 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("visibility") = static_cast<uint32_t>(kVisibleAll), py::arg("name") = "",
           "Adds many instances of one mesh from an (N, 4, 4) array of row-major matrices.")
       .def(
+          "add_texture",
+          [](Scene& scene, const std::string& path, bool srgb, const std::string& extension,
+             const std::string& interpolation) {
+            scene.textures.push_back(
+                photon_python::parse_texture(path, srgb, extension, interpolation));
+            return scene.textures.size() - 1;
+          },
+          py::arg("path"), py::arg("srgb") = true, py::arg("extension") = "REPEAT",
+          py::arg("interpolation") = "Linear",
+          "Adds an image file (an Image Texture node's image and sampling); returns its index.")
+      .def(
           "add_material",
-          [](Scene& scene, const std::string& name, const std::string& type,
-             const std::vector<float>& color, float ior, const std::vector<float>& emission) {
-            Vec3 c = max(vec3_from(color, "color"), Vec3(0.0f));
-            if (!is_finite(c)) c = Vec3(0.8f);
-            Vec3 e = max(vec3_from(emission, "emission"), Vec3(0.0f));
-            if (!is_finite(e)) e = Vec3(0.0f);
-            const float clamped_ior = std::isfinite(ior) ? std::clamp(ior, 1e-3f, 100.0f) : 1.45f;
-            Material mat;
-            if (type == "DIFFUSE") mat = Material::diffuse(c, name);
-            else if (type == "MIRROR") mat = Material::mirror(c, name);
-            else if (type == "GLASS") mat = Material::glass(clamped_ior, c, name);
-            else throw std::invalid_argument("unknown material type " + type);
-            if (!is_black(e)) mat.closures.push_back(Material::emission(e).closures.front());
-            scene.materials.push_back(std::move(mat));
+          [](Scene& scene, const std::string& name, const py::list& closures) {
+            scene.materials.push_back(photon_python::parse_material(
+                name, closures, static_cast<int64_t>(scene.textures.size())));
             return scene.materials.size() - 1;
           },
-          py::arg("name"), py::arg("type") = "DIFFUSE",
-          py::arg("color") = std::vector<float>{0.8f, 0.8f, 0.8f}, py::arg("ior") = 1.45f,
-          py::arg("emission") = std::vector<float>{0.0f, 0.0f, 0.0f})
+          py::arg("name"), py::arg("closures"),
+          "Adds a material from closure dicts (schema: addon/photon/sync_materials.py); "
+          "texture indices refer to add_texture's.")
       .def(
           "add_light",
           [](Scene& scene, const std::string& name, const std::string& type,
@@ -298,6 +299,7 @@ PYBIND11_MODULE(_photon, m) {
       .def_property_readonly("instance_count", [](const Scene& s) { return s.instances.size(); })
       .def_property_readonly("light_count", [](const Scene& s) { return s.lights.size(); })
       .def_property_readonly("material_count", [](const Scene& s) { return s.materials.size(); })
+      .def_property_readonly("texture_count", [](const Scene& s) { return s.textures.size(); })
       .def_property_readonly("triangle_count", [](const Scene& s) {
         size_t n = 0;
         for (const Mesh& mesh : s.meshes) n += mesh.triangle_count();
@@ -378,6 +380,8 @@ PYBIND11_MODULE(_photon, m) {
       .def("image", [](const RenderSession& s) {
         return to_numpy(s.image(), s.region_height(), s.region_width());
       });
+
+  photon_python::register_material_functions(m);
 
   m.attr("VISIBLE_CAMERA") = static_cast<uint32_t>(kVisibleCamera);
   m.attr("VISIBLE_DIFFUSE") = static_cast<uint32_t>(kVisibleDiffuse);

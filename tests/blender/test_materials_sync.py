@@ -254,6 +254,23 @@ def test_describe_material_rejects_what_the_addon_never_sends(native, closure, m
         native.describe_material("bad", [closure])
 
 
+def test_scene_adds_textures_and_materials(native):
+    scene = native.Scene()
+    assert scene.add_texture("/a.png") == 0
+    assert scene.add_texture("/b.exr", srgb=False, extension="CLIP", interpolation="Cubic") == 1
+    assert scene.texture_count == 2
+    with pytest.raises(ValueError, match="unknown texture extension 'MIRROR'"):
+        scene.add_texture("/c.png", extension="MIRROR")
+    with pytest.raises(ValueError, match="unknown texture interpolation 'Smart'"):
+        scene.add_texture("/c.png", interpolation="Smart")  # the add-on sends Cubic
+    closures = [{"type": "DIFFUSE", "params": {"color": {"texture": 1}}}]
+    assert scene.add_material("a", closures) == 0
+    assert scene.add_material("b", [{"type": "EMISSION", "params": {"strength": 2.0}}]) == 1
+    with pytest.raises(ValueError, match="unknown closure type"):
+        scene.add_material("c", [{"type": "HOLDOUT"}])
+    assert scene.material_count == 2
+
+
 # ---- A render through the engine: needs Scene.add_material / add_texture ----
 
 def test_render_with_textures_and_unsupported_nodes_finishes_with_warnings(

@@ -9,7 +9,8 @@ import pytest
 
 def cornell_like_scene(native, width, height):
     scene = native.Scene()
-    white = scene.add_material("white", "DIFFUSE", [0.7, 0.7, 0.7])
+    white = scene.add_material("white", [{"type": "DIFFUSE",
+                                          "params": {"color": [0.7, 0.7, 0.7]}}])
     # A dense grid floor so the render takes a while.
     n = 200
     xs, ys = np.meshgrid(np.linspace(-1, 1, n + 1), np.linspace(-1, 1, n + 1))
