@@ -18,6 +18,7 @@ struct TextureSet::Entry {
   TextureExtension extension = TextureExtension::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
   int channels = 0;
+  bool srgb_after_lookup = false;  // 8-bit sRGB: interpolated as stored, then linearised
 };
 
 struct TextureSet::System {
@@ -39,9 +40,17 @@ uint64_t hash_text(const std::string& text) {
   return h;
 }
 
-// Converts `path` to a linear, tiled, MIP-mapped half-float OpenEXR in the cache (once per
-// source file version). Returns the converted file, or "" with `error` set.
-std::string converted_texture(const ImageTexture& tex, std::string* error) {
+float srgb_to_linear(float c) {
+  return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+// Converts `path` to a tiled, MIP-mapped OpenEXR in the cache (once per source file version).
+// 8-bit sRGB images keep their sRGB values (`*srgb_after_lookup` is set): Cycles interpolates
+// such images as stored and converts after the lookup (NODE_IMAGE_COMPRESS_AS_SRGB), which
+// makes texel edges darker than interpolating linear values would. Everything else is stored
+// linear. Returns the converted file, or "" with `error` set.
+std::string converted_texture(const ImageTexture& tex, bool* srgb_after_lookup,
+                              std::string* error) {
   std::error_code ec;
   const fs::path source(tex.path);
   if (tex.path.empty() || !fs::is_regular_file(source, ec)) {
@@ -50,11 +59,20 @@ std::string converted_texture(const ImageTexture& tex, std::string* error) {
   }
   const auto size = fs::file_size(source, ec);
   const auto mtime = fs::last_write_time(source, ec).time_since_epoch().count();
+  OIIO::ImageSpec config;
+  config.attribute("oiio:UnassociatedAlpha", 1);
+  OIIO::ImageBuf src(tex.path, 0, 0, nullptr, &config);
+  if (!src.init_spec(tex.path, 0, 0)) {
+    *error = src.geterror();
+    if (error->empty()) *error = "unreadable image";
+    return "";
+  }
+  *srgb_after_lookup = tex.srgb && src.spec().format == OIIO::TypeDesc::UINT8;
   char name[64];
   std::snprintf(name, sizeof name, "%016llx.exr",
                 static_cast<unsigned long long>(hash_text(
                     fs::absolute(source, ec).string() + "|" + std::to_string(size) + "|" +
-                    std::to_string(mtime) + "|" + (tex.srgb ? "srgb" : "linear") + "|v1")));
+                    std::to_string(mtime) + "|" + (tex.srgb ? "srgb" : "linear") + "|v2")));
   const fs::path dir(TextureSet::cache_directory());
   fs::create_directories(dir, ec);
   const fs::path out = dir / name;
@@ -62,16 +80,13 @@ std::string converted_texture(const ImageTexture& tex, std::string* error) {
 
   // Straight alpha as stored in PNG/TGA (Blender's Image Texture outputs unpremultiplied
   // colour), then sRGB -> linear on the colour channels only.
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  OIIO::ImageBuf src(tex.path, 0, 0, nullptr, &config);
   if (!src.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
     *error = src.geterror();
     if (error->empty()) *error = "unreadable image";
     return "";
   }
   OIIO::ImageBuf linear = src;
-  if (tex.srgb && src.nchannels() >= 3) {
+  if (tex.srgb && !*srgb_after_lookup && src.nchannels() >= 3) {
     OIIO::ROI roi = src.roi();
     roi.chend = 3;
     if (!OIIO::ImageBufAlgo::colorconvert(linear, src, "sRGB", "linear", false, "", "",
@@ -131,7 +146,7 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
     e.extension = textures[i].extension;
     e.interpolation = textures[i].interpolation;
     std::string error;
-    const std::string file = converted_texture(textures[i], &error);
+    const std::string file = converted_texture(textures[i], &e.srgb_after_lookup, &error);
     if (file.empty()) {
       if (warnings)
         warnings->push_back("Image '" + textures[i].path + "' cannot be used (" + error +
@@ -192,6 +207,8 @@ bool TextureSet::lookup(int index, Vec2 uv, float rgba[4]) const {
     result[3] = result[1];
     result[1] = result[2] = result[0];
   }
+  if (e.srgb_after_lookup)
+    for (int c = 0; c < 3; ++c) result[c] = srgb_to_linear(result[c]);
   for (int c = 0; c < 4; ++c) rgba[c] = std::isfinite(result[c]) ? result[c] : 0.0f;
   return true;
 }
