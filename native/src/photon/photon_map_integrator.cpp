@@ -59,6 +59,25 @@ float record_cell_size(const PhotonMap& map, const std::vector<GatherPoint>& poi
   return std::clamp(2.0f * spacing[spacing.size() / 2], 1e-6f, max_radius);
 }
 
+// What a bake needs to know about a surface's material; the one place baking reads material
+// fields.
+struct BakeSurface {
+  bool diffuse = false;
+  Vec3 albedo, emission;
+};
+
+BakeSurface bake_surface(const Material& mat) {
+  return {mat.type == MaterialType::kDiffuse, mat.color, mat.emission};
+}
+
+// A 48-bit stream id drawn from `sampler`, so the bake's inner samplers are a pure function of
+// the caller's sampler.
+uint64_t derived_stream(Sampler& sampler) {
+  const auto a = static_cast<uint64_t>(sampler.get_1d() * 16777216.0f);
+  const auto b = static_cast<uint64_t>(sampler.get_1d() * 16777216.0f);
+  return (a << 24) | b;
+}
+
 }  // namespace
 
 void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
@@ -227,6 +246,41 @@ RadianceSample PhotonMapIntegrator::radiance_from_hit(const RenderContext& conte
                                     global_radius_, kPhotonIndirect, &scratch);
   }
   return result;
+}
+
+bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit& hit,
+                                         const SurfaceInteraction& si, Sampler& sampler,
+                                         Vec3* radiance) const {
+  (void)hit;
+  const BakeSurface surface = bake_surface(*si.mat);
+  if (!surface.diffuse) return false;
+  Vec3 reflected(0.0f);
+  if (!is_black(surface.albedo)) {
+    const RenderSettings& s = *context.settings;
+    const int n = std::max(s.samples, 1);
+    std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+    // Direct light and final gathering are averaged over n stratified samples (the sampler's
+    // 2D dimensions follow the R2 sequence over the n sample indices).
+    const uint64_t stream = derived_stream(sampler);
+    Vec3 direct(0.0f), indirect(0.0f);
+    for (int k = 0; k < n; ++k) {
+      Sampler inner(s.seed, stream, static_cast<uint32_t>(k), static_cast<uint32_t>(n));
+      direct += direct_irradiance(context, si, inner);
+      if (s.final_gather_rays > 0) indirect += final_gather(context, si, inner);
+    }
+    reflected = direct * (kInvPi / n) + indirect / static_cast<float>(n);
+    if (s.final_gather_rays == 0 && !global_.empty())
+      reflected += global_.radiance_estimate(si.p, si.ng,
+                                             static_cast<size_t>(std::max(s.gather_count, 1)),
+                                             global_radius_, kPhotonIndirect, &scratch);
+    if (!caustic_.empty())
+      reflected += caustic_.radiance_estimate(
+          si.p, si.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)), caustic_radius_,
+          kPhotonCaustic, &scratch);
+    reflected *= surface.albedo;
+  }
+  *radiance = surface.emission + reflected;
+  return true;
 }
 
 }  // namespace photon
