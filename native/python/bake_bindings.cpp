@@ -91,12 +91,14 @@ void bind_bake(py::module_& m) {
                           "thread: start(), poll progress/status/finished, then result().")
       .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings,
                        const IntArray& instances, const IntArray& triangles,
-                       const FloatArray& barycentrics) {
-             return std::make_unique<BakeSession>(std::move(scene), settings,
+                       const FloatArray& barycentrics, bool brighter_side) {
+             BakeOptions options;
+             options.brighter_side = brighter_side;
+             return std::make_unique<BakeSession>(std::move(scene), settings, options,
                                                   points_from(instances, triangles, barycentrics));
            }),
            py::arg("scene"), py::arg("settings"), py::arg("instances"), py::arg("triangles"),
-           py::arg("barycentrics"))
+           py::arg("barycentrics"), py::arg("brighter_side") = true)
       .def("start", &BakeSession::start)
       .def("cancel", &BakeSession::cancel)
       .def("stop_preparation", &BakeSession::stop_preparation)
@@ -115,20 +117,23 @@ void bind_bake(py::module_& m) {
   m.def(
       "bake",
       [](std::shared_ptr<Scene> scene, const RenderSettings& settings, const IntArray& instances,
-         const IntArray& triangles, const FloatArray& barycentrics) {
+         const IntArray& triangles, const FloatArray& barycentrics, bool brighter_side) {
         const std::vector<BakePoint> points = points_from(instances, triangles, barycentrics);
+        BakeOptions options;
+        options.brighter_side = brighter_side;
         BakeResult r;
         {
           py::gil_scoped_release release;
-          r = bake_points(*scene, settings, points, PrepareControl{});
+          r = bake_points(*scene, settings, options, points, PrepareControl{});
         }
         return result_dict(r);
       },
       py::arg("scene"), py::arg("settings"), py::arg("instances"), py::arg("triangles"),
-      py::arg("barycentrics"),
+      py::arg("barycentrics"), py::arg("brighter_side") = true,
       "Synchronous bake: radiance leaving each surface point (Scene.instances index, triangle "
       "in the order the mesh was given, barycentrics (u, v) of corners 1 and 2), as "
-      "BakeSession.result(). settings.samples is the number of samples per point.");
+      "BakeSession.result(). settings.samples is the number of samples per point; "
+      "brighter_side shades both sides of each point and keeps the brighter.");
 
   m.def(
       "rasterize_uv",

@@ -40,7 +40,8 @@ std::string count_message(size_t n, const char* what) {
 }  // namespace
 
 BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
-                       const std::vector<BakePoint>& points, const PrepareControl& control,
+                       const BakeOptions& options, const std::vector<BakePoint>& points,
+                       const PrepareControl& control,
                        const std::function<void()>& on_prepared, std::atomic<size_t>* points_done) {
   const RenderSettings settings = sanitized_settings(input_settings);
   BakeResult result;
@@ -99,14 +100,30 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
           result.status[i] = kBakeInvalidPoint;
           continue;
         }
-        const SurfaceInteraction si = accel.interaction(hit);
-        result.position[i] = si.p;
-        result.normal[i] = si.ns;
-        // The stream is the point's index, so the result does not depend on which thread
+        const SurfaceInteraction front = accel.interaction(hit);
+        // The streams are the point's index, so the result does not depend on which thread
         // shades it.
-        Sampler sampler(settings.seed, i, 0, 1);
+        Sampler front_sampler(settings.seed, 2 * i, 0, 1);
         Vec3 radiance;
-        if (!integrator->baked_radiance(context, hit, si, sampler, &radiance)) {
+        bool ok = integrator->baked_radiance(context, hit, front, front_sampler, &radiance);
+        SurfaceInteraction kept_side = front;
+        if (options.brighter_side) {
+          SurfaceInteraction back = front;
+          back.ng = -back.ng;
+          back.ns = -back.ns;
+          Sampler back_sampler(settings.seed, 2 * i + 1, 0, 1);
+          Vec3 back_radiance;
+          const bool back_ok =
+              integrator->baked_radiance(context, hit, back, back_sampler, &back_radiance);
+          if (back_ok && (!ok || luminance(back_radiance) > luminance(radiance))) {
+            radiance = back_radiance;
+            kept_side = back;
+            ok = true;
+          }
+        }
+        result.position[i] = kept_side.p;
+        result.normal[i] = kept_side.ns;
+        if (!ok) {
           result.status[i] = kBakeUnsupported;
         } else if (!is_finite(radiance)) {
           result.status[i] = kBakeNonFinite;
@@ -143,8 +160,8 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
 }
 
 BakeSession::BakeSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
-                         std::vector<BakePoint> points)
-    : scene_(std::move(scene)), settings_(settings), points_(std::move(points)) {}
+                         const BakeOptions& options, std::vector<BakePoint> points)
+    : scene_(std::move(scene)), settings_(settings), options_(options), points_(std::move(points)) {}
 
 BakeSession::~BakeSession() {
   cancel();
@@ -193,7 +210,7 @@ void BakeSession::run() {
   preparing_ = true;
   // Nothing may escape the worker thread: an exception there would terminate Blender.
   try {
-    result = bake_points(*scene_, settings_, points_, control, [this] { preparing_ = false; },
+    result = bake_points(*scene_, settings_, options_, points_, control, [this] { preparing_ = false; },
                          &points_done_);
   } catch (const std::exception& e) {
     result.error = std::string("bake failed: ") + e.what();

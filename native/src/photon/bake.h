@@ -3,7 +3,7 @@
 // add-on into Blender data (colour attributes, lightmaps) for real-time viewing (seed 003).
 // Runs on a background thread like RenderSession: prepare the integrator once (progress,
 // cancel, stop early), then shade every point in parallel. Results do not depend on the thread
-// count: point i always draws from the sampler stream (seed, i).
+// count: point i always draws from the sampler streams (seed, 2i) and (seed, 2i + 1).
 #pragma once
 
 #include <atomic>
@@ -28,6 +28,13 @@ struct BakePoint {
   float u = 0.0f, v = 0.0f;
 };
 
+struct BakeOptions {
+  // A colour attribute or lightmap holds one value per point, but a surface has two sides. With
+  // this set both sides are shaded and the brighter one kept (a room modelled with outward
+  // normals is still baked on the lit inside); otherwise the side the normal faces.
+  bool brighter_side = true;
+};
+
 enum BakeStatus : uint8_t {
   kBakeOk = 0,
   kBakeInvalidPoint = 1,  // no such instance/triangle (or it was dropped as degenerate)
@@ -39,7 +46,7 @@ enum BakeStatus : uint8_t {
 struct BakeResult {
   std::vector<Vec3> radiance;  // per point; 0 unless status is kBakeOk
   std::vector<Vec3> position;  // world-space point (0 for invalid points)
-  std::vector<Vec3> normal;    // shading normal of the baked side
+  std::vector<Vec3> normal;    // shading normal of the baked side (the side that was kept)
   std::vector<uint8_t> status;
   std::vector<std::string> warnings;
   // Set when nothing could be baked because the integrator cannot bake at all.
@@ -55,14 +62,15 @@ struct BakeResult {
 // stops the shading of points; `on_prepared` (optional) runs when shading starts, and
 // `points_done` (optional) counts shaded points.
 BakeResult bake_points(const Scene& scene, const RenderSettings& settings,
-                       const std::vector<BakePoint>& points, const PrepareControl& control,
+                       const BakeOptions& options, const std::vector<BakePoint>& points,
+                       const PrepareControl& control,
                        const std::function<void()>& on_prepared = nullptr,
                        std::atomic<size_t>* points_done = nullptr);
 
 class BakeSession {
  public:
   BakeSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
-              std::vector<BakePoint> points);
+              const BakeOptions& options, std::vector<BakePoint> points);
   ~BakeSession();  // cancels and waits
   BakeSession(const BakeSession&) = delete;
   BakeSession& operator=(const BakeSession&) = delete;
@@ -85,6 +93,7 @@ class BakeSession {
 
   std::shared_ptr<const Scene> scene_;
   RenderSettings settings_;
+  BakeOptions options_;
   std::vector<BakePoint> points_;
   std::thread worker_;
   std::atomic<bool> cancel_{false}, stop_preparation_{false}, preparing_{false}, finished_{false};
