@@ -33,6 +33,8 @@ std::vector<std::vector<int32_t>> kept_triangle_maps(const Scene& scene) {
   return maps;
 }
 
+constexpr int kProbeSamples = 2;  // per side, to choose the brighter side
+
 std::string count_message(size_t n, const char* what) {
   return std::to_string(n) + " point(s) " + what;
 }
@@ -83,6 +85,10 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
     control.report("Baking " + std::to_string(n) + " points", 0.0f);
 
     const std::vector<std::vector<int32_t>> kept = kept_triangle_maps(scene);
+    RenderSettings probe_settings = settings;
+    probe_settings.samples = std::min(settings.samples, kProbeSamples);
+    RenderContext probe_context = context;
+    probe_context.settings = &probe_settings;
     t0 = Clock::now();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const auto& range) {
       if (control.cancelled()) return;
@@ -101,26 +107,28 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
           continue;
         }
         const SurfaceInteraction front = accel.interaction(hit);
-        // The streams are the point's index, so the result does not depend on which thread
-        // shades it.
-        Sampler front_sampler(settings.seed, 2 * i, 0, 1);
-        Vec3 radiance;
-        bool ok = integrator->baked_radiance(context, hit, front, front_sampler, &radiance);
-        SurfaceInteraction kept_side = front;
+        SurfaceInteraction side = front;
         if (options.brighter_side) {
+          // A cheap estimate of both sides (kProbeSamples each) picks the side, then only that
+          // side gets the full estimate.
           SurfaceInteraction back = front;
           back.ng = -back.ng;
           back.ns = -back.ns;
-          Sampler back_sampler(settings.seed, 2 * i + 1, 0, 1);
-          Vec3 back_radiance;
+          Sampler front_probe(settings.seed, 3 * i + 1, 0, 1), back_probe(settings.seed, 3 * i + 2, 0, 1);
+          Vec3 front_radiance, back_radiance;
+          const bool front_ok =
+              integrator->baked_radiance(probe_context, hit, front, front_probe, &front_radiance);
           const bool back_ok =
-              integrator->baked_radiance(context, hit, back, back_sampler, &back_radiance);
-          if (back_ok && (!ok || luminance(back_radiance) > luminance(radiance))) {
-            radiance = back_radiance;
-            kept_side = back;
-            ok = true;
-          }
+              integrator->baked_radiance(probe_context, hit, back, back_probe, &back_radiance);
+          if (back_ok && (!front_ok || luminance(back_radiance) > luminance(front_radiance)))
+            side = back;
         }
+        // The streams follow the point's index, so the result does not depend on which thread
+        // shades it.
+        Sampler sampler(settings.seed, 3 * i, 0, 1);
+        Vec3 radiance;
+        const bool ok = integrator->baked_radiance(context, hit, side, sampler, &radiance);
+        const SurfaceInteraction& kept_side = side;
         result.position[i] = kept_side.p;
         result.normal[i] = kept_side.ns;
         if (!ok) {

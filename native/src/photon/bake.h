@@ -3,7 +3,7 @@
 // add-on into Blender data (colour attributes, lightmaps) for real-time viewing (seed 003).
 // Runs on a background thread like RenderSession: prepare the integrator once (progress,
 // cancel, stop early), then shade every point in parallel. Results do not depend on the thread
-// count: point i always draws from the sampler streams (seed, 2i) and (seed, 2i + 1).
+// count: point i always draws from the sampler streams (seed, 3i + {0, 1, 2}).
 #pragma once
 
 #include <atomic>
@@ -30,8 +30,9 @@ struct BakePoint {
 
 struct BakeOptions {
   // A colour attribute or lightmap holds one value per point, but a surface has two sides. With
-  // this set both sides are shaded and the brighter one kept (a room modelled with outward
-  // normals is still baked on the lit inside); otherwise the side the normal faces.
+  // this set both sides are estimated with a few samples and the brighter one is baked (a room
+  // modelled with outward normals is still baked on its lit inside); otherwise the side the
+  // normal faces.
   bool brighter_side = true;
 };
 
