@@ -31,7 +31,7 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
         try:
             return bake.BakeJob(context, self._reporter)
         except bake.BakeError as exc:
-            self._reporter.error(f"Bake: {exc}")
+            self._reporter.warning(f"Bake: {exc}")
         except Exception as exc:  # noqa: BLE001 - never let a bake take Blender down
             traceback.print_exc()
             self._reporter.error(f"Bake failed: {exc}")
