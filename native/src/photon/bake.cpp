@@ -33,7 +33,8 @@ std::vector<std::vector<int32_t>> kept_triangle_maps(const Scene& scene) {
   return maps;
 }
 
-constexpr int kProbeSamples = 2;  // per side, to choose the brighter side
+constexpr int kProbeSamples = 2;       // per side, to choose the brighter side
+constexpr float kBackSideRatio = 2.0f;  // how much brighter the back must be to be baked
 
 std::string count_message(size_t n, const char* what) {
   return std::to_string(n) + " point(s) " + what;
@@ -120,7 +121,11 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
               integrator->baked_radiance(probe_context, hit, front, front_probe, &front_radiance);
           const bool back_ok =
               integrator->baked_radiance(probe_context, hit, back, back_probe, &back_radiance);
-          if (back_ok && (!front_ok || luminance(back_radiance) > luminance(front_radiance)))
+          // The front side keeps the point unless the back is clearly brighter: two dim
+          // sides (a box face outside, the light leaking into its closed inside) would
+          // otherwise be picked by sampling noise, point by point.
+          if (back_ok && (!front_ok || luminance(back_radiance) >
+                                           kBackSideRatio * luminance(front_radiance)))
             side = back;
         }
         // The streams follow the point's index, so the result does not depend on which thread

@@ -30,9 +30,9 @@ struct BakePoint {
 
 struct BakeOptions {
   // A colour attribute or lightmap holds one value per point, but a surface has two sides. With
-  // this set both sides are estimated with a few samples and the brighter one is baked (a room
-  // modelled with outward normals is still baked on its lit inside); otherwise the side the
-  // normal faces.
+  // this set both sides are estimated with a few samples and the back side is baked when it is
+  // clearly (2x) brighter (a room modelled with outward normals is still baked on its lit
+  // inside); otherwise the side the normal faces.
   bool brighter_side = true;
 };
 

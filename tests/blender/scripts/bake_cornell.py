@@ -2,6 +2,8 @@
 renders it with the same settings, and returns every visible, flat-interior mesh vertex with
 its pixel position and its PhotonLighting value; the test compares them to the image."""
 
+import math
+
 import bmesh
 import bpy
 import numpy as np
@@ -40,13 +42,36 @@ def interior_vertices(mesh):
     return [v for v, n in normals.items() if len(n) == 1 and v not in boundary]
 
 
+def pixel_ray(scene, camera, frame, x, y):
+    """World direction of the camera ray through image point (x, y), y downwards."""
+    width, height = scene.render.resolution_x, scene.render.resolution_y
+    top_right, bottom_right, bottom_left, top_left = frame
+    u, v = x / width, 1.0 - y / height
+    local = bottom_left + (bottom_right - bottom_left) * u + (top_left - bottom_left) * v
+    return (camera.matrix_world @ local - camera.matrix_world.translation).normalized()
+
+
+def footprint_on_one_face(scene, depsgraph, camera, frame, obj, normal, px, py):
+    """True when the 4 x 4 pixels the test reads around (px, py) all see `obj` with `normal`
+    (the test box-filters 3 x 3 pixels and interpolates bilinearly)."""
+    x0, y0 = math.floor(px - 0.5) - 1, math.floor(py - 0.5) - 1
+    origin = camera.matrix_world.translation
+    for y in range(y0, y0 + 4):
+        for x in range(x0, x0 + 4):
+            hit, _loc, n, _i, hit_obj, _m = scene.ray_cast(
+                depsgraph, origin, pixel_ray(scene, camera, frame, x + 0.5, y + 0.5))
+            if not hit or hit_obj.name != obj.name or n.dot(normal) < 0.999:
+                return False
+    return True
+
+
 def main(exr_path, cuts="6"):
-    scene = builders.cornell_box(width=160, height=160, samples=16)
+    scene = builders.cornell_box(width=160, height=160, samples=64)
     scene.photon.photons = 200000
     scene.photon.final_gather_rays = 16
     scene.photon.bake_source = 'PHOTON_MAP'
     scene.photon.bake_target = 'COLOR_ATTRIBUTE'
-    scene.photon.bake_samples = 16
+    scene.photon.bake_samples = 32
     meshes = [o for o in scene.objects if o.type == 'MESH']
     for obj in meshes:
         subdivide(obj, int(cuts))
@@ -57,6 +82,7 @@ def main(exr_path, cuts="6"):
 
     depsgraph = bpy.context.evaluated_depsgraph_get()
     camera = scene.camera
+    frame = camera.data.view_frame(scene=scene)
     cam_pos = camera.matrix_world.translation
     width, height = scene.render.resolution_x, scene.render.resolution_y
     result = {"bake": sorted(baked), "objects": {}, "points": []}
@@ -79,13 +105,16 @@ def main(exr_path, cuts="6"):
             if ndc.z <= 0.0:
                 continue
             px, py = ndc.x * width, (1.0 - ndc.y) * height  # top row first, like the EXR read
-            if not (3 <= px < width - 3 and 3 <= py < height - 3):
+            if not (4 <= px < width - 4 and 4 <= py < height - 4):
                 continue
             direction = (world - cam_pos)
             distance = direction.length
             hit, location, _n, _i, hit_obj, _m = scene.ray_cast(
                 depsgraph, cam_pos, direction.normalized(), distance=distance + 1e-3)
             if not hit or hit_obj.name != obj.name or (location - world).length > 1e-3:
+                continue
+            normal = (obj.matrix_world.to_3x3() @ mesh.vertices[v].normal).normalized()
+            if not footprint_on_one_face(scene, depsgraph, camera, frame, obj, normal, px, py):
                 continue
             corners = colors[loop_vertex == v, :3]
             result["points"].append({"object": obj.name, "pixel": [px, py],
