@@ -1,7 +1,10 @@
 """Screenshot of the baked lighting in Blender's viewport (run under Xvfb with the GUI):
 
   BLENDER_USER_SCRIPTS=build/stage PYTHONPATH=test_scenes xvfb-run -a -s "-screen 0 1280x800x24" \
-      blender --factory-startup --addons photon -P tools/baked_viewport_shot.py -- OUT.png [LIGHTMAP]
+      blender --factory-startup --addons photon test_scenes/cornell_box.blend \
+      -P tools/baked_viewport_shot.py -- OUT.png [LIGHTMAP]
+
+(Opening a .blend keeps the splash screen away; the scene is rebuilt anyway.)
 
 Builds the Cornell box (surfaces subdivided so the per-corner colours have detail), bakes it
 from the photon maps, switches the viewports to the baked colours, looks through the camera and
@@ -36,13 +39,16 @@ def setup():
     print("bake:", bpy.ops.photon.bake_lighting(), flush=True)
     print("show:", bpy.ops.photon.show_baked_lighting(mode=MODE), flush=True)
     for window in bpy.context.window_manager.windows:
-        for area in window.screen.areas:
+        for area in list(window.screen.areas):
             if area.type == 'VIEW_3D':
                 space = area.spaces.active
                 space.region_3d.view_perspective = 'CAMERA'
                 space.overlay.show_overlays = False
-                with bpy.context.temp_override(window=window, area=area):
+                region = next(r for r in area.regions if r.type == 'WINDOW')
+                with bpy.context.temp_override(window=window, area=area, region=region):
                     bpy.ops.view3d.view_center_camera()
+                    bpy.ops.screen.screen_full_area()
+                break
     # Give the viewport a few redraws before the screenshot.
     bpy.app.timers.register(snap, first_interval=3.0)
     return None

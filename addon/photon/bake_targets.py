@@ -84,38 +84,63 @@ def _topology_matches(mesh, evaluated):
             and len(mesh.loops) == len(evaluated.loops))
 
 
-def ensure_lightmap_uv(context, obj, name, size, reporter):
-    """The mesh's UV map `name`, made with Blender's Lightmap Pack when it does not exist."""
+def _unwrap(context, obj, size):
+    """Unwraps the active UV map of `obj`: Smart UV Project (one chart per flat region, with
+    margins of about three texels), or Lightmap Pack when Smart UV Project cannot run. Lightmap
+    Pack gives every face its own chart, which wastes the map on finely subdivided meshes."""
     import bpy
 
+    view_layer = context.view_layer
+    previous_active = view_layer.objects.active
+    override = dict(active_object=obj, object=obj, edit_object=obj, selected_objects=[obj],
+                    selected_editable_objects=[obj])
+    try:
+        view_layer.objects.active = obj
+        with context.temp_override(**override):
+            bpy.ops.object.mode_set(mode='EDIT')
+            try:
+                bpy.ops.mesh.select_all(action='SELECT')
+                bpy.ops.uv.smart_project(angle_limit=1.15192, island_margin=min(0.1, 3.0 / size),
+                                         area_weight=0.0, correct_aspect=True,
+                                         scale_to_bounds=False)
+            finally:
+                bpy.ops.object.mode_set(mode='OBJECT')
+        return "Smart UV Project"
+    except Exception:  # noqa: BLE001 - e.g. an object that cannot enter edit mode
+        with context.temp_override(**override):
+            bpy.ops.uv.lightmap_pack(PREF_CONTEXT='ALL_FACES', PREF_PACK_IN_ONE=True,
+                                     PREF_NEW_UVLAYER=False, PREF_APPLY_IMAGE=False,
+                                     PREF_MARGIN_DIV=min(1.0, 300.0 / size))
+        return "Lightmap Pack"
+    finally:
+        view_layer.objects.active = previous_active
+
+
+def ensure_lightmap_uv(context, obj, name, size, reporter):
+    """The mesh's UV map `name`, unwrapped with Blender's own operators when it does not exist."""
     mesh = obj.data
     layer = mesh.uv_layers.get(name)
     if layer is not None:
         return layer
     previous = mesh.uv_layers.active
+    previous_name = previous.name if previous is not None else None
     layer = mesh.uv_layers.new(name=name, do_init=False)
     if layer is None:
         reporter.warning(f"Object '{obj.name}': cannot add UV map '{name}' (too many UV maps); "
                          f"no lightmap")
         return None
     mesh.uv_layers.active = layer
+    method = None
     try:
-        # Lightmap Pack works on the selected objects' active UV maps in object mode. The
-        # margin (a division of the UV square, in percent) is about three texels.
-        with context.temp_override(active_object=obj, object=obj, selected_objects=[obj],
-                                   selected_editable_objects=[obj]):
-            bpy.ops.uv.lightmap_pack(PREF_CONTEXT='ALL_FACES', PREF_PACK_IN_ONE=True,
-                                     PREF_NEW_UVLAYER=False, PREF_APPLY_IMAGE=False,
-                                     PREF_MARGIN_DIV=min(1.0, 300.0 / size))
+        method = _unwrap(context, obj, size)
     except Exception as exc:  # noqa: BLE001 - a failed unwrap must not stop the bake
-        reporter.warning(f"Object '{obj.name}': Lightmap Pack failed ({exc}); no lightmap")
-        mesh.uv_layers.remove(layer)
-        layer = None
-    finally:
-        if previous is not None and previous.name in mesh.uv_layers:
-            mesh.uv_layers.active = mesh.uv_layers[previous.name]
-    if layer is not None:
-        reporter.info(f"Object '{obj.name}': created UV map '{name}' with Lightmap Pack")
+        reporter.warning(f"Object '{obj.name}': cannot unwrap a lightmap UV map ({exc}); "
+                         f"no lightmap")
+        mesh.uv_layers.remove(mesh.uv_layers[name])
+    if previous_name is not None and previous_name in mesh.uv_layers:
+        mesh.uv_layers.active = mesh.uv_layers[previous_name]
+    if method is not None:
+        reporter.info(f"Object '{obj.name}': created UV map '{name}' with {method}")
     return mesh.uv_layers.get(name)
 
 

@@ -102,7 +102,7 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
         default=256, min=16, soft_max=2048, max=8192, subtype="PIXEL")
     lightmap_uv_name: StringProperty(
         name="Lightmap UV Map",
-        description="UV map holding the lightmap layout; created with Lightmap Pack when a "
+        description="UV map holding the lightmap layout; created with Smart UV Project when a "
                     "mesh does not have it",
         default="Lightmap")
     lightmap_filter_radius: IntProperty(
