@@ -20,9 +20,9 @@ except Exception as exc:  # ImportError, or an undefined symbol from a stale bui
     _photon = None
     NATIVE_IMPORT_ERROR = f"{type(exc).__name__}: {exc}"
 
-from . import engine, properties, ui  # noqa: E402
+from . import bake_ops, engine, properties, ui  # noqa: E402
 
-_modules = (properties, engine, ui)
+_modules = (properties, engine, ui, bake_ops)
 
 
 def register():

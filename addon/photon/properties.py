@@ -1,7 +1,8 @@
 """Render settings stored on the scene as scene.photon."""
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty,
+                       StringProperty)
 
 
 class PhotonRenderSettings(bpy.types.PropertyGroup):
@@ -87,6 +88,57 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
     tile_size: IntProperty(
         name="Tile Size", description="Width and height of the render tiles in pixels",
         default=64, min=8, max=4096, subtype="PIXEL")
+
+    # Lighting bake (photon.bake_lighting): view-independent lighting into Blender data.
+    bake_source: EnumProperty(
+        name="Source",
+        description="Which view-independent lighting solution is baked",
+        items=[
+            ("PHOTON_MAP", "Photon Maps",
+             "Direct light, caustic map and final-gathered global map at each point, times "
+             "the diffuse albedo (uses the Photon Mapping settings)"),
+            ("RADIOSITY", "Radiosity", "The radiosity solution (uses the Radiosity settings)"),
+        ],
+        default="PHOTON_MAP",
+    )
+    bake_target: EnumProperty(
+        name="Target",
+        description="Where the baked lighting is written",
+        items=[
+            ("COLOR_ATTRIBUTE", "Color Attribute",
+             "Per face corner into the color attribute 'PhotonLighting' of each mesh"),
+            ("LIGHTMAP", "Lightmap", "Into a UV lightmap image per object"),
+            ("BOTH", "Both", "Color attribute and lightmaps"),
+        ],
+        default="COLOR_ATTRIBUTE",
+    )
+    bake_samples: IntProperty(
+        name="Bake Samples",
+        description="Samples per baked point for direct light and final gathering",
+        default=16, min=1, soft_max=256, max=4096)
+    bake_brighter_side: BoolProperty(
+        name="Brighter Side",
+        description="Shade both sides of each surface and keep the brighter one (a room "
+                    "modelled with outward normals still bakes its lit inside). Off: the side "
+                    "the normals face",
+        default=True)
+    lightmap_size: IntProperty(
+        name="Lightmap Size", description="Width and height of each object's lightmap",
+        default=256, min=16, soft_max=2048, max=8192, subtype="PIXEL")
+    lightmap_uv_name: StringProperty(
+        name="Lightmap UV Map",
+        description="UV map holding the lightmap layout; created with Smart UV Project when a "
+                    "mesh does not have it",
+        default="Lightmap")
+    lightmap_filter_radius: IntProperty(
+        name="Filter Radius",
+        description="Half-width in texels of the 2D filter applied to lightmaps (0 = none)",
+        default=1, min=0, max=8)
+    lightmap_dilate: IntProperty(
+        name="Dilate",
+        description="Texels filled around every UV island so texture filtering does not read "
+                    "empty gutters",
+        default=4, min=0, max=64, subtype="PIXEL")
 
 
 class PhotonViewLayerSettings(bpy.types.PropertyGroup):

@@ -23,17 +23,22 @@ class SyncStats:
         self._release = []
 
 
-def sync_scene(native, depsgraph, reporter):
-    """Returns (native Scene, SyncStats); call stats.release() once the render has ended."""
+def sync_scene(native, depsgraph, reporter, object_instances=None):
+    """Returns (native Scene, SyncStats); call stats.release() once the render has ended.
+
+    When `object_instances` is a dict it is filled with object name -> list of native instance
+    indices (Scene.instances) of the object's own geometry, not of instances it generates
+    (particles, collection instances); lighting bakes use it to address surface points.
+    """
     stats = SyncStats()
     try:
-        return _sync(native, depsgraph, reporter, stats), stats
+        return _sync(native, depsgraph, reporter, stats, object_instances), stats
     except BaseException:
         stats.release()
         raise
 
 
-def _sync(native, depsgraph, reporter, stats):
+def _sync(native, depsgraph, reporter, stats, object_instances):
     t0 = time.perf_counter()
     scene = depsgraph.scene
     native_scene = native.Scene()
@@ -42,7 +47,7 @@ def _sync(native, depsgraph, reporter, stats):
     stats._release.append(materials.release)
 
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
-    pending = {}           # (mesh index, slot tuple, visibility) -> list of 4x4 matrices
+    pending = {}           # (mesh index, slot tuple, visibility) -> [(4x4 matrix, owner or None)]
     unsupported = {}       # object type -> object names
 
     for inst in depsgraph.object_instances:
@@ -74,12 +79,18 @@ def _sync(native, depsgraph, reporter, stats):
             continue
         slots = tuple(materials.slot_indices(obj))
         visibility = sync_lights.visibility_bits(native, obj)
+        owner = None if inst.is_instance else obj.name
         pending.setdefault((index, slots, visibility), []).append(
-            np.asarray(inst.matrix_world, dtype=np.float32))
+            (np.asarray(inst.matrix_world, dtype=np.float32), owner))
 
-    for (index, slots, visibility), matrices in pending.items():
+    for (index, slots, visibility), entries in pending.items():
+        first = native_scene.instance_count
         stats.instances += native_scene.add_instances(
-            index, np.stack(matrices), list(slots), visibility)
+            index, np.stack([matrix for matrix, _ in entries]), list(slots), visibility)
+        if object_instances is not None:
+            for offset, (_, owner) in enumerate(entries):
+                if owner is not None:
+                    object_instances.setdefault(owner, []).append(first + offset)
 
     for obj_type, names in sorted(unsupported.items()):
         shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")

@@ -16,6 +16,8 @@
 namespace py = pybind11;
 using namespace photon;
 
+void bind_bake(py::module_& m);  // bake_bindings.cpp
+
 namespace {
 
 using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
@@ -388,4 +390,6 @@ PYBIND11_MODULE(_photon, m) {
   m.attr("VISIBLE_GLOSSY") = static_cast<uint32_t>(kVisibleGlossy);
   m.attr("VISIBLE_TRANSMISSION") = static_cast<uint32_t>(kVisibleTransmission);
   m.attr("VISIBLE_SHADOW") = static_cast<uint32_t>(kVisibleShadow);
+
+  bind_bake(m);
 }

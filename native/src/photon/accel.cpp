@@ -83,6 +83,7 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
   top_ = rtcNewScene(device_);
   rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
   size_t skipped = 0;
+  embree_instance_.assign(scene.instances.size(), UINT32_MAX);
   for (size_t index = 0; index < scene.instances.size(); ++index) {
     const Instance& inst = scene.instances[index];
     if (inst.mesh >= mesh_scenes_.size() || !mesh_scenes_[inst.mesh]) continue;
@@ -106,6 +107,7 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(instances_.size()));
     rtcReleaseGeometry(geom);
+    embree_instance_[index] = static_cast<uint32_t>(instances_.size());
     instances_.push_back(data);
   }
   rtcCommitScene(top_);
@@ -172,6 +174,27 @@ bool Accel::occluded(const Ray& ray, uint32_t mask) const {
   init_ray(ray, mask, &r);
   rtcOccluded1(top_, &context, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf when something blocks the ray
+}
+
+bool Accel::surface_hit(uint32_t scene_index, uint32_t triangle, float u, float v,
+                        Hit* hit) const {
+  if (scene_index >= embree_instance_.size() || embree_instance_[scene_index] == UINT32_MAX)
+    return false;
+  const uint32_t instance = embree_instance_[scene_index];
+  const Mesh& mesh = *instances_[instance].mesh;
+  if (triangle >= mesh.triangle_count() || !std::isfinite(u) || !std::isfinite(v)) return false;
+  const uint32_t* idx = &mesh.indices[3 * static_cast<size_t>(triangle)];
+  const Vec3 &p0 = mesh.positions[idx[0]], &p1 = mesh.positions[idx[1]],
+             &p2 = mesh.positions[idx[2]];
+  const Transform& to_world = scene_.instances[scene_index].object_to_world;
+  hit->p = to_world.point(p0 * (1.0f - u - v) + p1 * u + p2 * v);
+  hit->ng_object = cross(p1 - p0, p2 - p0);  // Embree's triangle Ng
+  hit->t = 0.0f;
+  hit->u = u;
+  hit->v = v;
+  hit->instance = instance;
+  hit->primitive = triangle;
+  return true;
 }
 
 SurfaceInteraction Accel::interaction(const Hit& hit) const {

@@ -61,6 +61,10 @@ class Accel {
   // Index into Scene::instances of Embree instance `instance` (instances whose transform was
   // unusable are skipped, so the two numberings can differ).
   uint32_t scene_instance(uint32_t instance) const { return instances_[instance].scene_index; }
+  // The hit a ray would report at barycentrics (u, v) of triangle `triangle` (an index into the
+  // mesh's cleaned triangles) of Scene::instances[scene_index], for shading a given surface
+  // point (lighting bakes). False when the instance was skipped or the triangle is out of range.
+  bool surface_hit(uint32_t scene_index, uint32_t triangle, float u, float v, Hit* hit) const;
 
   size_t instance_count() const { return instances_.size(); }
   size_t blas_count() const { return blas_count_; }
@@ -85,6 +89,7 @@ class Accel {
   RTCScene top_ = nullptr;
   std::vector<RTCScene> mesh_scenes_;
   std::vector<InstanceData> instances_;  // indexed by Embree instance geometry id
+  std::vector<uint32_t> embree_instance_;  // Scene::instances index -> Embree id (UINT32_MAX)
   size_t blas_count_ = 0;
   size_t triangle_count_ = 0;
   Vec3 bounds_min_{INFINITY, INFINITY, INFINITY};

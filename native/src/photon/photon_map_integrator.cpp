@@ -5,6 +5,7 @@
 
 #include <chrono>
 
+#include "photon/direct_lighting.h"
 #include "photon/photon_tracer.h"
 #include "photon/sampling.h"
 
@@ -55,6 +56,14 @@ float record_cell_size(const PhotonMap& map, const std::vector<GatherPoint>& poi
   if (spacing.empty()) return max_radius;
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
   return std::clamp(2.0f * spacing[spacing.size() / 2], 1e-6f, max_radius);
+}
+
+// A 48-bit stream id drawn from `sampler`, so the bake's inner samplers are a pure function of
+// the caller's sampler.
+uint64_t derived_stream(Sampler& sampler) {
+  const auto a = static_cast<uint64_t>(sampler.get_1d() * 16777216.0f);
+  const auto b = static_cast<uint64_t>(sampler.get_1d() * 16777216.0f);
+  return (a << 24) | b;
 }
 
 }  // namespace
@@ -271,6 +280,44 @@ RadianceSample PhotonMapIntegrator::radiance_from_hit(const RenderContext& conte
       [&](const PathVertex& v, RadianceSample* r) { shade_diffuse(context, v, sampler, r); },
       &result);
   return result;
+}
+
+bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit& hit,
+                                         const SurfaceInteraction& si, Sampler& sampler,
+                                         Vec3* radiance) const {
+  (void)hit;
+  // The view-independent part of the surface: its emission and its diffuse lobes (seen along
+  // the normal of the baked side). Surfaces with neither (mirrors, glass, metals) cannot bake.
+  const ShadingPoint sp = shade(context, si, si.ng);
+  const Vec3 albedo = sp.bsdf.diffuse_reflectance();
+  if (is_black(albedo) && is_black(sp.emission)) return false;
+  Vec3 reflected(0.0f);
+  if (!is_black(albedo)) {
+    const RenderSettings& s = *context.settings;
+    const int n = std::max(s.samples, 1);
+    std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+    // Direct light and final gathering are averaged over n stratified samples (the sampler's
+    // 2D dimensions follow the R2 sequence over the n sample indices).
+    const uint64_t stream = derived_stream(sampler);
+    Vec3 direct(0.0f), indirect(0.0f);
+    for (int k = 0; k < n; ++k) {
+      Sampler inner(s.seed, stream, static_cast<uint32_t>(k), static_cast<uint32_t>(n));
+      direct += direct_irradiance(context, si, inner);
+      if (s.final_gather_rays > 0) indirect += final_gather(context, si, sp.bsdf, inner);
+    }
+    reflected = direct * (kInvPi / n) + indirect / static_cast<float>(n);
+    if (s.final_gather_rays == 0 && !global_.empty())
+      reflected += global_.radiance_estimate(si.p, si.ng,
+                                             static_cast<size_t>(std::max(s.gather_count, 1)),
+                                             global_radius_, kPhotonIndirect, &scratch);
+    if (!caustic_.empty())
+      reflected += caustic_.radiance_estimate(
+          si.p, si.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)), caustic_radius_,
+          kPhotonCaustic, &scratch);
+    reflected *= albedo;
+  }
+  *radiance = sp.emission + reflected;
+  return true;
 }
 
 }  // namespace photon

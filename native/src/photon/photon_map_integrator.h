@@ -23,6 +23,13 @@ class PhotonMapIntegrator : public Integrator {
   RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                    const CameraHit& first, Sampler& sampler) const override;
   std::vector<std::pair<std::string, double>> prepare_stats() const override;
+  // The light leaving a diffuse point on the side its normal faces, for lighting bakes:
+  //   L = Le + albedo / pi * (E_direct + E_caustic + E_indirect)
+  // with E_direct by light sampling and E_indirect by final gathering (or, with
+  // final_gather_rays = 0, the global map), each averaged over settings.samples samples so the
+  // bake is smooth; E_caustic from the caustic map. False for mirrors and glass.
+  bool baked_radiance(const RenderContext& context, const Hit& hit, const SurfaceInteraction& si,
+                      Sampler& sampler, Vec3* radiance) const override;
 
   const PhotonMap& global_map() const { return global_; }
   const PhotonMap& caustic_map() const { return caustic_; }

@@ -60,6 +60,17 @@ RenderSettings sanitize(RenderSettings s) {
 
 }  // namespace
 
+RenderSettings sanitized_settings(const RenderSettings& settings) { return sanitize(settings); }
+
+int run_in_arena(int threads, const std::function<void()>& fn) {
+  set_flush_denormals();
+  const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(n);
+  FlushDenormalsObserver observer(arena);
+  arena.execute(fn);
+  return n;
+}
+
 RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings)
     : scene_(std::move(scene)), settings_(sanitize(settings)) {
   image_.assign(static_cast<size_t>(region_width()) * region_height() * 4, 0.0f);

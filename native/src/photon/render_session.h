@@ -6,6 +6,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -25,6 +26,12 @@ struct Tile {
   // With RenderSettings::light_passes: kPassFloats floats per pixel (see pixel_renderer.h).
   std::vector<float> passes;
 };
+
+// `settings` clamped to what the renderer accepts (also used by lighting bakes).
+RenderSettings sanitized_settings(const RenderSettings& settings);
+// Runs `fn` in a TBB arena of `threads` threads (0 = all cores) whose threads flush denormals,
+// as Embree recommends. Returns the thread count used.
+int run_in_arena(int threads, const std::function<void()>& fn);
 
 struct RenderStats {
   double build_seconds = 0.0;

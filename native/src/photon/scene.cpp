@@ -47,6 +47,8 @@ MeshCleanupReport clean_mesh(Mesh* mesh) {
   mesh->indices.resize(tri_count * 3);
 
   size_t kept = 0;
+  std::vector<uint32_t> source;
+  source.reserve(tri_count);
   for (size_t t = 0; t < tri_count; ++t) {
     const uint32_t i0 = mesh->indices[3 * t], i1 = mesh->indices[3 * t + 1],
                    i2 = mesh->indices[3 * t + 2];
@@ -78,12 +80,21 @@ MeshCleanupReport clean_mesh(Mesh* mesh) {
       }
     }
     if (has_slots) mesh->material_slots[kept] = mesh->material_slots[t];
+    source.push_back(static_cast<uint32_t>(t));
     ++kept;
   }
   mesh->indices.resize(kept * 3);
   if (has_normals) mesh->corner_normals.resize(kept * 3);
   if (has_uvs) mesh->corner_uvs.resize(kept * 3);
   if (has_slots) mesh->material_slots.resize(kept);
+  // Composes with an earlier cleanup's numbering, so cleaning twice keeps the caller's indices.
+  const bool had_source = mesh->source_triangles.size() == tri_count;
+  if (!had_source) mesh->source_triangles.clear();
+  if (kept != tri_count) {
+    if (had_source)
+      for (uint32_t& s : source) s = mesh->source_triangles[s];
+    mesh->source_triangles = std::move(source);
+  }
   return report;
 }
 

@@ -28,6 +28,9 @@ struct Mesh {
   std::vector<Vec3> corner_normals;     // three per triangle, or empty (flat shading)
   std::vector<Vec2> corner_uvs;         // three per triangle, or empty
   std::vector<int32_t> material_slots;  // one per triangle, or empty (slot 0)
+  // Index each triangle had as given (before clean_mesh dropped any), or empty when none was
+  // dropped: lets a bake address triangles by the caller's numbering (Blender loop triangles).
+  std::vector<uint32_t> source_triangles;
 
   size_t triangle_count() const { return indices.size() / 3; }
 };

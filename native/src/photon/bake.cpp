@@ -1,0 +1,240 @@
+#include "photon/bake.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+
+#include "photon/emissive_mesh.h"
+#include "photon/render_session.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Per mesh: the caller's triangle index -> the index after clean_mesh dropped triangles
+// (-1 for dropped ones). Empty when nothing was dropped (the numberings agree).
+std::vector<std::vector<int32_t>> kept_triangle_maps(const Scene& scene) {
+  std::vector<std::vector<int32_t>> maps(scene.meshes.size());
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const std::vector<uint32_t>& source = scene.meshes[m].source_triangles;
+    if (source.empty()) continue;
+    uint32_t count = 0;
+    for (uint32_t s : source) count = std::max(count, s + 1);
+    maps[m].assign(count, -1);
+    for (size_t kept = 0; kept < source.size(); ++kept)
+      maps[m][source[kept]] = static_cast<int32_t>(kept);
+  }
+  return maps;
+}
+
+constexpr int kProbeSamples = 2;       // per side, to choose the brighter side
+constexpr float kBackSideRatio = 2.0f;  // how much brighter the back must be to be baked
+
+std::string count_message(size_t n, const char* what) {
+  return std::to_string(n) + " point(s) " + what;
+}
+
+}  // namespace
+
+BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
+                       const BakeOptions& options, const std::vector<BakePoint>& points,
+                       const PrepareControl& control,
+                       const std::function<void()>& on_prepared, std::atomic<size_t>* points_done) {
+  const RenderSettings settings = sanitized_settings(input_settings);
+  BakeResult result;
+  const size_t n = points.size();
+  result.radiance.assign(n, Vec3(0.0f));
+  result.position.assign(n, Vec3(0.0f));
+  result.normal.assign(n, Vec3(0.0f));
+  result.status.assign(n, kBakeNotDone);
+  if (settings.integrator == IntegratorType::kRayTrace) {
+    result.error = "the RAY_TRACE integrator has no view-independent lighting solution to bake; "
+                   "bake from the photon maps or the radiosity solution";
+    return result;
+  }
+
+  result.threads = run_in_arena(settings.threads, [&] {
+    auto t0 = Clock::now();
+    control.report("Building BVH", 0.0f);
+    const Accel accel(scene, &result.warnings);
+    const LightSet lights(scene.lights, &result.warnings);
+    const EmissiveMeshes emissive(scene, accel);
+    result.build_seconds = seconds_since(t0);
+
+    RenderContext context;
+    context.scene = &scene;
+    context.accel = &accel;
+    context.lights = &lights;
+    context.settings = &settings;
+    context.emissive = &emissive;
+    std::unique_ptr<Integrator> integrator = make_integrator(settings.integrator);
+
+    t0 = Clock::now();
+    PrepareControl prepare = control;
+    prepare.warn = [&result](const std::string& w) { result.warnings.push_back(w); };
+    integrator->prepare(context, prepare);
+    result.prepare_seconds = seconds_since(t0);
+    result.integrator_stats = integrator->prepare_stats();
+    if (control.cancelled()) return;
+    if (on_prepared) on_prepared();
+    control.report("Baking " + std::to_string(n) + " points", 0.0f);
+
+    const std::vector<std::vector<int32_t>> kept = kept_triangle_maps(scene);
+    RenderSettings probe_settings = settings;
+    probe_settings.samples = std::min(settings.samples, kProbeSamples);
+    RenderContext probe_context = context;
+    probe_context.settings = &probe_settings;
+    t0 = Clock::now();
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const auto& range) {
+      if (control.cancelled()) return;
+      for (size_t i = range.begin(); i != range.end(); ++i) {
+        const BakePoint& point = points[i];
+        uint32_t triangle = point.triangle;
+        if (point.instance < scene.instances.size()) {
+          const std::vector<int32_t>& map = kept[scene.instances[point.instance].mesh];
+          if (!map.empty()) triangle = triangle < map.size() ? static_cast<uint32_t>(map[triangle])
+                                                             : UINT32_MAX;
+        }
+        Hit hit;
+        if (triangle == UINT32_MAX ||
+            !accel.surface_hit(point.instance, triangle, point.u, point.v, &hit)) {
+          result.status[i] = kBakeInvalidPoint;
+          continue;
+        }
+        const SurfaceInteraction front = accel.interaction(hit);
+        SurfaceInteraction side = front;
+        if (options.brighter_side) {
+          // A cheap estimate of both sides (kProbeSamples each) picks the side, then only that
+          // side gets the full estimate.
+          SurfaceInteraction back = front;
+          back.ng = -back.ng;
+          back.ns = -back.ns;
+          Sampler front_probe(settings.seed, 3 * i + 1, 0, 1), back_probe(settings.seed, 3 * i + 2, 0, 1);
+          Vec3 front_radiance, back_radiance;
+          const bool front_ok =
+              integrator->baked_radiance(probe_context, hit, front, front_probe, &front_radiance);
+          const bool back_ok =
+              integrator->baked_radiance(probe_context, hit, back, back_probe, &back_radiance);
+          // The front side keeps the point unless the back is clearly brighter: two dim
+          // sides (a box face outside, the light leaking into its closed inside) would
+          // otherwise be picked by sampling noise, point by point.
+          if (back_ok && (!front_ok || luminance(back_radiance) >
+                                           kBackSideRatio * luminance(front_radiance)))
+            side = back;
+        }
+        // The streams follow the point's index, so the result does not depend on which thread
+        // shades it.
+        Sampler sampler(settings.seed, 3 * i, 0, 1);
+        Vec3 radiance;
+        const bool ok = integrator->baked_radiance(context, hit, side, sampler, &radiance);
+        const SurfaceInteraction& kept_side = side;
+        result.position[i] = kept_side.p;
+        result.normal[i] = kept_side.ns;
+        if (!ok) {
+          result.status[i] = kBakeUnsupported;
+        } else if (!is_finite(radiance)) {
+          result.status[i] = kBakeNonFinite;
+        } else {
+          result.radiance[i] = radiance;
+          result.status[i] = kBakeOk;
+        }
+      }
+      if (points_done) *points_done += range.size();
+    });
+    result.bake_seconds = seconds_since(t0);
+  });
+
+  result.cancelled = control.cancelled();
+  size_t counts[5] = {0, 0, 0, 0, 0};
+  for (uint8_t s : result.status) ++counts[s];
+  if (!result.cancelled && n > 0 && counts[kBakeOk] == 0 && counts[kBakeUnsupported] > 0)
+    result.error = "the integrator returned no view-independent radiance for any of the " +
+                   std::to_string(n) +
+                   " points: it has no bake support, or every point is on a mirror or glass "
+                   "surface";
+  if (counts[kBakeInvalidPoint])
+    result.warnings.push_back(count_message(counts[kBakeInvalidPoint],
+                                            "name no existing instance or triangle (or a "
+                                            "degenerate triangle that was dropped)"));
+  if (counts[kBakeUnsupported])
+    result.warnings.push_back(count_message(counts[kBakeUnsupported],
+                                            "lie on surfaces without view-independent radiance "
+                                            "(mirror, glass) and were baked black"));
+  if (counts[kBakeNonFinite])
+    result.warnings.push_back(count_message(counts[kBakeNonFinite],
+                                            "had a NaN or infinite estimate and were baked black"));
+  return result;
+}
+
+BakeSession::BakeSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
+                         const BakeOptions& options, std::vector<BakePoint> points)
+    : scene_(std::move(scene)), settings_(settings), options_(options), points_(std::move(points)) {}
+
+BakeSession::~BakeSession() {
+  cancel();
+  if (worker_.joinable()) worker_.join();
+}
+
+void BakeSession::start() {
+  if (worker_.joinable() || finished_) return;
+  worker_ = std::thread([this] { run(); });
+}
+
+void BakeSession::wait() {
+  if (worker_.joinable()) worker_.join();
+}
+
+void BakeSession::cancel() { cancel_ = true; }
+
+void BakeSession::stop_preparation() { stop_preparation_ = true; }
+
+float BakeSession::progress() const {
+  if (preparing_) return prepare_fraction_.load();
+  return points_.empty() ? 1.0f
+                         : static_cast<float>(points_done_.load()) / static_cast<float>(points_.size());
+}
+
+std::string BakeSession::status() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+BakeResult BakeSession::result() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return result_;
+}
+
+void BakeSession::run() {
+  PrepareControl control;
+  control.cancel = &cancel_;
+  control.stop_early = &stop_preparation_;
+  control.progress = [this](const std::string& status, float fraction) {
+    prepare_fraction_ = fraction;
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_ = status;
+  };
+  BakeResult result;
+  preparing_ = true;
+  // Nothing may escape the worker thread: an exception there would terminate Blender.
+  try {
+    result = bake_points(*scene_, settings_, options_, points_, control, [this] { preparing_ = false; },
+                         &points_done_);
+  } catch (const std::exception& e) {
+    result.error = std::string("bake failed: ") + e.what();
+  } catch (...) {
+    result.error = "bake failed with an unknown error";
+  }
+  preparing_ = false;
+  std::lock_guard<std::mutex> lock(mutex_);
+  result_ = std::move(result);
+  status_ = cancel_ ? "Cancelled" : "Done";
+  finished_ = true;
+}
+
+}  // namespace photon
