@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
 from harness import read_image  # noqa: E402
@@ -15,7 +16,7 @@ from harness import read_image  # noqa: E402
 
 def plane_under_point_light(native, flipped=False):
     scene = native.Scene()
-    material = scene.add_material("grey", "DIFFUSE", [0.5, 0.5, 0.5])
+    material = scene.add_material("grey", [{"type": "DIFFUSE", "params": {"color": [0.5, 0.5, 0.5]}}])
     positions = np.array([[-10, -10, 0], [10, -10, 0], [10, 10, 0], [-10, 10, 0]], np.float32)
     triangles = np.array([[0, 1, 2], [0, 2, 3]], np.int32)
     if flipped:
@@ -103,9 +104,10 @@ def test_native_bake_errors_when_the_integrator_cannot_bake(native):
 
 # ---- Through Blender ----
 
-def test_bake_matches_render_on_cornell_box(blender, tmp_path):
+@pytest.mark.parametrize("source", ["PHOTON_MAP", "RADIOSITY"])
+def test_bake_matches_render_on_cornell_box(blender, tmp_path, source):
     exr = tmp_path / "cornell.exr"
-    result, proc = blender.run_script("bake_cornell.py", exr, 6, timeout=900)
+    result, proc = blender.run_script("bake_cornell.py", exr, 6, source, timeout=900)
     assert "exception" not in result, result.get("exception")
     assert result["bake"] == ["FINISHED"], proc.log
     for name, info in result["objects"].items():

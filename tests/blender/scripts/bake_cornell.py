@@ -65,11 +65,13 @@ def footprint_on_one_face(scene, depsgraph, camera, frame, obj, normal, px, py):
     return True
 
 
-def main(exr_path, cuts="6"):
+def main(exr_path, cuts="6", source="PHOTON_MAP"):
     scene = builders.cornell_box(width=160, height=160, samples=64)
     scene.photon.photons = 200000
     scene.photon.final_gather_rays = 16
-    scene.photon.bake_source = 'PHOTON_MAP'
+    # The render uses the bake's source too, so the two show the same solution.
+    scene.photon.integrator = source
+    scene.photon.bake_source = source
     scene.photon.bake_target = 'COLOR_ATTRIBUTE'
     scene.photon.bake_samples = 32
     meshes = [o for o in scene.objects if o.type == 'MESH']
