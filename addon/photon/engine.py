@@ -39,6 +39,7 @@ def make_settings(native, scene, full_width, full_height, region):
     settings.caustic_gather_count = max(1, int(props.caustic_gather_count))
     settings.final_gather_rays = max(0, int(props.final_gather_rays))
     settings.photon_time = max(0.0, float(props.photon_time))
+    settings.irradiance_cache = bool(props.irradiance_cache)
     settings.radiosity_patch_size = max(0.0, float(props.radiosity_patch_size))
     settings.radiosity_rays = max(10, int(props.radiosity_rays)) * 1000
     settings.radiosity_threshold = min(max(float(props.radiosity_threshold), 1e-4), 1.0)

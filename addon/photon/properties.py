@@ -53,6 +53,13 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
         description="Rays gathering indirect light per camera sample "
                     "(0 = read the global photon map directly: fast, blotchy preview)",
         default=16, min=0, soft_max=256, max=4096)
+    irradiance_cache: BoolProperty(
+        name="Irradiance Cache",
+        description="Compute the final gather carefully (64 times Final Gather Rays) at sparse "
+                    "points the camera sees before rendering, and interpolate between them "
+                    "(Ward 1988): smooth indirect light at a fraction of the cost. Points the "
+                    "cache does not cover are gathered per sample",
+        default=True)
     photon_time: FloatProperty(
         name="Photon Time",
         description="Trace photons for this many seconds instead of a fixed count "

@@ -43,6 +43,7 @@ struct RenderSettings {
   int caustic_gather_count = 50;      // k nearest photons in a caustic estimate
   int final_gather_rays = 16;         // per camera sample; 0 = read the global map directly
   float photon_time = 0.0f;           // > 0: trace photons for this many seconds instead
+  bool irradiance_cache = true;       // final gathers at camera-visible points interpolated
 
   // Radiosity (seed 002; radiosity_solver.h).
   float radiosity_patch_size = 0.0f;     // element edge length; 0 = automatic (~20k elements)
