@@ -22,7 +22,7 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
     )
     samples: IntProperty(
         name="Samples", description="Camera samples per pixel",
-        default=16, min=1, soft_max=4096, max=1 << 20)
+        default=64, min=1, soft_max=4096, max=1 << 20)
     max_depth: IntProperty(
         name="Max Depth", description="Maximum number of mirror and glass bounces",
         default=8, min=0, soft_max=64, max=1024)

@@ -26,7 +26,7 @@ struct RenderSettings {
   int full_width = 64, full_height = 64;  // whole frame in pixels
   // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
-  int samples = 16;    // camera samples per pixel
+  int samples = 64;    // camera samples per pixel
   int max_depth = 8;   // specular bounces after the camera ray
   uint64_t seed = 0;
   int threads = 0;     // 0 = all cores

@@ -114,6 +114,7 @@ IrradianceCache build_irradiance_cache(const RenderContext& context,
     ++levels;
   int level = 0;
   std::atomic<uint64_t> candidates{0};
+  control.report("Irradiance cache: 0 records", 0.0f);
   for (int spacing = std::max(settings.coarsest_spacing, finest); spacing >= finest;
        spacing /= 2, ++level) {
     const int nx = (s.full_width + spacing - 1) / spacing;

@@ -11,7 +11,8 @@
 // A record's radius is the harmonic mean distance of its gather rays (Ward 1988), clamped so
 // that its domain, a R_i, spans between `min_pixels` and `max_pixels` pixels at the record's
 // distance from the camera (Tabellion & Lamorlette 2004, sec. 3.3): no tiny records in corners,
-// no records spreading over detail that the screen resolves.
+// no records spreading over detail that the screen resolves. Ward & Heckbert's gradients are
+// not used: the guided, R2-stratified gather has no hemisphere grid to derive them from.
 //
 // The whole frame is covered even when a render border is set, so a border render equals the
 // same region of the full render.
@@ -32,8 +33,11 @@ struct IrradianceCacheSettings {
   // overlap more, so each lookup averages several and their noise does not show as blotches.
   float coverage = 0.5f;
   int rays = 1024;           // final-gather rays per record
-  float min_pixels = 1.5f;   // a R_i clamped to [min_pixels, max_pixels] pixels
-  float max_pixels = 20.0f;
+  // a R_i clamped to [min_pixels, max_pixels] pixels. The upper clamp matters most: Ward's
+  // radius ignores gradients from uneven lighting (a ceiling lit by the bright floor patch
+  // below the lamp), which records spanning 10-20 px smear by 5-10% without gradients.
+  float min_pixels = 1.5f;
+  float max_pixels = 5.0f;
   int coarsest_spacing = 32;  // pixels between the first level's candidates
   int finest_spacing = 2;     // halved each level down to this
 };

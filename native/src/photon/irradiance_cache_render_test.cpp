@@ -1,8 +1,10 @@
 // The irradiance cache inside whole renders: thread independence and the noise it removes.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <memory>
+#include <thread>
 
 #include "photon/render_session.h"
 #include "photon/test_scenes.h"
@@ -86,6 +88,25 @@ TEST(IrradianceCacheRender, CacheKeepsTheMeanOfPerSampleGathering) {
   double ma = 0.0, mb = 0.0;
   for (size_t i = 0; i < cached.rgba.size(); i += 4) ma += cached.rgba[i], mb += plain.rgba[i];
   EXPECT_NEAR(ma / mb, 1.0, 0.01);
+}
+
+TEST(IrradianceCacheRender, CancelDuringTheCacheBuildStopsPromptly) {
+  RenderSettings s = cornell_settings(1024, 4, 1);
+  s.final_gather_rays = 64;  // 4096 rays per record: far too long a build for the test
+  s.threads = 2;
+  RenderSession session(std::make_shared<Scene>(make_cornell_box()), s);
+  session.start();
+  const auto t0 = std::chrono::steady_clock::now();
+  while (session.status().rfind("Irradiance cache", 0) != 0 && !session.finished() &&
+         std::chrono::steady_clock::now() - t0 < std::chrono::seconds(30))
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_EQ(session.status().rfind("Irradiance cache", 0), 0u) << session.status();
+  session.cancel();
+  const auto t1 = std::chrono::steady_clock::now();
+  session.wait();
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count(), 2.0);
+  EXPECT_TRUE(session.cancelled());
+  EXPECT_EQ(session.status(), "Cancelled");
 }
 
 }  // namespace
