@@ -29,7 +29,7 @@ static void usage() {
 int main(int argc, char** argv) {
   RenderSettings settings;
   settings.full_width = settings.full_height = 256;
-  settings.samples = 16;
+  settings.samples = 64;  // the add-on's default
   std::string scene_name = "cornell", out, passes_prefix;
   for (int i = 1; i < argc; ++i) {
     auto next = [&](const char* flag) -> const char* {
