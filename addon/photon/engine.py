@@ -157,6 +157,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 f"{stats['photon_map_build_seconds']:.3f} s, radiance precomputed in "
                 f"{stats['radiance_precompute_seconds']:.3f} s "
                 f"({stats['photon_map_bytes'] / 1e6:.1f} MB)")
+        if "irradiance_records" in stats:
+            reporter.info(
+                f"irradiance cache: {int(stats['irradiance_records']):,} records, "
+                f"{int(stats['irradiance_gather_rays']):,} gather rays in "
+                f"{stats['irradiance_cache_seconds']:.3f} s")
         if "radiosity_elements" in stats:
             reporter.info(
                 f"radiosity: {int(stats['radiosity_elements']):,} patches (size "
