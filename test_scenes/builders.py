@@ -141,7 +141,7 @@ def light(name, light_type, energy, location, rotation=(0, 0, 0), **settings):
     return obj
 
 
-def cornell_box(width=256, height=256, samples=16, light_power=40.0):
+def cornell_box(width=256, height=256, samples=64, light_power=40.0):
     """The Cornell box of the demo and the regression suite: diffuse walls and boxes, a 0.5 m
     square area light under the ceiling. Same geometry as native test_scenes.cpp."""
     scene = reset_scene(width=width, height=height)

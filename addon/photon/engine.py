@@ -39,6 +39,7 @@ def make_settings(native, scene, full_width, full_height, region):
     settings.caustic_gather_count = max(1, int(props.caustic_gather_count))
     settings.final_gather_rays = max(0, int(props.final_gather_rays))
     settings.photon_time = max(0.0, float(props.photon_time))
+    settings.irradiance_cache = bool(props.irradiance_cache)
     settings.radiosity_patch_size = max(0.0, float(props.radiosity_patch_size))
     settings.radiosity_rays = max(10, int(props.radiosity_rays)) * 1000
     settings.radiosity_threshold = min(max(float(props.radiosity_threshold), 1e-4), 1.0)
@@ -164,6 +165,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 f"{stats['photon_map_build_seconds']:.3f} s, radiance precomputed in "
                 f"{stats['radiance_precompute_seconds']:.3f} s "
                 f"({stats['photon_map_bytes'] / 1e6:.1f} MB)")
+        if "irradiance_records" in stats:
+            reporter.info(
+                f"irradiance cache: {int(stats['irradiance_records']):,} records, "
+                f"{int(stats['irradiance_gather_rays']):,} gather rays in "
+                f"{stats['irradiance_cache_seconds']:.3f} s")
         if "radiosity_elements" in stats:
             reporter.info(
                 f"radiosity: {int(stats['radiosity_elements']):,} patches (size "

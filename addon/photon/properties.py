@@ -23,7 +23,7 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
     )
     samples: IntProperty(
         name="Samples", description="Camera samples per pixel",
-        default=16, min=1, soft_max=4096, max=1 << 20)
+        default=64, min=1, soft_max=4096, max=1 << 20)
     max_depth: IntProperty(
         name="Max Depth", description="Maximum number of mirror and glass bounces",
         default=8, min=0, soft_max=64, max=1024)
@@ -54,6 +54,13 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
         description="Rays gathering indirect light per camera sample "
                     "(0 = read the global photon map directly: fast, blotchy preview)",
         default=16, min=0, soft_max=256, max=4096)
+    irradiance_cache: BoolProperty(
+        name="Irradiance Cache",
+        description="Compute the final gather carefully (64 times Final Gather Rays) at sparse "
+                    "points the camera sees before rendering, and interpolate between them "
+                    "(Ward 1988): smooth indirect light at a fraction of the cost. Points the "
+                    "cache does not cover are gathered per sample",
+        default=True)
     photon_time: FloatProperty(
         name="Photon Time",
         description="Trace photons for this many seconds instead of a fixed count "

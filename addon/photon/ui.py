@@ -86,6 +86,9 @@ class PHOTON_PT_photon_mapping(PhotonPanel, bpy.types.Panel):
         col.prop(props, "caustic_gather_count")
         col.prop(props, "gather_radius")
         layout.prop(props, "final_gather_rays")
+        row = layout.row()
+        row.active = props.final_gather_rays > 0
+        row.prop(props, "irradiance_cache")
 
 
 class PHOTON_PT_radiosity(PhotonPanel, bpy.types.Panel):

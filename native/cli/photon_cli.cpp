@@ -20,7 +20,7 @@ static void usage() {
       "                  [--integrator photon_map|ray_trace|radiosity] [--photons N]\n"
       "                  [--caustic-photons N]\n"
       "                  [--gather-count N] [--gather-radius R] [--caustic-gather-count N]\n"
-      "                  [--final-gather-rays N] [--photon-time SECONDS]\n"
+      "                  [--final-gather-rays N] [--photon-time SECONDS] [--no-irradiance-cache]\n"
       "                  [--patch-size S] [--radiosity-rays N] [--radiosity-threshold F]\n"
       "                  [--radiosity-iterations N]\n"
       "                  [--passes PREFIX (writes PREFIX_direct.exr, ...)] --out FILE\n");
@@ -29,7 +29,7 @@ static void usage() {
 int main(int argc, char** argv) {
   RenderSettings settings;
   settings.full_width = settings.full_height = 256;
-  settings.samples = 16;
+  settings.samples = 64;  // the add-on's default
   std::string scene_name = "cornell", out, passes_prefix;
   for (int i = 1; i < argc; ++i) {
     auto next = [&](const char* flag) -> const char* {
@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[i], "--gather-radius")) settings.gather_radius = std::strtof(next("--gather-radius"), nullptr);
     else if (!std::strcmp(argv[i], "--caustic-gather-count")) settings.caustic_gather_count = std::atoi(next("--caustic-gather-count"));
     else if (!std::strcmp(argv[i], "--final-gather-rays")) settings.final_gather_rays = std::atoi(next("--final-gather-rays"));
+    else if (!std::strcmp(argv[i], "--no-irradiance-cache")) settings.irradiance_cache = false;
     else if (!std::strcmp(argv[i], "--photon-time")) settings.photon_time = std::strtof(next("--photon-time"), nullptr);
     else if (!std::strcmp(argv[i], "--patch-size")) settings.radiosity_patch_size = std::strtof(next("--patch-size"), nullptr);
     else if (!std::strcmp(argv[i], "--radiosity-rays")) settings.radiosity_rays = std::strtoull(next("--radiosity-rays"), nullptr, 10);

@@ -26,7 +26,7 @@ struct RenderSettings {
   int full_width = 64, full_height = 64;  // whole frame in pixels
   // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
-  int samples = 16;    // camera samples per pixel
+  int samples = 64;    // camera samples per pixel
   int max_depth = 8;   // specular bounces after the camera ray
   uint64_t seed = 0;
   int threads = 0;     // 0 = all cores
@@ -43,6 +43,7 @@ struct RenderSettings {
   int caustic_gather_count = 50;      // k nearest photons in a caustic estimate
   int final_gather_rays = 16;         // per camera sample; 0 = read the global map directly
   float photon_time = 0.0f;           // > 0: trace photons for this many seconds instead
+  bool irradiance_cache = true;       // final gathers at camera-visible points interpolated
 
   // Radiosity (seed 002; radiosity_solver.h).
   float radiosity_patch_size = 0.0f;     // element edge length; 0 = automatic (~20k elements)

@@ -6,6 +6,7 @@
 #include <chrono>
 
 #include "photon/direct_lighting.h"
+#include "photon/irradiance_cache_build.h"
 #include "photon/photon_tracer.h"
 #include "photon/sampling.h"
 
@@ -38,6 +39,10 @@ constexpr size_t kFallbackCount = 32;     // photons when no precomputed record 
 constexpr float kGatherMinCos = 0.5f;     // normals of gather point and surface must agree
 constexpr float kDefaultGlobalRadius = 0.1f;   // of the scene's bounding radius
 constexpr float kDefaultCausticRadius = 0.05f;
+// Final-gather rays of an irradiance-cache record per final-gather ray of a camera sample:
+// 16 -> 1024, enough that records differ by under 1% and their interpolation shows no blotches.
+constexpr int kRecordRaysPerGatherRay = 64;
+constexpr int kMinRecordRays = 256, kMaxRecordRays = 16384;
 
 // Grid cell for the radiance records: about two record spacings, from the photon density
 // measured at up to 256 gather points (median of k / (pi r_k^2), scaled by records / photons).
@@ -71,6 +76,8 @@ uint64_t derived_stream(Sampler& sampler) {
 void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
   const RenderSettings& s = *context.settings;
   stats_.clear();
+  irradiance_stats_.clear();
+  irradiance_ = IrradianceCache();
   const PhotonSources sources(context);
   const float scene_radius = sources.scene_radius();
   global_radius_ = s.gather_radius > 0.0f ? s.gather_radius : kDefaultGlobalRadius * scene_radius;
@@ -119,6 +126,10 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
     radiance_ = RadianceCache(std::move(records), record_cell_size(global_, points, k, global_radius_));
   }
   const double precompute_seconds = seconds_since(t0);
+  if (s.final_gather_rays > 0 && s.irradiance_cache && !global_.empty()) {
+    build_irradiance(context, control);
+    if (control.cancelled()) return;
+  }
 
   stats_ = {
       {"photons_emitted", static_cast<double>(traced.global_emitted)},
@@ -136,6 +147,26 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
       {"global_gather_radius", global_radius_},
       {"caustic_gather_radius", caustic_radius_},
   };
+  stats_.insert(stats_.end(), irradiance_stats_.begin(), irradiance_stats_.end());
+}
+
+void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
+                                           const PrepareControl& control) {
+  irradiance_stats_.clear();
+  IrradianceCacheSettings settings;
+  settings.rays = std::clamp(kRecordRaysPerGatherRay * context.settings->final_gather_rays,
+                             kMinRecordRays, kMaxRecordRays);
+  IrradianceCacheBuildStats build;
+  auto gather = [&](const SurfaceInteraction& si, const Bsdf& bsdf, int rays, Sampler& sampler,
+                    float* harmonic) { return final_gather(context, si, bsdf, rays, sampler, harmonic); };
+  irradiance_ = build_irradiance_cache(context, settings, gather, control, &build);
+  irradiance_stats_ = {
+      {"irradiance_records", static_cast<double>(irradiance_.size())},
+      {"irradiance_candidates", static_cast<double>(build.candidates)},
+      {"irradiance_gather_rays", static_cast<double>(build.gather_rays)},
+      {"irradiance_cache_seconds", build.seconds},
+      {"irradiance_cache_bytes", static_cast<double>(irradiance_.memory_bytes())},
+  };
 }
 
 std::vector<std::pair<std::string, double>> PhotonMapIntegrator::prepare_stats() const {
@@ -149,7 +180,8 @@ Vec3 PhotonMapIntegrator::gathered_radiance(const Vec3& p, const Vec3& n,
 }
 
 Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
-                                     std::vector<PhotonNeighbor>* scratch) const {
+                                     std::vector<PhotonNeighbor>* scratch,
+                                     float* hit_distance) const {
   const int max_depth = context.settings->max_depth;
   Vec3 sum(0.0f), throughput(1.0f);
   uint32_t mask = kVisibleDiffuse;
@@ -168,6 +200,7 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
         return sum + throughput * (context.scene->world.color +
                                    context.lights->distant_radiance(ray.direction, mask));
     }
+    if (depth == 0 && hit_distance) *hit_distance = found ? hit.t : INFINITY;
     if (!found) return sum;
     const SurfaceInteraction y = context.accel->interaction(hit);
     const Vec3 wo = -ray.direction;
@@ -198,8 +231,8 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
 }
 
 Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const SurfaceInteraction& x,
-                                       const Bsdf& bsdf, Sampler& sampler) const {
-  const int n = context.settings->final_gather_rays;
+                                       const Bsdf& bsdf, int n, Sampler& sampler,
+                                       float* harmonic_distance) const {
   const Vec2 shift = sampler.get_2d();
   const Frame& frame = bsdf.frame();
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
@@ -208,6 +241,8 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
   const RadianceRecord* record = radiance_.nearest(x.p, bsdf.ng(), kGatherMinCos);
   const GuidedSquare guide(record ? record->guide : GuideHistogram{});
   Vec3 sum(0.0f);
+  double inverse_distances = 0.0;  // for the harmonic mean (Ward 1988)
+  int traced = 0;
   for (int j = 0; j < n; ++j) {
     // pdf = density * cos / pi, so each ray adds (albedo / pi) L cos / pdf = albedo L / density.
     float density;
@@ -217,8 +252,14 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
     Ray ray;
     ray.origin = offset_ray_origin(x.p, x.ng, wi);
     ray.direction = wi;
-    sum += gather_ray(context, ray, sampler, &scratch) / density;
+    float t = INFINITY;
+    sum += gather_ray(context, ray, sampler, &scratch, harmonic_distance ? &t : nullptr) / density;
+    inverse_distances += 1.0 / std::max(t, 1e-6f);
+    ++traced;
   }
+  if (harmonic_distance)
+    *harmonic_distance = inverse_distances > 0.0 ? static_cast<float>(traced / inverse_distances)
+                                                 : INFINITY;
   return sum / static_cast<float>(n);
 }
 
@@ -259,8 +300,12 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
                                     caustic_radius_, kPhotonCaustic, &scratch);
   // Final gathering where it shows: at the first diffuse surface seen directly or through
   // perfect mirrors and glass. After a rough glossy bounce the blur hides the global map.
-  if (s.final_gather_rays > 0 && !v.after_glossy) {
-    result->indirect += weight * final_gather(context, x, bsdf, sampler);
+  Vec3 cached;
+  if (s.final_gather_rays > 0 && !v.after_glossy &&
+      irradiance_.lookup(x.p, bsdf.frame().n, &cached)) {
+    result->indirect += weight * cached;
+  } else if (s.final_gather_rays > 0 && !v.after_glossy) {
+    result->indirect += weight * final_gather(context, x, bsdf, s.final_gather_rays, sampler);
   } else if (!global_.empty()) {
     // Photons that bounced off a diffuse or glossy surface at least once; direct light and
     // caustics come from the other two estimates.
@@ -303,7 +348,8 @@ bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit
     for (int k = 0; k < n; ++k) {
       Sampler inner(s.seed, stream, static_cast<uint32_t>(k), static_cast<uint32_t>(n));
       direct += direct_irradiance(context, si, inner);
-      if (s.final_gather_rays > 0) indirect += final_gather(context, si, sp.bsdf, inner);
+      if (s.final_gather_rays > 0)
+        indirect += final_gather(context, si, sp.bsdf, s.final_gather_rays, inner);
     }
     reflected = direct * (kInvPi / n) + indirect / static_cast<float>(n);
     if (s.final_gather_rays == 0 && !global_.empty())

@@ -7,11 +7,13 @@
 //   I3 caustics: a radiance estimate from the caustic map,
 //   I4 indirect diffuse light: final gathering, cosine-distributed rays whose hit points read
 //      the precomputed radiance; or, with final_gather_rays = 0, a direct estimate from the
-//      global map (a fast preview).
+//      global map (a fast preview). Where the camera sees diffuse surfaces, the final gather is
+//      read from an irradiance cache built in prepare() (irradiance_cache_build.h).
 #pragma once
 
 #include "photon/camera_path.h"
 #include "photon/integrator.h"
+#include "photon/irradiance_cache.h"
 #include "photon/photon_map.h"
 #include "photon/radiance_cache.h"
 
@@ -40,11 +42,15 @@ class PhotonMapIntegrator : public Integrator {
   // Radiance (for albedo 1) leaving a diffuse point p with normal n: the nearest precomputed
   // record, else a small global-map estimate.
   Vec3 gathered_radiance(const Vec3& p, const Vec3& n, std::vector<PhotonNeighbor>* scratch) const;
-  // Radiance reaching the origin of a final-gather ray (seed 000 eq. 2.17's integrand).
+  // Radiance reaching the origin of a final-gather ray (seed 000 eq. 2.17's integrand), and
+  // the distance to its first hit (infinity if none).
   Vec3 gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
-                  std::vector<PhotonNeighbor>* scratch) const;
+                  std::vector<PhotonNeighbor>* scratch, float* hit_distance = nullptr) const;
+  // Reflected radiance for albedo 1 from `rays` final-gather rays; optionally the harmonic
+  // mean distance of their hits.
   Vec3 final_gather(const RenderContext& context, const SurfaceInteraction& x, const Bsdf& bsdf,
-                    Sampler& sampler) const;
+                    int rays, Sampler& sampler, float* harmonic_distance = nullptr) const;
+  void build_irradiance(const RenderContext& context, const PrepareControl& control);
   // Caustics and indirect light of the diffuse lobes at a camera-path vertex.
   void shade_diffuse(const RenderContext& context, const PathVertex& vertex, Sampler& sampler,
                      RadianceSample* result) const;
@@ -52,8 +58,9 @@ class PhotonMapIntegrator : public Integrator {
 
   PhotonMap global_, caustic_;
   RadianceCache radiance_;  // precomputed at a subset of the global photons
+  IrradianceCache irradiance_;  // final gathers at camera-visible diffuse points
   float global_radius_ = 0.0f, caustic_radius_ = 0.0f;
-  std::vector<std::pair<std::string, double>> stats_;
+  std::vector<std::pair<std::string, double>> stats_, irradiance_stats_;
 };
 
 }  // namespace photon

@@ -51,14 +51,20 @@ Scene emissive_furnace(float rho, float le) {
 }
 
 TEST(PhotonMapIntegrator, EmissiveFurnaceConvergesToLeOverOneMinusAlbedo) {
-  for (int final_gather : {16, 0}) {
+  // Final gathering through the irradiance cache, per sample, and the preview.
+  for (auto [final_gather, cache] : {std::pair{16, true}, std::pair{16, false}, std::pair{0, false}}) {
     const Scene scene = emissive_furnace(0.6f, 1.0f);
     RenderSettings s = settings_for(24, 8);
     s.photons = 100000;
     s.final_gather_rays = final_gather;
+    s.irradiance_cache = cache;
     const Rendered r = render(scene, s);
     EXPECT_NEAR(mean_channel(r.rgba, 0), 1.0 / (1.0 - 0.6), 0.03 * 2.5)
-        << "final gather rays " << final_gather;
+        << "final gather rays " << final_gather << ", cache " << cache;
+    double records = 0.0;
+    for (const auto& [name, value] : r.stats.integrator)
+      if (name == "irradiance_records") records = value;
+    EXPECT_EQ(records > 0.0, cache);
   }
 }
 
