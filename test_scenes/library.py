@@ -262,7 +262,7 @@ def image_material(name, image_path):
 
 def textures(folder):
     """A UV-mapped plane and a cube with an image-textured Principled material
-    (//textures/checker.png); Photon does not sample textures yet and warns."""
+    (//textures/checker.png), sampled through OpenImageIO's TextureSystem."""
     scene = base_scene()
     os.makedirs(os.path.join(folder, "textures"), exist_ok=True)
     path = checker_png(os.path.join(folder, "textures", "checker.png"))
