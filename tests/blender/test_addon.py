@@ -8,7 +8,7 @@ def test_registers_and_unregisters_cleanly(blender):
     assert "exception" not in result, result.get("exception")
     assert result["import_error"] is None
     assert result["engine_registered"] and result["has_settings"] and result["panel_registered"]
-    assert result["defaults"] == {"integrator": "PHOTON_MAP", "samples": 16, "max_depth": 8,
+    assert result["defaults"] == {"integrator": "PHOTON_MAP", "samples": 64, "max_depth": 8,
                                   "seed": 0, "threads": 0, "tile_size": 64}
     assert result["after_disable"] == {"engine_registered": False, "has_settings": False,
                                        "panel_registered": False}

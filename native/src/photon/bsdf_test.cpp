@@ -287,6 +287,9 @@ struct Chi2Case {
   BsdfSetup setup;
 };
 
+// Test listings (ctest, --gtest_list_tests) show the case's name instead of its bytes.
+void PrintTo(const Chi2Case& c, std::ostream* os) { *os << c.name; }
+
 std::vector<Chi2Case> chi2_cases() {
   std::vector<Chi2Case> c;
   c.push_back({"Lambert_45", {{lambert()}, 45}});
