@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include "photon/emissive_mesh.h"
+#include "photon/scene_resources.h"
 #include "photon/photon_map.h"
 #include "photon/photon_tracer.h"
 #include "photon/radiance_cache.h"
@@ -112,17 +112,15 @@ BENCHMARK(BM_RadianceCacheLookup);
 // Photon tracing in the caustic box against bare Embree rays of the same lengths: photons per
 // second and the fraction of the raw ray rate that tracing keeps.
 struct TraceScene {
-  TraceScene() : scene(make_caustic_box()), accel(scene, &warnings), lights(scene.lights, &warnings),
-                 emissive(scene, accel) {
-    context = {&scene, &accel, &lights, &settings, &emissive};
-  }
+  TraceScene()
+      : scene(make_caustic_box()), resources(scene, settings, &warnings),
+        context(resources.context()), accel(resources.accel()) {}
   Scene scene;
   std::vector<std::string> warnings;
-  Accel accel;
-  LightSet lights;
-  EmissiveMeshes emissive;
   RenderSettings settings;
-  RenderContext context;
+  SceneResources resources;
+  const RenderContext& context;
+  const Accel& accel;
 };
 
 void BM_TracePhotons(benchmark::State& state) {

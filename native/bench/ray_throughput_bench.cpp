@@ -7,6 +7,7 @@
 #include <atomic>
 #include <memory>
 
+#include "photon/scene_resources.h"
 #include "photon/accel.h"
 #include "photon/camera.h"
 #include "photon/pixel_renderer.h"
@@ -22,9 +23,9 @@ constexpr int kSize = 256;
 struct Fixture {
   Scene scene;
   std::vector<std::string> warnings;
-  std::unique_ptr<Accel> accel;
-  std::unique_ptr<LightSet> lights;
   RenderSettings settings;
+  std::unique_ptr<SceneResources> resources;
+  const Accel* accel = nullptr;
   std::vector<Ray> rays;
 
   explicit Fixture(bool with_lights) {
@@ -32,8 +33,8 @@ struct Fixture {
     // A dense sphere so the BVH is not trivially small.
     add_mesh_instance(&scene, make_uv_sphere({0.4f, 0.3f, 0.9f}, 0.3f, 256, 128), 0);
     if (!with_lights) scene.lights.clear();
-    accel = std::make_unique<Accel>(scene, &warnings);
-    lights = std::make_unique<LightSet>(scene.lights, &warnings);
+    resources = std::make_unique<SceneResources>(scene, settings, &warnings);
+    accel = &resources->accel();
     settings.full_width = settings.full_height = kSize;
     settings.x1 = settings.y1 = kSize;
     settings.max_depth = 0;
@@ -43,14 +44,7 @@ struct Fixture {
         rays.push_back(generate_camera_ray(scene.camera, (x + 0.5f) / kSize, (y + 0.5f) / kSize,
                                            Vec2(0.5f, 0.5f)));
   }
-  RenderContext context() const {
-    RenderContext c;
-    c.scene = &scene;
-    c.accel = accel.get();
-    c.lights = lights.get();
-    c.settings = &settings;
-    return c;
-  }
+  const RenderContext& context() const { return resources->context(); }
 };
 
 void BM_CameraRays_BareEmbree(benchmark::State& state) {
@@ -108,7 +102,7 @@ void BM_CameraRays_EmbreeStream(benchmark::State& state) {
 void render_frame(benchmark::State& state, bool with_lights) {
   Fixture f(with_lights);
   RayTraceIntegrator integrator;
-  const RenderContext ctx = f.context();
+  const RenderContext& ctx = f.context();
   std::vector<float> rgba(kSize * kSize * 4);
   std::atomic<bool> cancel{false};
   uint64_t bad = 0;

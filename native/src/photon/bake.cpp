@@ -5,7 +5,7 @@
 
 #include <chrono>
 
-#include "photon/emissive_mesh.h"
+#include "photon/scene_resources.h"
 #include "photon/render_session.h"
 
 namespace photon {
@@ -61,18 +61,11 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
 
   result.threads = run_in_arena(settings.threads, [&] {
     auto t0 = Clock::now();
-    control.report("Building BVH", 0.0f);
-    const Accel accel(scene, &result.warnings);
-    const LightSet lights(scene.lights, &result.warnings);
-    const EmissiveMeshes emissive(scene, accel);
+    control.report("Building BVH, lights and textures", 0.0f);
+    const SceneResources resources(scene, settings, &result.warnings);
+    const Accel& accel = resources.accel();
     result.build_seconds = seconds_since(t0);
-
-    RenderContext context;
-    context.scene = &scene;
-    context.accel = &accel;
-    context.lights = &lights;
-    context.settings = &settings;
-    context.emissive = &emissive;
+    const RenderContext& context = resources.context();
     std::unique_ptr<Integrator> integrator = make_integrator(settings.integrator);
 
     t0 = Clock::now();

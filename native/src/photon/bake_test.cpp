@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include <OpenImageIO/imagebuf.h>
+
 #include "photon/accel.h"
 #include "photon/lightmap.h"
 #include "photon/test_scenes.h"
@@ -227,6 +229,51 @@ TEST(Lightmap, FilterSmoothsASurfaceButNotAcrossSurfacesAndFillsGutters) {
     EXPECT_TRUE(out_cover[y * w + 3]);            // the gutter was filled...
     EXPECT_GT(out[y * w + 3].x, 1.0f);            // ...from both neighbours
   }
+}
+
+}  // namespace
+}  // namespace photon
+
+namespace photon {
+namespace {
+
+// A bake reads textured albedo like a render does: a plane whose Diffuse colour comes from a
+// 2 x 1 image (8-bit sRGB 255 and 128: linear 1 and 0.2158) bakes the two halves in that ratio.
+TEST(Bake, TexturedAlbedoIsBaked) {
+  const std::string dir = ::testing::TempDir();
+  setenv("PHOTON_TEXTURE_CACHE", (dir + "photon_bake_tex_cache").c_str(), 1);
+  const std::string path = dir + "photon_bake_two_texels.png";
+  unsigned char px[6] = {255, 255, 255, 128, 128, 128};
+  ASSERT_TRUE(OIIO::ImageBuf(OIIO::ImageSpec(2, 1, 3, OIIO::TypeDesc::UINT8), px).write(path));
+  Scene scene;
+  scene.textures.push_back({path, true, TextureExtension::kExtend, TextureInterpolation::kClosest});
+  Material m = Material::diffuse(Vec3(0.8f));
+  m.closures[0][Param::kColor].texture = 0;
+  scene.materials.push_back(m);
+  Mesh quad = make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
+  quad.corner_uvs.clear();
+  for (uint32_t i : quad.indices)
+    quad.corner_uvs.push_back(Vec2(0.5f * (quad.positions[i].x + 1), 0.5f * (quad.positions[i].y + 1)));
+  add_mesh_instance(&scene, quad, 0);
+  Light light;
+  light.power = 100.0f;
+  light.light_to_world = Transform::translation(Vec3(0, 0, 3));
+  scene.lights.push_back(light);
+  const Accel accel(scene, nullptr);
+  std::vector<BakePoint> points;
+  for (float x : {-0.5f, 0.5f}) {  // symmetric about the light: same irradiance
+    Ray ray;
+    ray.origin = Vec3(x, 0.0f, 1.0f);
+    ray.direction = Vec3(0, 0, -1);
+    Hit hit;
+    ASSERT_TRUE(accel.intersect(ray, kVisibleAll, &hit));
+    points.push_back(point_on(0, hit.primitive, hit.u, hit.v));
+  }
+  const BakeResult r = bake_points(scene, bake_settings(), BakeOptions{}, points, PrepareControl{});
+  ASSERT_TRUE(r.error.empty()) << r.error;
+  ASSERT_EQ(r.status[0], kBakeOk);
+  ASSERT_EQ(r.status[1], kBakeOk);
+  EXPECT_NEAR(r.radiance[1].x / r.radiance[0].x, 0.2158f, 0.005f);
 }
 
 }  // namespace

@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "photon/emissive_mesh.h"
+#include "photon/scene_resources.h"
 #include "photon/test_scenes.h"
 
 namespace photon {
@@ -13,10 +13,9 @@ namespace {
 
 // Everything a trace needs, built from a scene.
 struct Fixture {
-  explicit Fixture(Scene s) : scene(std::move(s)), accel(scene, &warnings),
-                              lights(scene.lights, &warnings), emissive(scene, accel) {
-    context = {&scene, &accel, &lights, &settings, &emissive};
-  }
+  explicit Fixture(Scene s)
+      : scene(std::move(s)), resources(scene, settings, &warnings),
+        context(resources.context()), emissive(resources.emissive()) {}
   PhotonTraceResult trace(const PhotonTraceSettings& ts, int threads = 0) {
     const PhotonSources sources(context);
     PrepareControl control;
@@ -27,11 +26,10 @@ struct Fixture {
   }
   Scene scene;
   std::vector<std::string> warnings;
-  Accel accel;
-  LightSet lights;
-  EmissiveMeshes emissive;
   RenderSettings settings;
-  RenderContext context;
+  SceneResources resources;
+  const RenderContext& context;
+  const EmissiveMeshes& emissive;
 };
 
 // A closed 2 m box (all six faces) of albedo `albedo`, so every photon hits a wall.

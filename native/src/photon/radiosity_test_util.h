@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "photon/emissive_mesh.h"
+#include "photon/scene_resources.h"
 #include "photon/integrator.h"
 #include "photon/radiosity_material.h"
 #include "photon/radiosity_mesh.h"
@@ -13,12 +13,8 @@ namespace photon {
 
 struct RadiosityFixture {
   explicit RadiosityFixture(Scene s)
-      : scene(std::move(s)),
-        accel(scene, &warnings),
-        lights(scene.lights, &warnings),
-        emissive(scene, accel) {
-    context = {&scene, &accel, &lights, &settings, &emissive};
-  }
+      : scene(std::move(s)), resources(scene, settings, &warnings),
+        context(resources.context()), accel(resources.accel()) {}
   RadiosityMesh mesh(float patch_size) {
     RadiosityMeshSettings ms;
     ms.patch_size = patch_size;
@@ -26,11 +22,10 @@ struct RadiosityFixture {
   }
   Scene scene;
   std::vector<std::string> warnings;
-  Accel accel;
-  LightSet lights;
-  EmissiveMeshes emissive;
   RenderSettings settings;
-  RenderContext context;
+  SceneResources resources;
+  const RenderContext& context;
+  const Accel& accel;
 };
 
 }  // namespace photon

@@ -6,8 +6,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
-#include "photon/emissive_mesh.h"
-#include "photon/textures.h"
+#include "photon/scene_resources.h"
 #include "photon/pixel_renderer.h"
 
 namespace photon {
@@ -170,23 +169,13 @@ void RenderSession::run_render() {
   FlushDenormalsObserver observer(arena);
 
   std::vector<std::string> warnings;
-  set_status("Building BVH");
+  set_status("Building BVH, lights and textures");
   auto t0 = Clock::now();
-  std::unique_ptr<Accel> accel;
-  arena.execute([&] { accel = std::make_unique<Accel>(*scene_, &warnings); });
-  LightSet lights(scene_->lights, &warnings);
-  set_status("Loading textures");
-  const TextureSet textures(scene_->textures, &warnings);
-  const EmissiveMeshes emissive(*scene_, *accel, &textures);
+  std::unique_ptr<SceneResources> resources;
+  arena.execute(
+      [&] { resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings); });
   const double build_seconds = seconds_since(t0);
-
-  RenderContext context;
-  context.scene = scene_.get();
-  context.accel = accel.get();
-  context.lights = &lights;
-  context.settings = &settings_;
-  context.emissive = &emissive;
-  context.textures = &textures;
+  const RenderContext& context = resources->context();
   std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
 
   set_status("Preparing");
@@ -210,10 +199,10 @@ void RenderSession::run_render() {
     warnings_.insert(warnings_.end(), warnings.begin(), warnings.end());
     stats_.build_seconds = build_seconds;
     stats_.prepare_seconds = prepare_seconds;
-    stats_.unique_triangles = accel->triangle_count();
-    stats_.instances = accel->instance_count();
-    stats_.bvh_count = accel->blas_count();
-    stats_.lights = lights.size();
+    stats_.unique_triangles = resources->accel().triangle_count();
+    stats_.instances = resources->accel().instance_count();
+    stats_.bvh_count = resources->accel().blas_count();
+    stats_.lights = resources->lights().size();
     stats_.threads = threads;
     stats_.integrator = integrator->prepare_stats();
     status_ = "Rendering";
