@@ -93,7 +93,8 @@ LobeEval ggx_reflection(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta
   const float d = ggx_d(h, l.alpha);
   const float g = ggx_g2(wo, wi, h, l.alpha);
   const bool glass = l.type == LobeType::kGgxGlass;
-  const Vec3 fr = glass ? Vec3(fresnel_dielectric(cos_oh, eta)) : reflection_fresnel(l, cos_oh, eta);
+  const Vec3 fr =
+      glass ? Vec3(fresnel_dielectric(cos_oh, eta)) : reflection_fresnel(l, cos_oh, eta);
   r.f = l.weight * fr * (d * g / (4.0f * wo.z * wi.z));
   r.pdf = ggx_visible_normal_pdf(wo, h, l.alpha) / (4.0f * cos_oh) * (glass ? fr.x : 1.0f);
   return r;
@@ -108,8 +109,7 @@ LobeEval ggx_transmission(const Lobe& l, const Vec3& wo, const Vec3& wi, float e
   if (!geo.valid) return r;
   const float d = ggx_d(geo.h, l.alpha);
   const float g = ggx_g2(wo, wi, geo.h, l.alpha);
-  const float t =
-      l.type == LobeType::kGgxGlass ? 1.0f - fresnel_dielectric(geo.cos_oh, eta) : 1.0f;
+  const float t = l.type == LobeType::kGgxGlass ? 1.0f - fresnel_dielectric(geo.cos_oh, eta) : 1.0f;
   const float jacobian = eta * eta * std::fabs(geo.cos_ih) / geo.denom2;  // d(h) / d(wi)
   r.f = l.weight * (t * d * g * jacobian * geo.cos_oh / (wo.z * std::fabs(wi.z)));
   r.pdf = t * ggx_visible_normal_pdf(wo, geo.h, l.alpha) * jacobian;
@@ -313,7 +313,9 @@ bool Bsdf::to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const {
   return wo_local->z > 1e-7f && dot(*wo_world, ng_) != 0.0f;
 }
 
-float Bsdf::eta(const Lobe& l) const { return front_facing_ ? l.ior : 1.0f / l.ior; }
+float Bsdf::eta(const Lobe& l) const {
+  return front_facing_ ? l.ior : 1.0f / l.ior;
+}
 
 int Bsdf::selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const {
   float total = 0.0f;
@@ -332,9 +334,8 @@ int Bsdf::selection_probabilities(const Vec3& wo_local, uint8_t mask, float* pro
   return selected;
 }
 
-void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world,
-                        const Vec3& wi, uint8_t mask, const float* probs, Vec3* f,
-                        float* pdf) const {
+void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
+                        uint8_t mask, const float* probs, Vec3* f, float* pdf) const {
   *f = Vec3(0.0f);
   *pdf = 0.0f;
   const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;

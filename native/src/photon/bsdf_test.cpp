@@ -106,8 +106,8 @@ Bsdf make_bsdf(const BsdfSetup& s) {
 
 Vec3 direction_at(const Bsdf& b, float theta_deg, float phi = 0.0f) {
   const float t = theta_deg * static_cast<float>(kPiD / 180.0);
-  return b.frame().to_world(Vec3(std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi),
-                                 std::cos(t)));
+  return b.frame().to_world(
+      Vec3(std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi), std::cos(t)));
 }
 
 class Uniform {
@@ -156,7 +156,9 @@ double gamma_q(double a, double x) {
   return std::exp(log_prefix) * h;
 }
 
-double chi2_p_value(double statistic, int dof) { return gamma_q(0.5 * dof, 0.5 * statistic); }
+double chi2_p_value(double statistic, int dof) {
+  return gamma_q(0.5 * dof, 0.5 * statistic);
+}
 
 struct Chi2Result {
   double statistic = 0.0;
@@ -317,9 +319,9 @@ std::vector<Chi2Case> chi2_cases() {
   c.push_back({"RefractionInside_a025_30", {{refraction(0.25f)}, 30, false}});
   c.push_back({"Mixture_45",
                {{lambert(Vec3(0.3f)), schlick_metal(0.2f, Vec3(0.5f)), glass(0.4f, 1.33f)}, 45}});
-  c.push_back({"MixtureInside_70",
-               {{lambert(Vec3(0.3f)), ggx(0.1f, FresnelMode::kDielectric), glass(0.4f)}, 70,
-                false}});
+  c.push_back(
+      {"MixtureInside_70",
+       {{lambert(Vec3(0.3f)), ggx(0.1f, FresnelMode::kDielectric), glass(0.4f)}, 70, false}});
   // A delta lobe takes part in the lobe choice: the non-delta pdf integrates to less than 1.
   c.push_back({"MixtureWithTransparent_45",
                {{lambert(Vec3(0.5f)), ggx(0.3f), transparent(Vec3(0.4f))}, 45}});
@@ -331,7 +333,9 @@ std::vector<Chi2Case> chi2_cases() {
 }
 
 // Sidak correction: the whole suite rejects a correct implementation with probability 0.01.
-double sidak_significance(int tests) { return 1.0 - std::pow(1.0 - 0.01, 1.0 / tests); }
+double sidak_significance(int tests) {
+  return 1.0 - std::pow(1.0 - 0.01, 1.0 / tests);
+}
 
 class BsdfChi2 : public ::testing::TestWithParam<Chi2Case> {};
 
@@ -351,8 +355,7 @@ TEST_P(BsdfChi2, SampleMatchesPdf) {
   EXPECT_NEAR(r.expected_total / r.observed_total, 1.0, 5e-3);
   EXPECT_GT(r.p_value, significance) << "chi2 " << r.statistic << " dof " << r.dof;
   std::printf("  %-32s chi2 %8.1f dof %4d p %.3g  (samples kept %ld, expected %.0f)\n",
-              c.name.c_str(), r.statistic, r.dof, r.p_value, r.observed_total,
-              r.expected_total);
+              c.name.c_str(), r.statistic, r.dof, r.p_value, r.observed_total, r.expected_total);
 }
 
 INSTANTIATE_TEST_SUITE_P(BsdfLobes, BsdfChi2, ::testing::ValuesIn(chi2_cases()),
@@ -403,8 +406,8 @@ TEST(MicrofacetChi2, VisibleNormalSamplingMatchesItsPdf) {
           [&](const Vec3& h) { return ggx_visible_normal_pdf(wo, h, alpha); }, 3);
       EXPECT_NEAR(r.expected_total / r.observed_total, 1.0, 5e-3) << alpha << " " << theta;
       EXPECT_EQ(r.outside_support, 0);
-      EXPECT_GT(r.p_value, significance) << "alpha " << alpha << " theta " << theta << " chi2 "
-                                         << r.statistic << " dof " << r.dof;
+      EXPECT_GT(r.p_value, significance)
+          << "alpha " << alpha << " theta " << theta << " chi2 " << r.statistic << " dof " << r.dof;
     }
 }
 
@@ -511,8 +514,10 @@ TEST(BsdfConsistency, MaskSelectsLobesByFlags) {
 // ---- Reciprocity ----
 
 TEST(BsdfReciprocity, ReflectionLobesAreSymmetric) {
-  const std::vector<Lobe> lobes = {lambert(),      burley(0.7f),
-                                   ggx(0.2f),      ggx(0.6f, FresnelMode::kDielectric),
+  const std::vector<Lobe> lobes = {lambert(),
+                                   burley(0.7f),
+                                   ggx(0.2f),
+                                   ggx(0.6f, FresnelMode::kDielectric),
                                    schlick_metal(0.4f, Vec3(0.9f, 0.5f, 0.1f)),
                                    glass(0.3f)};
   Uniform rng(99);
@@ -601,9 +606,9 @@ TEST(BsdfFurnace, LambertIsExactlyOne) {
       for (int j = 0; j < n; ++j) {
         const double z = 1.0 - 2.0 * (i + 0.5) / n, r = std::sqrt(1.0 - z * z);
         const double phi = 2.0 * kPiD * (j + 0.5) / n;
-        const Vec3 wi = b.frame().to_world(Vec3(static_cast<float>(r * std::cos(phi)),
-                                                static_cast<float>(r * std::sin(phi)),
-                                                static_cast<float>(z)));
+        const Vec3 wi =
+            b.frame().to_world(Vec3(static_cast<float>(r * std::cos(phi)),
+                                    static_cast<float>(r * std::sin(phi)), static_cast<float>(z)));
         sum += b.eval(wo, wi).x * std::fabs(z) * 4.0 * kPiD / (n * n);
       }
     EXPECT_NEAR(sum, 1.0, 5e-3) << theta;
@@ -659,9 +664,9 @@ TEST(BsdfFurnace, BurleyDiffuseMatchesItsClosedFormAtNormalIncidence) {
     for (float theta : {45.0f, 80.0f}) {
       const Bsdf b = make_bsdf({{burley(roughness)}, theta});
       const Albedo a = directional_albedo(b, direction_at(b, theta), 50000, 5);
-      print_albedo(roughness == 0.0f ? "burley r=0" : (roughness == 1.0f ? "burley r=1"
-                                                                         : "burley r=0.5"),
-                   0, theta, true, a);
+      print_albedo(
+          roughness == 0.0f ? "burley r=0" : (roughness == 1.0f ? "burley r=1" : "burley r=0.5"), 0,
+          theta, true, a);
       ASSERT_TRUE(std::isfinite(a.mean));
       if (roughness == 0.0f) EXPECT_LT(a.mean, 1.0 - 1.0 / 42.0);
       if (roughness == 1.0f && theta == 80.0f) EXPECT_GT(a.mean, 1.0 + 1.0 / 28.0);
@@ -703,7 +708,8 @@ TEST(BsdfDelta, SharpGlassChoosesReflectionWithProbabilityFresnel) {
       EXPECT_EQ(b.flags(), kLobeReflection | kLobeTransmission | kLobeSpecular);
       const Vec3 wo = direction_at(b, theta);
       const float eta = front ? 1.5f : 1.0f / 1.5f;
-      const float fresnel = fresnel_dielectric(std::cos(theta * static_cast<float>(kPiD / 180)), eta);
+      const float fresnel =
+          fresnel_dielectric(std::cos(theta * static_cast<float>(kPiD / 180)), eta);
       Uniform rng(31);
       const int n = 100000;
       int reflected = 0;
@@ -721,7 +727,8 @@ TEST(BsdfDelta, SharpGlassChoosesReflectionWithProbabilityFresnel) {
         } else {
           EXPECT_NEAR(s.pdf, 1.0f - fresnel, 1e-5f);
           // Snell: sin_t = sin_i / eta.
-          const float sin_i = std::sqrt(std::max(0.0f, 1.0f - dot(wo, b.frame().n) * dot(wo, b.frame().n)));
+          const float sin_i =
+              std::sqrt(std::max(0.0f, 1.0f - dot(wo, b.frame().n) * dot(wo, b.frame().n)));
           const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_i * cos_i));
           EXPECT_NEAR(sin_t, sin_i / eta, 1e-4f);
         }
@@ -779,9 +786,9 @@ TEST(BsdfDelta, MixedWithDiffuseTheChoiceProbabilityIsDividedOut) {
 TEST(BsdfBadInput, NoNanOut) {
   const float nan = std::numeric_limits<float>::quiet_NaN();
   const float inf = std::numeric_limits<float>::infinity();
-  const Bsdf b = make_bsdf({{lambert(), ggx(0.2f, FresnelMode::kDielectric), glass(0.3f),
-                             glass(0.0f), translucent()},
-                            45});
+  const Bsdf b = make_bsdf(
+      {{lambert(), ggx(0.2f, FresnelMode::kDielectric), glass(0.3f), glass(0.0f), translucent()},
+       45});
   const Vec3 good = direction_at(b, 45);
   const Vec3 bad[] = {Vec3(nan, 0, 1), Vec3(0.0f), Vec3(inf, 0, 0), -good,
                       normalize(cross(b.frame().n, b.ng()) + b.frame().t)};  // tangent
