@@ -34,6 +34,26 @@ BakePoint point_on(uint32_t instance, uint32_t triangle, float u, float v) {
   return p;
 }
 
+// The bake point of instance 0 straight below (x, y) (traced, so no assumption on how the
+// mesh is triangulated); false if nothing is there.
+bool point_below(const Accel& accel, float x, float y, float z_above, BakePoint* point) {
+  Ray ray;
+  ray.origin = Vec3(x, y, z_above);
+  ray.direction = Vec3(0, 0, -1);
+  Hit hit;
+  if (!accel.intersect(ray, kVisibleAll, &hit)) return false;
+  *point = point_on(0, hit.primitive, hit.u, hit.v);
+  return true;
+}
+
+// A point light of `power` W at (0, 0, height).
+Light point_light_above(float power, float height) {
+  Light light;
+  light.power = power;
+  light.light_to_world = Transform::translation(Vec3(0, 0, height));
+  return light;
+}
+
 TEST(Accel, SurfaceHitMatchesTheHitOfARay) {
   Scene scene;
   scene.materials.push_back(Material::diffuse(Vec3(0.8f)));
@@ -68,21 +88,13 @@ TEST(Bake, PlaneUnderPointLightFollowsInverseSquareLawOnBothWindings) {
     if (flipped)
       for (size_t t = 0; t < quad.triangle_count(); ++t) std::swap(quad.indices[3 * t + 1], quad.indices[3 * t + 2]);
     add_mesh_instance(&scene, quad, 0);
-    Light light;
-    light.power = 100.0f;
-    light.light_to_world = Transform::translation(Vec3(0, 0, 1));
-    scene.lights.push_back(light);
-    // Points found by tracing straight down, so no assumption on the quad's triangulation.
+    scene.lights.push_back(point_light_above(100.0f, 1.0f));
     const Accel accel(scene, nullptr);
     std::vector<BakePoint> points;
     std::vector<Vec3> where = {{0, 0, 0}, {0.3f, 0, 0}, {-1.0f, 2.0f, 0}};
     for (const Vec3& w : where) {
-      Ray ray;
-      ray.origin = Vec3(w.x, w.y, 0.5f);
-      ray.direction = Vec3(0, 0, -1);
-      Hit hit;
-      ASSERT_TRUE(accel.intersect(ray, kVisibleAll, &hit));
-      points.push_back(point_on(0, hit.primitive, hit.u, hit.v));
+      points.emplace_back();
+      ASSERT_TRUE(point_below(accel, w.x, w.y, 0.5f, &points.back()));
     }
     const BakeResult r = bake_points(scene, bake_settings(), BakeOptions{}, points, PrepareControl{});
     ASSERT_TRUE(r.error.empty()) << r.error;
@@ -231,12 +243,6 @@ TEST(Lightmap, FilterSmoothsASurfaceButNotAcrossSurfacesAndFillsGutters) {
   }
 }
 
-}  // namespace
-}  // namespace photon
-
-namespace photon {
-namespace {
-
 // A bake reads textured albedo like a render does: a plane whose Diffuse colour comes from a
 // 2 x 1 image (8-bit sRGB 255 and 128: linear 1 and 0.2158) bakes the two halves in that ratio.
 TEST(Bake, TexturedAlbedoIsBaked) {
@@ -255,19 +261,12 @@ TEST(Bake, TexturedAlbedoIsBaked) {
   for (uint32_t i : quad.indices)
     quad.corner_uvs.push_back(Vec2(0.5f * (quad.positions[i].x + 1), 0.5f * (quad.positions[i].y + 1)));
   add_mesh_instance(&scene, quad, 0);
-  Light light;
-  light.power = 100.0f;
-  light.light_to_world = Transform::translation(Vec3(0, 0, 3));
-  scene.lights.push_back(light);
+  scene.lights.push_back(point_light_above(100.0f, 3.0f));
   const Accel accel(scene, nullptr);
   std::vector<BakePoint> points;
   for (float x : {-0.5f, 0.5f}) {  // symmetric about the light: same irradiance
-    Ray ray;
-    ray.origin = Vec3(x, 0.0f, 1.0f);
-    ray.direction = Vec3(0, 0, -1);
-    Hit hit;
-    ASSERT_TRUE(accel.intersect(ray, kVisibleAll, &hit));
-    points.push_back(point_on(0, hit.primitive, hit.u, hit.v));
+    points.emplace_back();
+    ASSERT_TRUE(point_below(accel, x, 0.0f, 1.0f, &points.back()));
   }
   const BakeResult r = bake_points(scene, bake_settings(), BakeOptions{}, points, PrepareControl{});
   ASSERT_TRUE(r.error.empty()) << r.error;
