@@ -1,5 +1,7 @@
 #include "photon/caustic_targets.h"
 
+#include <algorithm>
+
 #include "photon/sampling.h"
 
 namespace photon {
@@ -30,8 +32,10 @@ std::vector<BoundingSphere> specular_targets(const Scene& scene, const Accel& ac
     float r2 = 0.0f;
     for (uint32_t tri : specular)
       for (int c = 0; c < 3; ++c)
-        r2 = std::max(r2, length_squared(
-                              inst.object_to_world.point(mesh.positions[mesh.indices[3 * tri + c]]) - center));
+        r2 = std::max(
+            r2,
+            length_squared(inst.object_to_world.point(mesh.positions[mesh.indices[3 * tri + c]]) -
+                           center));
     all_lo = min(all_lo, lo);
     all_hi = max(all_hi, hi);
     // A small margin keeps rays grazing the object inside the cone.
@@ -42,56 +46,114 @@ std::vector<BoundingSphere> specular_targets(const Scene& scene, const Accel& ac
   return spheres;
 }
 
-ConeMixture::ConeMixture(const Vec3& origin, const std::vector<BoundingSphere>& targets) {
+ConeMixture::ConeMixture(const Vec3& origin, const std::vector<BoundingSphere>& targets,
+                         const Cap& region, float extra_radius)
+    : region_(region) {
   for (const BoundingSphere& s : targets) {
-    const Vec3 to = s.center - origin;
-    const float d2 = length_squared(to);
-    Cone c;
-    if (d2 <= s.radius * s.radius) {
-      c.axis = Vec3(0.0f, 0.0f, 1.0f);
-      c.cos_max = -1.0f;
-    } else {
-      const float d = std::sqrt(d2);
-      c.axis = to / d;
-      c.cos_max = std::sqrt(std::max(0.0f, 1.0f - s.radius * s.radius / d2));
-    }
-    c.solid_angle = 2.0f * kPi * (1.0f - c.cos_max);
-    if (!(c.solid_angle > 1e-12f)) continue;
-    total_solid_angle_ += c.solid_angle;
-    cones_.push_back(c);
+    const Cap cone = Cap::towards_ball(origin, s.center, double(s.radius) + extra_radius);
+    const double solid_angle = cap_overlap(cone, region);
+    if (!(solid_angle > 0.0)) continue;  // behind the light, or outside its cone
+    total_solid_angle_ += solid_angle;
+    pieces_.push_back({cone, solid_angle});
   }
 }
 
-float ConeMixture::coverage() const { return std::min(1.0f, total_solid_angle_ / (4.0f * kPi)); }
+float ConeMixture::coverage() const {
+  return static_cast<float>(std::min(1.0, total_solid_angle_ / region_.solid_angle()));
+}
 
 bool ConeMixture::sample(float u_pick, Vec2 u, Vec3* direction, float* pdf_out) const {
-  if (cones_.empty()) return false;
-  float target = u_pick * total_solid_angle_;
+  if (pieces_.empty()) return false;
+  double target = u_pick * total_solid_angle_;
   size_t k = 0;
-  while (k + 1 < cones_.size() && target >= cones_[k].solid_angle) target -= cones_[k++].solid_angle;
-  const Cone& c = cones_[k];
-  *direction = c.cos_max <= -1.0f ? sample_uniform_sphere(u)
-                                  : Frame(c.axis).to_world(sample_uniform_cone(u, c.cos_max));
-  *pdf_out = pdf(*direction);
+  while (k + 1 < pieces_.size() && target >= pieces_[k].solid_angle)
+    target -= pieces_[k++].solid_angle;
+  if (!sample_cap_overlap(pieces_[k].cone, region_, u, direction)) return false;
+  *pdf_out = pdf_counting(*direction, k);
   return *pdf_out > 0.0f;
 }
 
-// p(w) = sum_k P(k) p_k(w) with P(k) = Omega_k / sum Omega and p_k = 1 / Omega_k inside cone k,
-// so p(w) = (number of cones containing w) / sum Omega.
-float ConeMixture::pdf(const Vec3& direction) const {
+// p(w) = sum_k P(k) p_k(w) with P(k) = Omega_k / sum Omega and p_k = 1 / Omega_k inside piece
+// k, so p(w) = (number of pieces containing w) / sum Omega. The piece a direction was drawn
+// from counts whatever rounding says at its border.
+float ConeMixture::pdf_counting(const Vec3& direction, size_t known_inside) const {
+  const bool in_region = region_.contains(direction);
   int inside = 0;
-  for (const Cone& c : cones_)
-    if (c.cos_max <= -1.0f || dot(direction, c.axis) >= c.cos_max) ++inside;
-  return inside / total_solid_angle_;
+  for (size_t k = 0; k < pieces_.size(); ++k)
+    if (k == known_inside || (in_region && pieces_[k].cone.contains(direction))) ++inside;
+  return static_cast<float>(inside / total_solid_angle_);
 }
 
-DiscMixture::DiscMixture(const Vec3& beam_direction, const std::vector<BoundingSphere>& targets,
-                         float extra_radius)
+float ConeMixture::pdf(const Vec3& direction) const {
+  return pieces_.empty() ? 0.0f : pdf_counting(direction, pieces_.size());
+}
+
+SphereLightAim::SphereLightAim(const Vec3& center, float radius,
+                               const std::vector<BoundingSphere>& targets)
+    : center_(center), radius_(radius) {
+  for (const BoundingSphere& t : targets) {
+    const Vec3 to = t.center - center;
+    const double d = length(to);
+    Cap normals;
+    if (!(d > 0.0)) {
+      if (!(t.radius > radius)) continue;
+      normals = Cap::whole_sphere();
+    } else {
+      // Target ball (c, rho) has a point in front of the tangent plane at q = p + r n when
+      // (c - q) . n > -rho, i.e. n . (c - p) / |c - p| > (r - rho) / |c - p|.
+      const double cos_max = (double(radius) - t.radius) / d;
+      if (cos_max >= 1.0) continue;  // inside the light
+      normals = Cap(to / static_cast<float>(d), std::acos(std::max(-1.0, cos_max)));
+    }
+    const double weight = Cap::towards_ball(center, t.center, t.radius).solid_angle();
+    if (!(weight > 0.0)) continue;
+    aims_.push_back({t, normals, weight});
+    total_weight_ += weight;
+  }
+}
+
+bool SphereLightAim::sample(float u_pick, Vec2 u_point, Vec2 u_dir, Vec3* normal, Vec3* direction,
+                            float* pdf_out) const {
+  if (aims_.empty()) return false;
+  double target = u_pick * total_weight_;
+  size_t k = 0;
+  while (k + 1 < aims_.size() && target >= aims_[k].weight) target -= aims_[k++].weight;
+  const Aim& a = aims_[k];
+  if (!sample_cap_overlap(a.normals, Cap::whole_sphere(), u_point, normal)) return false;
+  const Vec3 q = center_ + *normal * radius_;
+  const Cap cone = Cap::towards_ball(q, a.target.center, a.target.radius);
+  if (!sample_cap_overlap(cone, Cap(*normal, 0.5 * Cap::kPiD), u_dir, direction)) return false;
+  double pdf = 0.0;
+  for (size_t j = 0; j < aims_.size(); ++j) pdf += term(aims_[j], *normal, *direction, j == k);
+  *pdf_out = static_cast<float>(pdf);
+  return *pdf_out > 0.0f && std::isfinite(*pdf_out);
+}
+
+float SphereLightAim::pdf(const Vec3& normal, const Vec3& direction) const {
+  double pdf = 0.0;
+  for (const Aim& a : aims_) pdf += term(a, normal, direction, false);
+  return static_cast<float>(pdf);
+}
+
+// P(k) / (r^2 Omega(normals_k)) / Omega(hemisphere ∩ cone_k(q)) where (n, w) can come from k.
+double SphereLightAim::term(const Aim& a, const Vec3& normal, const Vec3& direction,
+                            bool known_inside) const {
+  if (!known_inside && !a.normals.contains(normal)) return 0.0;
+  const Vec3 q = center_ + normal * radius_;
+  const Cap cone = Cap::towards_ball(q, a.target.center, a.target.radius);
+  if (!known_inside && !(dot(direction, normal) > 0.0f && cone.contains(direction))) return 0.0;
+  const double piece = cap_overlap(cone, Cap(normal, 0.5 * Cap::kPiD));
+  if (!(piece > 0.0)) return 0.0;
+  const double r2 = double(radius_) * radius_;
+  return a.weight / total_weight_ / (r2 * a.normals.solid_angle() * piece);
+}
+
+DiscMixture::DiscMixture(const Vec3& beam_direction, const std::vector<BoundingSphere>& targets)
     : frame_(beam_direction) {
   for (const BoundingSphere& s : targets) {
     Disc d;
     d.center = s.center - frame_.n * dot(s.center, frame_.n);
-    d.radius = s.radius + extra_radius;
+    d.radius = s.radius;
     total_area_ += kPi * d.radius * d.radius;
     discs_.push_back(d);
   }

@@ -4,10 +4,15 @@
 //    sphere and a cosine-distributed direction around its normal (radiance I / (pi r^2));
 //  - spot: uniform directions inside the cone, weighted by Cycles' cone attenuation;
 //  - area: a uniform point and a cosine-distributed direction down the light's axis, pi L A;
-//  - sun: a parallel beam through a disc that covers the scene, flux E pi R^2.
+//  - sun: a parallel beam along the light's axis through a disc that covers the scene, flux
+//    E pi R^2.
+// Caustic photons (emit_towards) go only where the light's emission and a specular target's
+// cone overlap: spot cone ∩ target cone, an area light's hemisphere ∩ target cone, the side of
+// a sphere light facing the target, the sun's disc of directions times the target's footprint.
 #include "photon/caustic_targets.h"
 #include "photon/lights.h"
 #include "photon/sampling.h"
+#include "photon/spherical_caps.h"
 
 namespace photon {
 namespace {
@@ -82,9 +87,10 @@ void LightSet::emit(size_t index, const Vec3& scene_center, float scene_radius, 
       return;
     }
     case LightType::kSun: {
-      const Frame beam(-l.axis);
-      const Vec3 d = l.sun_cos_max < 1.0f ? beam.to_world(sample_uniform_cone(u_dir, l.sun_cos_max))
-                                          : beam.n;
+      // The beam travels along the light's axis (LightSet::sample looks back along -axis).
+      const Frame beam(l.axis);
+      const Vec3 d =
+          l.sun_cos_max < 1.0f ? beam.to_world(sample_uniform_cone(u_dir, l.sun_cos_max)) : beam.n;
       const Vec2 q = sample_concentric_disk(u_pos);
       const Vec3 origin = scene_center + (beam.t * q.x + beam.b * q.y) * scene_radius -
                           beam.n * (2.0f * scene_radius);
@@ -102,9 +108,16 @@ void LightSet::emit(size_t index, const Vec3& scene_center, float scene_radius, 
   }
 }
 
+// The cone of directions a light emits into: a spot's cone, an area light's hemisphere.
+Cap LightSet::emission_region(const Prepared& l) {
+  if (l.type == LightType::kSpot) return Cap(l.axis, std::acos(double(l.cos_half_spot)));
+  if (l.type == LightType::kArea) return Cap(l.axis, 0.5 * Cap::kPiD);
+  return Cap::whole_sphere();
+}
+
 bool LightSet::emit_towards(size_t index, const std::vector<BoundingSphere>& targets,
-                            const Vec3& scene_center, float scene_radius, float u_pick,
-                            Vec2 u_pos, Vec2 u_dir, EmittedPhoton* out) const {
+                            const Vec3& scene_center, float scene_radius, float u_pick, Vec2 u_pos,
+                            Vec2 u_dir, EmittedPhoton* out) const {
   const Prepared& l = lights_[index];
   Vec3 d;
   float pdf;
@@ -112,17 +125,23 @@ bool LightSet::emit_towards(size_t index, const std::vector<BoundingSphere>& tar
     case LightType::kPoint:
     case LightType::kSpot: {
       if (l.radius > 0.0f && l.type == LightType::kPoint) {
-        // A uniform point on the sphere (pdf 1 / (4 pi r^2)), then a direction to a target.
-        const Vec3 n = sample_uniform_sphere(u_pos);
-        const Vec3 q = l.position + n * l.radius;
-        if (!ConeMixture(q, targets).sample(u_pick, u_dir, &d, &pdf)) return false;
+        // Only points of the sphere that see a target, and only directions into the
+        // hemisphere above them (area density times solid-angle density).
+        Vec3 n;
+        if (!SphereLightAim(l.position, l.radius, targets)
+                 .sample(u_pick, u_pos, u_dir, &n, &d, &pdf))
+          return false;
         const float cos_n = dot(d, n);
         if (cos_n <= 0.0f) return false;
-        set_ray(q, d, &out->ray);
-        out->power = l.radiance * (cos_n * 4.0f * kPi * l.radius * l.radius / pdf);
+        set_ray(l.position + n * l.radius, d, &out->ray);
+        out->power = l.radiance * (cos_n / pdf);
         return true;
       }
-      if (!ConeMixture(l.position, targets).sample(u_pick, u_dir, &d, &pdf)) return false;
+      // Directions inside both the light's cone and a target's; a spot with a radius emits from
+      // a disc, so its targets are widened by that radius.
+      if (!ConeMixture(l.position, targets, emission_region(l), l.radius)
+               .sample(u_pick, u_dir, &d, &pdf))
+        return false;
       Vec3 origin = l.position;
       if (l.radius > 0.0f) {
         const Vec2 q = sample_concentric_disk(u_pos);
@@ -136,24 +155,26 @@ bool LightSet::emit_towards(size_t index, const std::vector<BoundingSphere>& tar
       return true;
     }
     case LightType::kSun: {
-      const Frame beam(-l.axis);
-      const float tan_half =
-          l.sun_cos_max < 1.0f ? std::sqrt(1.0f - l.sun_cos_max * l.sun_cos_max) / l.sun_cos_max
-                               : 0.0f;
-      const DiscMixture discs(beam.n, targets, 3.0f * scene_radius * std::min(tan_half, 1.0f));
+      // A direction in the sun's disc, then a point of the targets' footprint across that
+      // direction: E / (area density) per photon, as the unaimed beam's E pi R^2.
+      const Frame beam(l.axis);
+      d = l.sun_cos_max < 1.0f ? beam.to_world(sample_uniform_cone(u_dir, l.sun_cos_max)) : beam.n;
+      const DiscMixture discs(d, targets);
       if (discs.empty()) return false;
       Vec3 p;
       discs.sample(u_pick, u_pos, &p, &pdf);
       if (!(pdf > 0.0f)) return false;
-      d = l.sun_cos_max < 1.0f ? beam.to_world(sample_uniform_cone(u_dir, l.sun_cos_max)) : beam.n;
-      const float back = dot(scene_center, beam.n) - 2.0f * scene_radius;
-      set_ray(p + beam.n * back, d, &out->ray);
+      const float back = dot(scene_center, d) - 2.0f * scene_radius;
+      set_ray(p + d * back, d, &out->ray);
       out->power = l.irradiance / pdf;
       return true;
     }
     case LightType::kArea: {
+      // One-sided: directions in the hemisphere below the light that head into a target, so
+      // targets behind its plane get nothing and those partly behind only their facing part.
       const Vec3 q = area_light_point(l.position, l.half_u, l.half_v, l.shape, u_pos);
-      if (!ConeMixture(q, targets).sample(u_pick, u_dir, &d, &pdf)) return false;
+      if (!ConeMixture(q, targets, emission_region(l)).sample(u_pick, u_dir, &d, &pdf))
+        return false;
       const float cos_l = dot(d, l.axis);
       if (cos_l <= 0.0f) return false;
       set_ray(q, d, &out->ray);
@@ -169,11 +190,12 @@ float LightSet::coverage(size_t index, const std::vector<BoundingSphere>& target
   const Prepared& l = lights_[index];
   if (targets.empty()) return 0.0f;
   if (l.type == LightType::kSun) {
-    const DiscMixture discs(-l.axis, targets, 0.0f);
+    const DiscMixture discs(l.axis, targets);
     return std::min(1.0f, discs.total_area() / (kPi * scene_radius * scene_radius));
   }
-  const float c = ConeMixture(l.position, targets).coverage();
-  return l.type == LightType::kArea ? std::min(1.0f, 2.0f * c) : c;
+  // The share of the light's cone (seen from its centre) that heads into targets; zero for an
+  // area light whose targets are all behind it.
+  return ConeMixture(l.position, targets, emission_region(l), l.radius).coverage();
 }
 
 }  // namespace photon

@@ -11,14 +11,15 @@
 
 #include "photon/math.h"
 #include "photon/scene.h"
+#include "photon/spherical_caps.h"
 
 namespace photon {
 
 // A sampled connection from a shading point to a light.
 struct LightSample {
-  Vec3 wi;         // unit direction from the shading point towards the light
-  float distance;  // to the sampled point; INFINITY for the sun
-  Vec3 weight;     // Le * G / pdf without the receiver cosine: irradiance per unit cos(theta)
+  Vec3 wi;           // unit direction from the shading point towards the light
+  float distance;    // to the sampled point; INFINITY for the sun
+  Vec3 weight;       // Le * G / pdf without the receiver cosine: irradiance per unit cos(theta)
   float pdf = 0.0f;  // solid-angle density of wi; 0 for delta lights (point, spot, sun)
 };
 
@@ -64,8 +65,9 @@ class LightSet {
   Vec3 power(size_t index, float scene_radius) const;
   void emit(size_t index, const Vec3& scene_center, float scene_radius, Vec2 u_pos, Vec2 u_dir,
             EmittedPhoton* out) const;
-  // Caustic photons: directions restricted to cones around `targets` (Jensen's projection
-  // maps in continuous form); the photon's power carries the correction. `coverage()` is the
+  // Caustic photons: directions restricted to the overlap of the light's emission with cones
+  // around `targets` (Jensen's projection maps in continuous form); the photon's power carries
+  // the correction, so the caustic's expected flux is the light's own. `coverage()` is the
   // fraction of the light's flux heading to the targets, for splitting photons between lights.
   bool emit_towards(size_t index, const std::vector<BoundingSphere>& targets,
                     const Vec3& scene_center, float scene_radius, float u_pick, Vec2 u_pos,
@@ -79,11 +81,11 @@ class LightSet {
     AreaShape shape;
     uint32_t visibility;
     Vec3 position;
-    Vec3 axis;          // emission direction (world -Z of the light), unit
+    Vec3 axis;            // emission direction (world -Z of the light), unit
     Vec3 half_u, half_v;  // area: half extents in world space
-    Vec3 intensity;     // point / spot: W/sr
-    Vec3 radiance;      // area, sphere and sun surfaces: W/m^2/sr
-    Vec3 irradiance;    // sun: W/m^2
+    Vec3 intensity;       // point / spot: W/sr
+    Vec3 radiance;        // area, sphere and sun surfaces: W/m^2/sr
+    Vec3 irradiance;      // sun: W/m^2
     float radius;
     float area;
     float cos_half_spot;
@@ -91,6 +93,7 @@ class LightSet {
     float sun_cos_max;  // cos of half the sun's angular diameter
   };
   static float spot_attenuation(const Prepared& l, const Vec3& dir_from_light);
+  static Cap emission_region(const Prepared& l);
   std::vector<Prepared> lights_;
 };
 
