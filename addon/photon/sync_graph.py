@@ -199,14 +199,10 @@ def _cap(entries, total, pruned, ctx):
         entry[1] = min(entry[1], budget)
         budget -= entry[1]
     entries[:] = [e for e in entries if e[1] > 0]
-    dropped = total - sum(e[1] for e in entries)
-    if pruned:
-        ctx.reporter.warning(f"Material '{ctx.name}': its shader mixes make more than "
-                             f"{MAX_CLOSURES} closures; rendering the {MAX_CLOSURES} with the "
-                             f"largest mix weights and dropping at least {dropped + pruned} "
-                             f"(Cycles' limit is {MAX_CLOSURES} too)")
-    else:
-        ctx.reporter.warning(f"Material '{ctx.name}': its shader mixes make {total} "
-                             f"closures; rendering the {MAX_CLOSURES} with the largest mix "
-                             f"weights and dropping {dropped} (Cycles' limit is "
-                             f"{MAX_CLOSURES} too)")
+    kept = sum(e[1] for e in entries)
+    # Entries pruned on the way (MAX_ENTRIES_PER_NODE) make the count a lower bound.
+    at_least = "at least " if pruned else ""
+    ctx.reporter.warning(f"Material '{ctx.name}': its shader mixes make {at_least}{total} "
+                         f"closures; rendering the {kept} with the largest mix weights and "
+                         f"dropping {at_least}{total - kept} (Cycles' limit is {MAX_CLOSURES} "
+                         f"too)")

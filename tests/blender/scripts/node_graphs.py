@@ -7,6 +7,8 @@ KIND (the material is named after it):
                 (2^N paths); A_0 is a Diffuse, B_0 a Glossy BSDF; the output shows A_N.
   tex_diamond N the same with the Fac of both Mix nodes of level N // 2 + 1 driven by one
                 image's Alpha.
+  tex_diamonds N  the same with each level's Fac driven by the Alpha of its own image (2^N
+                different texture products).
   add_chain N   an Add Shader chain N wide: a node group holding 50 Add Shaders, each adding
                 Mix(Weight, nothing, Diffuse) to the previous one, instanced N / 50 times in a
                 chain; instance k has its own Weight (so closures differ in constant weight).
@@ -53,23 +55,28 @@ def _level_facs(depth):
             for k in range(1, depth + 1)]
 
 
-def diamond(depth, textured=False, folder=None):
-    name = f"{'TexDiamond' if textured else 'Diamond'}{depth}"
+def diamond(depth, textured=None):
+    prefix = {None: "", "one": "Tex", "each": "Texs"}[textured]
+    name = f"{prefix}Diamond{depth}"
     mat, nodes, links, out = _new_material(name)
     a = _named(nodes, "ShaderNodeBsdfDiffuse", "Leaf Diffuse")
     a.inputs["Color"].default_value = (0.8, 0.2, 0.1, 1.0)
     b = _named(nodes, "ShaderNodeBsdfGlossy", "Leaf Glossy")
     b.inputs["Color"].default_value = (0.1, 0.3, 0.9, 1.0)
     b.inputs["Roughness"].default_value = 0.4
-    alpha = None
-    if textured:
-        image = bpy.data.images.new("DiamondAlpha", 4, 4, alpha=True)
+
+    def alpha_of(level):
+        image = bpy.data.images.new(f"DiamondAlpha{level}", 4, 4, alpha=True)
         image.generated_color = (0.5, 0.5, 0.5, 0.3)
-        tex = _named(nodes, "ShaderNodeTexImage", "Alpha Texture")
+        tex = _named(nodes, "ShaderNodeTexImage", f"Alpha Texture {level}")
         tex.image = image
-        alpha = tex.outputs["Alpha"]
+        return tex.outputs["Alpha"]
+
+    alpha = alpha_of(0) if textured == 'one' else None
     facs = []
     for level, (fa, fb) in enumerate(_level_facs(depth), start=1):
+        if textured == 'each':
+            alpha = alpha_of(level)
         mix_a = _named(nodes, "ShaderNodeMixShader", f"A{level}")
         mix_b = _named(nodes, "ShaderNodeMixShader", f"B{level}")
         mix_a.inputs["Fac"].default_value = fa
@@ -78,14 +85,14 @@ def diamond(depth, textured=False, folder=None):
         links.new(b.outputs[0], mix_a.inputs[2])
         links.new(b.outputs[0], mix_b.inputs[1])
         links.new(a.outputs[0], mix_b.inputs[2])
-        if alpha is not None and level == depth // 2 + 1:
+        if textured == 'each' or (textured and level == depth // 2 + 1):
             links.new(alpha, mix_a.inputs["Fac"])
             links.new(alpha, mix_b.inputs["Fac"])
         # The values Blender stores (float32), which the add-on reads.
         facs.append((mix_a.inputs["Fac"].default_value, mix_b.inputs["Fac"].default_value))
         a, b = mix_a, mix_b
     links.new(a.outputs[0], out.inputs["Surface"])
-    return mat, {"facs": facs, "textured_level": depth // 2 + 1 if textured else None}
+    return mat, {"facs": facs, "textured_level": depth // 2 + 1 if textured == 'one' else None}
 
 
 def _chain_group():
@@ -155,7 +162,9 @@ def build(kind, size):
     if kind == "diamond":
         return diamond(size)
     if kind == "tex_diamond":
-        return diamond(size, textured=True)
+        return diamond(size, textured='one')
+    if kind == "tex_diamonds":
+        return diamond(size, textured='each')
     if kind == "add_chain":
         return add_chain(size)
     if kind == "chain":
