@@ -26,6 +26,7 @@ MAX_ENTRIES_PER_NODE = 4 * MAX_CLOSURES
 MAX_GROUP_NESTING = 64
 
 FAC = Param("fac", 'scalar', 0.0, 1.0, 0.5)
+MAX_COPIES = 1e15
 _SNAP = 1e-9  # sums of mix weights within this of a whole number are that number
 
 
@@ -152,7 +153,8 @@ def _snap(weight):
 def _pieces(weight):
     """A summed constant as native factors in [0, 1]: (whole count of weight-1 copies, and the
     fraction left, or 0). Add Shader sums can exceed 1 (Add(X, X) is 2X)."""
-    weight = _snap(weight)
+    # Nested Add(X, X) doubles per level: bound the count (all but 64 copies are dropped).
+    weight = _snap(min(weight, MAX_COPIES))
     whole = int(weight)
     rest = _snap(weight - whole)
     return whole, (rest if rest > 0.0 else 0.0)
@@ -182,10 +184,9 @@ def collect_closures(surface, ctx, make_closure):
     closures = []
     for weight, copies, leaf, factors in entries:
         for _ in range(copies):
+            constant = [] if weight == 1.0 else [{"fac": weight, "complement": False}]
             closure = dict(leaf.closure)
-            closure["weight"] = ([] if weight == 1.0 else
-                                 [{"fac": weight, "complement": False}]) + \
-                [dict(compiler.factors[key]) for key in factors]
+            closure["weight"] = constant + [dict(compiler.factors[key]) for key in factors]
             closures.append(closure)
     return closures
 
