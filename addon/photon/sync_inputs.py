@@ -25,6 +25,7 @@ class MaterialContext:
         self.textures = textures
         self.reported = set()
         self.ignored_principled = []  # "Input (node)" entries for the one Principled warning
+        self.links = sync_nodes.LinkIndex()
 
     def where(self, node, stack):
         return f"Material '{self.name}': node '{sync_nodes.node_path(node, stack)}'"
@@ -88,7 +89,7 @@ def read_input(socket, stack, param, ctx):
     """The native value of input `socket` (of a node reached through `stack`) for `param`."""
     node = socket.node
     what = f"input '{socket.name}' of node '{sync_nodes.node_path(node, stack)}'"
-    src = sync_nodes.source(socket, stack)
+    src = sync_nodes.source(socket, stack, ctx.links)
     if src.node is None:
         value = socket_constant(src.socket, param.kind)
         if value is None:
@@ -125,7 +126,7 @@ def _from_node(src, fed, param, ctx, what, depth):
         ctx.warn_once(("node", sync_nodes.node_path(node, src.stack)),
                       f"{ctx.where(node, src.stack)} ({node.bl_idname}) is not supported yet; "
                       f"using its Color input")
-        inner = sync_nodes.source(through, src.stack)
+        inner = sync_nodes.source(through, src.stack, ctx.links)
         if inner.node is None:
             value = socket_constant(inner.socket, kind)
             return clamp_constant(value, kind, param.lo, param.hi, param.default, ctx, what)
@@ -140,7 +141,7 @@ def check_coordinates(image_node, stack, ctx):
     """Photon reads images at the mesh's active UV map: say so when the tree asks otherwise."""
     socket = image_node.inputs.get("Vector")
     for _ in range(16):
-        src = sync_nodes.source(socket, stack) if socket is not None else None
+        src = sync_nodes.source(socket, stack, ctx.links) if socket is not None else None
         if src is None or src.node is None:
             return
         node = src.node
@@ -178,7 +179,7 @@ def _identity_mapping(node):
 def read_normal_map(socket, stack, ctx):
     """{"texture", "strength"} for a Normal input fed by a tangent-space Normal Map node with an
     image, or None (the interpolated normal)."""
-    src = sync_nodes.source(socket, stack)
+    src = sync_nodes.source(socket, stack, ctx.links)
     if src.node is None:
         return None
     node = src.node
@@ -193,7 +194,7 @@ def read_normal_map(socket, stack, ctx):
                                         f"space normal maps are not supported; using the "
                                         f"surface normal")
         return None
-    color = sync_nodes.source(node.inputs["Color"], src.stack)
+    color = sync_nodes.source(node.inputs["Color"], src.stack, ctx.links)
     if color.node is None or color.node.type != 'TEX_IMAGE' or color.output_name != "Color":
         ctx.warn_once(("nmap", where), f"{where}: only an Image Texture's Color can drive a "
                                        f"Normal Map; using the surface normal")

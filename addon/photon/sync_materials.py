@@ -2,7 +2,7 @@
 
 A material becomes a flat list of closures (see native/src/photon/material.h): Mix Shader and
 Add Shader nodes are flattened into each closure's weight, a product of mix factors (`fac`, or
-`1 - fac` for a Mix Shader's first input). Each closure is a dict
+`1 - fac` for a Mix Shader's first input), by sync_graph.py. Each closure is a dict
     {"type": "PRINCIPLED", "sharp": False, "params": {"color": [r, g, b] | {"texture": i,
      "channel": "COLOR"}, "roughness": 0.5, ...}, "normal_map": {"texture": i, "strength": 1.0},
      "weight": [{"fac": 0.3 | {"texture": i, "channel": "ALPHA"}, "complement": True}, ...]}
@@ -10,12 +10,11 @@ which Scene.add_material parses. Unsupported nodes are reported once per materia
 fall back to their nearest meaning (a shader: diffuse of its colour), never to silent black.
 """
 
-from . import sync_nodes
+from . import sync_graph, sync_nodes
 from .sync_inputs import (DEFAULT_COLOR, MaterialContext, Param, clamp_constant, read_input,
                           read_normal_map)
 from .sync_textures import TextureTable
 
-MAX_DEPTH = 32  # nested Mix / Add shaders
 INF = 1e6       # bound for "absurd" emission values
 
 # Native params by node input name(s) (3.4 names first, 4.x names after).
@@ -147,43 +146,10 @@ def _fallback_closure(node, stack, ctx):
     return {"type": "DIFFUSE", "sharp": False, "params": {"color": color}}
 
 
-def _weighted(closure, factors):
-    closure["weight"] = [{"fac": fac, "complement": complement} for fac, complement in factors]
-    return closure
-
-
-def _collect(socket, stack, factors, ctx, out, depth):
-    """Appends the closures feeding shader input `socket`, each weighted by `factors`."""
-    src = sync_nodes.source(socket, stack)
-    node = src.node
-    if node is None:
-        return  # an unlinked shader input adds nothing (Cycles: black)
-    if depth > MAX_DEPTH:
-        ctx.warn_once(("depth",), f"Material '{ctx.name}': shaders nested deeper than "
-                                  f"{MAX_DEPTH} levels are ignored")
-        return
-    if node.type == 'ADD_SHADER':
-        for shader in (node.inputs[0], node.inputs[1]):
-            _collect(shader, src.stack, factors, ctx, out, depth + 1)
-        return
-    if node.type == 'MIX_SHADER':
-        fac = read_input(node.inputs["Fac"], src.stack, Param("fac", 'scalar', 0.0, 1.0, 0.5),
-                         ctx)
-        # Mix Shader: (1 - fac) * first + fac * second. Constant factors of 0 or 1 prune.
-        for shader, complement in ((node.inputs[1], True), (node.inputs[2], False)):
-            if isinstance(fac, float):
-                weight = 1.0 - fac if complement else fac
-                if weight <= 0.0:
-                    continue
-                more = factors if weight >= 1.0 else factors + [(fac, complement)]
-            else:
-                more = factors + [(fac, complement)]
-            _collect(shader, src.stack, more, ctx, out, depth + 1)
-        return
-    closure = _bsdf_closure(node, src.stack, ctx)
-    if closure is None:
-        closure = _fallback_closure(node, src.stack, ctx)
-    out.append(_weighted(closure, factors))
+def _leaf_closure(node, stack, ctx):
+    """The closure of a shader node that is not a Mix or Add Shader."""
+    closure = _bsdf_closure(node, stack, ctx)
+    return closure if closure is not None else _fallback_closure(node, stack, ctx)
 
 
 def _diffuse_of(color):
@@ -202,17 +168,17 @@ def convert_material(material, reporter, textures):
         return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
     output = sync_nodes.output_node(material.node_tree, 'OUTPUT_MATERIAL')
     surface = output.inputs.get("Surface") if output else None
-    if surface is None or sync_nodes.source(surface).node is None:
+    if surface is None or sync_nodes.source(surface, (), ctx.links).node is None:
         # Cycles renders an unconnected output black; keep the artist's viewport colour instead
         # of a silent black object, and say so.
         reporter.warning(f"Material '{name}' has no shader connected to its output; "
                          f"rendering its viewport colour")
         return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
-    closures = []
-    _collect(surface, (), [], ctx, closures, 0)
+    closures = sync_graph.collect_closures(
+        surface, ctx, lambda node, stack: _leaf_closure(node, stack, ctx))
     for socket_name in ("Volume", "Displacement"):
         socket = output.inputs.get(socket_name)
-        if socket is not None and sync_nodes.source(socket).node is not None:
+        if socket is not None and sync_nodes.source(socket, (), ctx.links).node is not None:
             reporter.warning(f"Material '{name}': {socket_name.lower()} is not supported yet "
                              f"and is ignored")
     if ctx.ignored_principled:

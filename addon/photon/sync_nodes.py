@@ -37,14 +37,41 @@ def node_path(node, stack):
     return "/".join([group.name for group in stack] + [node.name])
 
 
+def _counts(link):
+    # A muted or invalid (red) link leaves the input unlinked, as in Cycles.
+    return not getattr(link, "is_muted", False) and getattr(link, "is_valid", True)
+
+
+class LinkIndex:
+    """The active link into each input socket, from one pass over each node tree's links.
+
+    NodeSocket.links scans every link of the tree on each call (Blender's bpy_types.py says
+    O(len(nodetree.links))), so asking it once per socket made walking a large tree quadratic.
+    Keep one index per material conversion: it is not updated when the tree changes."""
+
+    def __init__(self):
+        self._trees = {}
+
+    def link_to(self, socket):
+        if socket is None or not socket.is_linked:
+            return None
+        tree = socket.id_data
+        index = self._trees.get(tree)
+        if index is None:
+            index = {}
+            for link in tree.links:
+                if _counts(link):
+                    index.setdefault(link.to_socket, link)  # the first, as socket.links
+            self._trees[tree] = index
+        return index.get(socket)
+
+
 def _active_link(socket):
     if socket is None or not socket.is_linked:
         return None
     for link in socket.links:
-        # A muted or invalid (red) link leaves the input unlinked, as in Cycles.
-        if getattr(link, "is_muted", False) or not getattr(link, "is_valid", True):
-            continue
-        return link
+        if _counts(link):
+            return link
     return None
 
 
@@ -70,10 +97,11 @@ def _group_output(tree):
     return outputs[0] if outputs else None
 
 
-def source(socket, stack=()):
-    """The Source feeding input `socket` (of a node reached through `stack`)."""
+def source(socket, stack=(), links=None):
+    """The Source feeding input `socket` (of a node reached through `stack`); `links` is a
+    LinkIndex (without one each socket's links are searched, fine for a handful of calls)."""
     for _ in range(MAX_HOPS):
-        link = _active_link(socket)
+        link = links.link_to(socket) if links is not None else _active_link(socket)
         if link is None:
             return Source(None, socket, stack)
         node, out = link.from_node, link.from_socket

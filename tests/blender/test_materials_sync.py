@@ -89,7 +89,8 @@ def test_constant_mixes_prune_and_weight(converted):
     assert [c["type"] for c in closures] == ["GLASS", "TRANSLUCENT", "REFRACTION"]
     glass, translucent, refraction = closures
     assert glass["sharp"] and close(glass["params"]["ior"], 1.5)
-    assert glass["weight"] == [{"fac": 0.25, "complement": True}]
+    # Constant factors reach the native side multiplied into one number per closure.
+    assert glass["weight"] == [{"fac": 0.75, "complement": False}]
     assert translucent["weight"] == refraction["weight"] == [{"fac": 0.25, "complement": False}]
     assert not refraction["sharp"]
 
