@@ -16,10 +16,14 @@ namespace photon {
 
 // A sampled connection from a shading point to a light.
 struct LightSample {
-  Vec3 wi;         // unit direction from the shading point towards the light
-  float distance;  // to the sampled point; INFINITY for the sun
-  Vec3 weight;     // Le * G / pdf without the receiver cosine: irradiance per unit cos(theta)
+  Vec3 wi;           // unit direction from the shading point towards the light
+  float distance;    // to the sampled point; INFINITY for the sun
+  Vec3 weight;       // Le * G / pdf without the receiver cosine: irradiance per unit cos(theta)
   float pdf = 0.0f;  // solid-angle density of wi; 0 for delta lights (point, spot, sun)
+  // Geometric normal at the sampled point when it lies on scene geometry (an emissive
+  // triangle), so the shadow ray can stop short of that surface; zero for lamps, which are
+  // not in the BVH.
+  Vec3 surface_normal{0.0f};
 };
 
 // A photon leaving a light: its ray and its flux before dividing by the number of photons
@@ -79,11 +83,11 @@ class LightSet {
     AreaShape shape;
     uint32_t visibility;
     Vec3 position;
-    Vec3 axis;          // emission direction (world -Z of the light), unit
+    Vec3 axis;            // emission direction (world -Z of the light), unit
     Vec3 half_u, half_v;  // area: half extents in world space
-    Vec3 intensity;     // point / spot: W/sr
-    Vec3 radiance;      // area, sphere and sun surfaces: W/m^2/sr
-    Vec3 irradiance;    // sun: W/m^2
+    Vec3 intensity;       // point / spot: W/sr
+    Vec3 radiance;        // area, sphere and sun surfaces: W/m^2/sr
+    Vec3 irradiance;      // sun: W/m^2
     float radius;
     float area;
     float cos_half_spot;
