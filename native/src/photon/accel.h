@@ -88,7 +88,7 @@ class Accel {
   RTCDevice device_ = nullptr;
   RTCScene top_ = nullptr;
   std::vector<RTCScene> mesh_scenes_;
-  std::vector<InstanceData> instances_;  // indexed by Embree instance geometry id
+  std::vector<InstanceData> instances_;    // indexed by Embree instance geometry id
   std::vector<uint32_t> embree_instance_;  // Scene::instances index -> Embree id (UINT32_MAX)
   size_t blas_count_ = 0;
   size_t triangle_count_ = 0;
@@ -105,6 +105,24 @@ class Accel {
 inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& w) {
   const float eps = 1e-4f * (1.0f + max_abs_component(p));
   return dot(ng, w) >= 0.0f ? p + ng * eps : p - ng * eps;
+}
+
+// A shadow ray between two surface points (p with normal ng, q with normal nq), both ends
+// offset off their surfaces towards each other and the direction taken between the offset ends
+// (pbrt-v4's SpawnRayTo for two interactions). Offsetting only the origin and keeping the
+// direction p -> q moves the segment towards q's surface by the offset, so at short or
+// grazing distances it ends inside q's own surface and the point occludes itself.
+inline Ray shadow_ray_between(const Vec3& p, const Vec3& ng, const Vec3& q, const Vec3& nq) {
+  const Vec3 from = offset_ray_origin(p, ng, q - p);
+  const Vec3 to = offset_ray_origin(q, nq, p - q);
+  const Vec3 d = to - from;
+  const float len = length(d);
+  Ray ray;
+  ray.origin = from;
+  ray.direction = len > 0.0f ? d / len : normalize(q - p);
+  ray.tmin = 0.0f;
+  ray.tmax = len * (1.0f - 1e-4f);
+  return ray;
 }
 
 }  // namespace photon

@@ -20,6 +20,16 @@ bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, cons
   return !context.accel->occluded(shadow, kVisibleShadow);
 }
 
+// Visibility of a sampled light point. A point on an emissive triangle is scene geometry: the
+// shadow ray must stop short of that surface, or it ends inside it and the light occludes
+// itself (everywhere the offset exceeds the tmax margin: nearly all light samples).
+bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, const LightSample& ls) {
+  if (!(length_squared(ls.surface_normal) > 0.0f) || !std::isfinite(ls.distance))
+    return unoccluded(context, si, ls.wi, ls.distance);
+  const Ray shadow = shadow_ray_between(si.p, si.ng, si.p + ls.wi * ls.distance, ls.surface_normal);
+  return !context.accel->occluded(shadow, kVisibleShadow);
+}
+
 // f |cos| towards a sampled light direction, and the BSDF's density of sampling it.
 Vec3 bsdf_towards(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, uint8_t lobes, float* pdf) {
   const Vec3 f = bsdf.eval(wo, wi, lobes);
@@ -28,20 +38,19 @@ Vec3 bsdf_towards(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, uint8_t lobe
 }
 
 // Light sample of light i (or of the emissive meshes), weighted against BSDF sampling.
-Vec3 light_sample_term(const RenderContext& context, const SurfaceInteraction& si,
-                       const Bsdf& bsdf, const Vec3& wo, uint8_t lobes,
-                       const LightSample& ls) {
+Vec3 light_sample_term(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
+                       const Vec3& wo, uint8_t lobes, const LightSample& ls) {
   float pdf_bsdf;
   const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, lobes, &pdf_bsdf);
-  if (is_black(f_cos) || !unoccluded(context, si, ls.wi, ls.distance)) return Vec3(0.0f);
+  if (is_black(f_cos) || !unoccluded(context, si, ls)) return Vec3(0.0f);
   const float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, pdf_bsdf) : 1.0f;
   return f_cos * ls.weight * w;
 }
 
 }  // namespace
 
-Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
-                     const Bsdf& bsdf, const Vec3& wo, Sampler& sampler, uint8_t lobes) {
+Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
+                     const Vec3& wo, Sampler& sampler, uint8_t lobes) {
   Vec3 l(0.0f);
   lobes &= kLobeDiffuse | kLobeGlossy;  // delta lobes reach lights by ray tracing
   if (!(bsdf.flags() & lobes)) return l;
@@ -50,7 +59,8 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
   for (size_t i = 0; i < lights.size(); ++i) {
     LightSample ls;
     const Vec2 u_light = sampler.get_2d();
-    if (lights.sample(i, si.p, u_light, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+    if (lights.sample(i, si.p, u_light, &ls))
+      l += light_sample_term(context, si, bsdf, wo, lobes, ls);
     if (!lights.has_area(i)) continue;
     // BSDF sample, weighted against the light sample.
     const float u_lobe = sampler.get_1d();
@@ -68,7 +78,8 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
     LightSample ls;
     const float u_pick = sampler.get_1d();
     const Vec2 u_point = sampler.get_2d();
-    if (emissive->sample(si.p, u_pick, u_point, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+    if (emissive->sample(si.p, u_pick, u_point, &ls))
+      l += light_sample_term(context, si, bsdf, wo, lobes, ls);
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) {

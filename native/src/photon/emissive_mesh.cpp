@@ -5,8 +5,7 @@
 
 namespace photon {
 
-EmissiveMeshes::EmissiveMeshes(const Scene& scene, const Accel& accel,
-                               const TextureSet* textures) {
+EmissiveMeshes::EmissiveMeshes(const Scene& scene, const Accel& accel, const TextureSet* textures) {
   std::vector<double> weights;
   double power[3] = {0, 0, 0};
   for (uint32_t id = 0; id < accel.instance_count(); ++id) {
@@ -71,6 +70,7 @@ bool EmissiveMeshes::sample(const Vec3& p, float u_pick, Vec2 u_point, LightSamp
   // pdf over solid angle: P(triangle) / area * d^2 / cos.
   out->pdf = distribution_.probability(i) / t.area * dist2 / cos_light;
   out->weight = t.radiance / out->pdf;
+  out->surface_normal = n;
   return true;
 }
 
@@ -80,8 +80,8 @@ float EmissiveMeshes::pdf(uint32_t instance, uint32_t primitive, float distance,
   if (it == index_.end()) return 0.0f;
   const float c = std::fabs(cos_light);
   if (!(c > 1e-6f)) return 0.0f;
-  return distribution_.probability(it->second) / triangles_[it->second].area * distance *
-         distance / c;
+  return distribution_.probability(it->second) / triangles_[it->second].area * distance * distance /
+         c;
 }
 
 void EmissiveMeshes::emit(float u_pick, Vec2 u_point, Vec2 u_dir, Ray* ray, Vec3* power) const {

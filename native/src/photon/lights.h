@@ -21,6 +21,10 @@ struct LightSample {
   float distance;    // to the sampled point; INFINITY for the sun
   Vec3 weight;       // Le * G / pdf without the receiver cosine: irradiance per unit cos(theta)
   float pdf = 0.0f;  // solid-angle density of wi; 0 for delta lights (point, spot, sun)
+  // Geometric normal at the sampled point when it lies on scene geometry (an emissive
+  // triangle), so the shadow ray can stop short of that surface; zero for lamps, which are
+  // not in the BVH.
+  Vec3 surface_normal{0.0f};
 };
 
 // A photon leaving a light: its ray and its flux before dividing by the number of photons
