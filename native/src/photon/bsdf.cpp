@@ -281,7 +281,7 @@ Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, bool front_facing) : front_facing_(fr
 }
 
 void Bsdf::add(const Lobe& lobe) {
-  if (!valid_ || count_ >= kMaxLobes) return;
+  if (!valid_) return;
   Lobe l = lobe;
   // Sanitise parameters so no NaN can reach the renderer: negative or NaN colours are black,
   // roughness is clamped to its range and a NaN or non-positive ior falls back to the default.
@@ -296,7 +296,16 @@ void Bsdf::add(const Lobe& lobe) {
   l.roughness = std::isfinite(l.roughness) ? std::clamp(l.roughness, 0.0f, 1.0f) : 0.0f;
   if (!(l.ior > 0.0f) || !std::isfinite(l.ior)) l.ior = 1.45f;
   l.ior = std::clamp(l.ior, 1e-3f, 1e3f);
-  lobes_[count_++] = l;
+  if (count_ < kMaxLobes) {
+    lobes_[count_++] = l;
+    return;
+  }
+  // Full: keep the kMaxLobes heaviest lobes (by their largest weight channel), so a material
+  // of many closures loses its faintest ones rather than whichever came last.
+  int lightest = 0;
+  for (int i = 1; i < count_; ++i)
+    if (max_component(lobes_[i].weight) < max_component(lobes_[lightest].weight)) lightest = i;
+  if (max_component(l.weight) > max_component(lobes_[lightest].weight)) lobes_[lightest] = l;
 }
 
 uint8_t Bsdf::flags() const {

@@ -17,13 +17,13 @@
 namespace photon {
 
 enum class LobeType : uint8_t {
-  kLambert,           // color / pi
-  kBurleyDiffuse,     // Burley 2012 diffuse with `roughness` (Cycles' Principled v1 diffuse)
-  kTranslucent,       // color / pi, to the other side
-  kGgxReflection,     // GGX microfacet reflection (Walter et al. 2007), Fresnel per `fresnel`
-  kGgxGlass,          // GGX reflection + transmission with dielectric Fresnel (Walter 2007)
-  kGgxRefraction,     // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
-  kTransparent,       // straight through, unchanged direction (always a delta lobe)
+  kLambert,        // color / pi
+  kBurleyDiffuse,  // Burley 2012 diffuse with `roughness` (Cycles' Principled v1 diffuse)
+  kTranslucent,    // color / pi, to the other side
+  kGgxReflection,  // GGX microfacet reflection (Walter et al. 2007), Fresnel per `fresnel`
+  kGgxGlass,       // GGX reflection + transmission with dielectric Fresnel (Walter 2007)
+  kGgxRefraction,  // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
+  kTransparent,    // straight through, unchanged direction (always a delta lobe)
 };
 
 enum class FresnelMode : uint8_t {
@@ -47,12 +47,12 @@ constexpr float kDeltaAlpha = 1e-4f;
 
 struct Lobe {
   LobeType type = LobeType::kLambert;
-  Vec3 weight{1.0f};     // closure weight times its colour (tint); never negative
-  float alpha = 0.0f;    // GGX alpha = Blender roughness^2, isotropic
+  Vec3 weight{1.0f};       // closure weight times its colour (tint); never negative
+  float alpha = 0.0f;      // GGX alpha = Blender roughness^2, isotropic
   float roughness = 0.0f;  // Burley diffuse roughness (Blender's, not squared)
-  float ior = 1.45f;     // kDielectric Fresnel and glass / refraction lobes
+  float ior = 1.45f;       // kDielectric Fresnel and glass / refraction lobes
   FresnelMode fresnel = FresnelMode::kNone;
-  Vec3 f0{0.04f};        // kSchlick reflectance at normal incidence
+  Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence
 
   uint8_t flags() const;  // LobeFlags of this lobe with its parameters (delta when alpha small)
 };
@@ -73,7 +73,7 @@ class Bsdf {
   // `ns`: shading normal, `ng`: geometric normal, both unit length and facing wo's side.
   Bsdf(const Vec3& ns, const Vec3& ng, bool front_facing);
 
-  // Adds a lobe; lobes with a zero weight and lobes past kMaxLobes are dropped.
+  // Adds a lobe; lobes with a zero weight are dropped, and past kMaxLobes the lightest lobe is.
   void add(const Lobe& lobe);
   int lobe_count() const { return count_; }
   const Lobe& lobe(int i) const { return lobes_[i]; }

@@ -290,7 +290,9 @@ struct Chi2Case {
 };
 
 // Test listings (ctest, --gtest_list_tests) show the case's name instead of its bytes.
-void PrintTo(const Chi2Case& c, std::ostream* os) { *os << c.name; }
+void PrintTo(const Chi2Case& c, std::ostream* os) {
+  *os << c.name;
+}
 
 std::vector<Chi2Case> chi2_cases() {
   std::vector<Chi2Case> c;
@@ -855,6 +857,20 @@ TEST(BsdfBadInput, GrazingAndExtremeParametersStayFinite) {
         ASSERT_TRUE(std::isfinite(b.pdf(wo, s.wi)));
       }
     }
+}
+
+// A material of more closures than the BSDF holds keeps its heaviest lobes, not its first ones:
+// nine faint Lambert lobes and then a strong one must keep the strong one.
+TEST(BsdfBadInput, FullBsdfKeepsTheHeaviestLobes) {
+  const Vec3 n(0.0f, 0.0f, 1.0f);
+  Bsdf b(n, n, true);
+  for (int i = 0; i < Bsdf::kMaxLobes + 1; ++i) b.add(lambert(Vec3(0.01f)));
+  b.add(lambert(Vec3(0.5f)));
+  ASSERT_EQ(b.lobe_count(), Bsdf::kMaxLobes);
+  // Seven faint lobes and the strong one: (7 * 0.01 + 0.5) / pi.
+  const Vec3 wo = normalize(Vec3(0.2f, 0.1f, 1.0f)), wi = normalize(Vec3(-0.3f, 0.2f, 1.0f));
+  const float expected = (0.01f * (Bsdf::kMaxLobes - 1) + 0.5f) / kPi;
+  EXPECT_NEAR(b.eval(wo, wi).x, expected, 1e-5f);
 }
 
 }  // namespace
