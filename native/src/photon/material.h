@@ -6,12 +6,15 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "photon/math.h"
 
 namespace photon {
+
+class TexturePixels;  // texture_convert.h: pixels of an image that exists only in memory
 
 enum class TextureExtension : uint8_t { kRepeat, kExtend, kClip };
 enum class TextureInterpolation : uint8_t { kClosest, kLinear, kCubic };
@@ -22,6 +25,7 @@ struct ImageTexture {
   bool srgb = true;  // colour space: sRGB (converted to linear) or Non-Color / linear data
   TextureExtension extension = TextureExtension::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
+  std::shared_ptr<TexturePixels> pixels;  // instead of `path`: a generated image's pixels
 };
 
 enum class TextureChannel : uint8_t { kColor, kAlpha };
