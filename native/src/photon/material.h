@@ -21,7 +21,9 @@ enum class TextureInterpolation : uint8_t { kClosest, kLinear, kCubic };
 
 // An Image Texture node's image and sampling settings (Scene::textures).
 struct ImageTexture {
-  std::string path;  // a file OpenImageIO can read (packed images are written out by the add-on)
+  // A file OpenImageIO can read (packed images are written out by the add-on); with `pixels`,
+  // the image's name (for messages).
+  std::string path;
   bool srgb = true;  // colour space: sRGB (converted to linear) or Non-Color / linear data
   TextureExtension extension = TextureExtension::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
