@@ -34,9 +34,10 @@ struct TextureCache : ::testing::Test {
   std::string write_exr(const std::string& name, float value, int size = 4, int channels = 3) {
     std::vector<float> px(static_cast<size_t>(size) * size * channels, value);
     const std::string path = (dir / name).string();
-    EXPECT_TRUE(
-        OIIO::ImageBuf(OIIO::ImageSpec(size, size, channels, OIIO::TypeDesc::FLOAT), px.data())
-            .write(path));
+    // Uncompressed: the file's size does not depend on its values.
+    OIIO::ImageSpec spec(size, size, channels, OIIO::TypeDesc::FLOAT);
+    spec.attribute("compression", "none");
+    EXPECT_TRUE(OIIO::ImageBuf(spec, px.data()).write(path));
     return path;
   }
   std::vector<fs::path> cached_files() const {
@@ -105,7 +106,9 @@ TEST_F(TextureCache, SameContentReusesTheFileAndChangedContentDoesNot) {
   // New content of the same size with the old modification time: a new file and new values
   // (a key of path, size and time would render the stale texture).
   const auto mtime = fs::last_write_time(path);
+  const auto size = fs::file_size(path);
   write_exr("a.exr", 0.75f);
+  ASSERT_EQ(fs::file_size(path), size);
   fs::last_write_time(path, mtime);
   TextureSet third({tex}, nullptr);
   EXPECT_EQ(third.reused(), 0u);
