@@ -43,7 +43,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     scene = depsgraph.scene
     native_scene = native.Scene()
     materials = sync_materials.MaterialTable(native_scene, reporter,
-                                             getattr(native, "write_texture", None))
+                                             getattr(native, "TexturePixels", None))
     stats._release.append(materials.release)
 
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)

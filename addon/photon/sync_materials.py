@@ -196,11 +196,11 @@ def read_constant_color(value, ctx):
 class MaterialTable:
     """Converts each Blender material once per render and hands out native indices."""
 
-    def __init__(self, native_scene, reporter, write_image=None):
+    def __init__(self, native_scene, reporter, pixels_type=None):
         self._scene = native_scene
         self._reporter = reporter
         self._index = {}
-        self.textures = TextureTable(native_scene, reporter, write_image)
+        self.textures = TextureTable(native_scene, reporter, pixels_type)
 
     def index(self, material):
         key = material.name_full if material is not None else None

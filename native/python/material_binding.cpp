@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "photon/image_io.h"
+#include "photon/texture_convert.h"
 
 namespace py = pybind11;
 using namespace photon;
@@ -267,6 +268,30 @@ py::dict describe_material(const Material& material) {
 }
 
 void register_material_functions(py::module_& m) {
+  py::class_<TexturePixels, std::shared_ptr<TexturePixels>>(
+      m, "TexturePixels",
+      "Float RGBA pixels of an image that exists only in memory (a generated image), bottom "
+      "row first as Blender stores them; fill `array` in place (image.pixels.foreach_get) and "
+      "pass it to Scene.add_texture_pixels. Released once converted.")
+      .def(py::init([](int width, int height, bool is_float) {
+             if (width <= 0 || height <= 0 || width > 65536 || height > 65536)
+               throw py::value_error("texture size must be within 1..65536");
+             return std::make_shared<TexturePixels>(width, height, is_float);
+           }),
+           py::arg("width"), py::arg("height"), py::arg("is_float") = true)
+      .def_property_readonly("width", &TexturePixels::width)
+      .def_property_readonly("height", &TexturePixels::height)
+      .def_property_readonly("array", [](const TexturePixels& p) {
+        // A view of the native memory (no copy); the capsule keeps it alive as long as the
+        // array lives, even after the texture released its own reference.
+        std::shared_ptr<float[]> data = p.storage();
+        if (!data) throw py::value_error("the pixels were released after conversion");
+        auto* keep = new std::shared_ptr<float[]>(data);
+        py::capsule owner(keep, [](void* ptr) { delete static_cast<std::shared_ptr<float[]>*>(ptr); });
+        const py::ssize_t n = static_cast<py::ssize_t>(p.width()) * p.height() * 4;
+        return py::array_t<float>({n}, {static_cast<py::ssize_t>(sizeof(float))}, data.get(),
+                                  owner);
+      });
   m.def(
       "describe_material",
       [](const std::string& name, const py::list& closures, int64_t texture_count) {

@@ -12,6 +12,7 @@
 #include "photon/pixel_renderer.h"
 #include "photon/render_session.h"
 #include "photon/scene.h"
+#include "photon/texture_convert.h"
 
 namespace py = pybind11;
 using namespace photon;
@@ -52,6 +53,9 @@ Vec3 vec3_from(const std::vector<float>& v, const char* what) {
 py::dict stats_dict(const RenderStats& s) {
   py::dict d;
   d["build_seconds"] = s.build_seconds;
+  d["texture_seconds"] = s.texture_seconds;
+  d["textures"] = s.textures;
+  d["textures_reused"] = s.textures_reused;
   d["prepare_seconds"] = s.prepare_seconds;
   d["render_seconds"] = s.render_seconds;
   d["camera_samples"] = s.camera_samples;
@@ -225,6 +229,20 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("path"), py::arg("srgb") = true, py::arg("extension") = "REPEAT",
           py::arg("interpolation") = "Linear",
           "Adds an image file (an Image Texture node's image and sampling); returns its index.")
+      .def(
+          "add_texture_pixels",
+          [](Scene& scene, std::shared_ptr<TexturePixels> pixels, const std::string& name,
+             bool srgb, const std::string& extension, const std::string& interpolation) {
+            if (!pixels) throw std::invalid_argument("pixels must not be None");
+            ImageTexture t = photon_python::parse_texture(name, srgb, extension, interpolation);
+            t.pixels = std::move(pixels);
+            scene.textures.push_back(std::move(t));
+            return scene.textures.size() - 1;
+          },
+          py::arg("pixels"), py::arg("name"), py::arg("srgb") = true,
+          py::arg("extension") = "REPEAT", py::arg("interpolation") = "Linear",
+          "Adds an in-memory image (TexturePixels; `name` names it in warnings); returns its "
+          "index. Converted like files, keyed by the pixels' content.")
       .def(
           "add_material",
           [](Scene& scene, const std::string& name, const py::list& closures) {

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,15 +14,20 @@
 
 namespace photon {
 
+class TexturePixels;  // texture_convert.h: pixels of an image that exists only in memory
+
 enum class TextureExtension : uint8_t { kRepeat, kExtend, kClip };
 enum class TextureInterpolation : uint8_t { kClosest, kLinear, kCubic };
 
 // An Image Texture node's image and sampling settings (Scene::textures).
 struct ImageTexture {
-  std::string path;  // a file OpenImageIO can read (packed images are written out by the add-on)
+  // A file OpenImageIO can read (packed images are written out by the add-on); with `pixels`,
+  // the image's name (for messages).
+  std::string path;
   bool srgb = true;  // colour space: sRGB (converted to linear) or Non-Color / linear data
   TextureExtension extension = TextureExtension::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
+  std::shared_ptr<TexturePixels> pixels;  // instead of `path`: a generated image's pixels
 };
 
 enum class TextureChannel : uint8_t { kColor, kAlpha };

@@ -5,26 +5,50 @@ namespace {
 
 constexpr float kWeightCutoff = 1e-5f;  // closures below this weight are skipped (Cycles: 1e-5)
 
+constexpr float kHugeInput = 1e6f;  // the add-on's bound for emission colours and strengths
+
+// A texture lookup, unclamped (non-finite values already read as 0), or the constant.
 struct InputReader {
   Vec2 uv;
   const TextureSet* textures;
 
-  Vec3 rgb(const Input& in) const {
+  Vec3 raw(const Input& in, bool* textured) const {
+    *textured = false;
     if (in.texture >= 0 && textures) {
       float rgba[4];
-      if (textures->lookup(in.texture, uv, rgba))
+      if (textures->lookup(in.texture, uv, rgba)) {
+        *textured = true;
         return in.channel == TextureChannel::kAlpha ? Vec3(rgba[3])
                                                     : Vec3(rgba[0], rgba[1], rgba[2]);
+      }
     }
     return is_finite(in.value) ? in.value : Vec3(0.0f);
   }
-  // A colour feeding a scalar socket becomes its luminance (Blender's implicit conversion).
-  float scalar(const Input& in) const {
-    if (in.texture >= 0 && textures && !(in.channel == TextureChannel::kAlpha)) return luminance(rgb(in));
-    return rgb(in).x;
+  // Textured values are clamped to the input's range after the lookup, as constants are when
+  // the material is built (an albedo texture of 1000 must not multiply energy by 1000).
+  Vec3 color(const Input& in, InputRange r) const {
+    bool textured;
+    const Vec3 v = raw(in, &textured);
+    if (!textured) return max(v, Vec3(0.0f));
+    return {std::clamp(v.x, r.lo, r.hi), std::clamp(v.y, r.lo, r.hi), std::clamp(v.z, r.lo, r.hi)};
   }
-  float unit(const Input& in) const { return std::clamp(scalar(in), 0.0f, 1.0f); }
-  Vec3 color(const Input& in) const { return max(rgb(in), Vec3(0.0f)); }
+  // A colour feeding a scalar socket becomes its luminance (Blender's implicit conversion).
+  float scalar(const Input& in, InputRange r) const {
+    bool textured;
+    const Vec3 v = raw(in, &textured);
+    if (!textured) return v.x;
+    return std::clamp(in.channel == TextureChannel::kAlpha ? v.x : luminance(v), r.lo, r.hi);
+  }
+  float unit(const Input& in) const { return std::clamp(scalar(in, {0.0f, 1.0f}), 0.0f, 1.0f); }
+};
+
+// One closure's inputs, each read within its range.
+struct ClosureReader {
+  const InputReader& in;
+  const Closure& c;
+  Vec3 color(Param p) const { return in.color(c[p], input_range(c.type, p)); }
+  float scalar(Param p) const { return in.scalar(c[p], input_range(c.type, p)); }
+  float unit(Param p) const { return in.unit(c[p]); }
 };
 
 float closure_weight(const Closure& c, const InputReader& in) {
@@ -65,8 +89,9 @@ Vec3 apply_normal_map(const NormalMap& map, const SurfaceInteraction& si, const 
 // transmission); a GGX specular layer with Schlick F0 = lerp(0.08 specular tint, base,
 // metallic); glass weighted by transmission (1 - metallic) tinted by the base colour; a
 // clearcoat layer of weight 0.25 clearcoat with F0 = 0.04.
-void add_principled(const Closure& c, float w, const InputReader& in, ShadingPoint* out) {
-  const float alpha = in.unit(c[Param::kAlpha]);
+void add_principled(const Closure& c, float w, const InputReader& reader, ShadingPoint* out) {
+  const ClosureReader in{reader, c};
+  const float alpha = in.unit(Param::kAlpha);
   if (alpha < 1.0f) {
     Lobe t;
     t.type = LobeType::kTransparent;
@@ -75,14 +100,14 @@ void add_principled(const Closure& c, float w, const InputReader& in, ShadingPoi
   }
   w *= alpha;
   if (w < kWeightCutoff) return;
-  out->emission += in.color(c[Param::kEmission]) * (std::max(in.scalar(c[Param::kStrength]), 0.0f) * w);
+  out->emission += in.color(Param::kEmission) * (std::max(in.scalar(Param::kStrength), 0.0f) * w);
 
-  const Vec3 base = in.color(c[Param::kColor]);
-  const float metallic = in.unit(c[Param::kMetallic]);
-  const float transmission = in.unit(c[Param::kTransmission]);
-  const float roughness = in.unit(c[Param::kRoughness]);
-  const float specular = std::max(in.scalar(c[Param::kSpecular]), 0.0f);
-  const float ior = std::max(in.scalar(c[Param::kIor]), 1e-3f);
+  const Vec3 base = in.color(Param::kColor);
+  const float metallic = in.unit(Param::kMetallic);
+  const float transmission = in.unit(Param::kTransmission);
+  const float roughness = in.unit(Param::kRoughness);
+  const float specular = std::max(in.scalar(Param::kSpecular), 0.0f);
+  const float ior = std::max(in.scalar(Param::kIor), 1e-3f);
 
   const float diffuse_weight = (1.0f - metallic) * (1.0f - transmission);
   if (diffuse_weight > 0.0f) {
@@ -96,7 +121,7 @@ void add_principled(const Closure& c, float w, const InputReader& in, ShadingPoi
   if (specular > 0.0f || metallic > 0.0f) {
     const float lum = luminance(base);
     const Vec3 hue = lum > 0.0f ? base / lum : Vec3(1.0f);
-    const Vec3 tint = lerp(Vec3(1.0f), hue, in.unit(c[Param::kSpecularTint]));
+    const Vec3 tint = lerp(Vec3(1.0f), hue, in.unit(Param::kSpecularTint));
     Lobe s;
     s.type = LobeType::kGgxReflection;
     s.weight = Vec3(w * (1.0f - final_transmission));
@@ -114,9 +139,9 @@ void add_principled(const Closure& c, float w, const InputReader& in, ShadingPoi
     g.fresnel = FresnelMode::kDielectric;
     out->bsdf.add(g);
   }
-  const float clearcoat = std::max(in.scalar(c[Param::kClearcoat]), 0.0f);
+  const float clearcoat = std::max(in.scalar(Param::kClearcoat), 0.0f);
   if (clearcoat > 0.0f) {
-    const float r = in.unit(c[Param::kClearcoatRoughness]);
+    const float r = in.unit(Param::kClearcoatRoughness);
     Lobe cc;
     cc.type = LobeType::kGgxReflection;
     cc.weight = Vec3(w * 0.25f * clearcoat);
@@ -127,31 +152,98 @@ void add_principled(const Closure& c, float w, const InputReader& in, ShadingPoi
   }
 }
 
-void add_closure(const Closure& c, float w, const InputReader& in, ShadingPoint* out) {
-  if (c.type == ClosureType::kPrincipled) return add_principled(c, w, in, out);
-  const Vec3 color = in.color(c[Param::kColor]) * w;
+void add_closure(const Closure& c, float w, const InputReader& reader, ShadingPoint* out) {
+  if (c.type == ClosureType::kPrincipled) return add_principled(c, w, reader, out);
+  const ClosureReader in{reader, c};
+  const Vec3 color = in.color(Param::kColor) * w;
   if (c.type == ClosureType::kEmission) {
-    out->emission += color * std::max(in.scalar(c[Param::kStrength]), 0.0f);
+    out->emission += color * std::max(in.scalar(Param::kStrength), 0.0f);
     return;
   }
   Lobe l;
   l.weight = color;
-  const float r = c.sharp ? 0.0f : in.unit(c[Param::kRoughness]);
+  const float r = c.sharp ? 0.0f : in.unit(Param::kRoughness);
   l.alpha = r * r;
-  l.ior = std::max(in.scalar(c[Param::kIor]), 1e-3f);
+  l.ior = std::max(in.scalar(Param::kIor), 1e-3f);
   switch (c.type) {
-    case ClosureType::kDiffuse: l.type = LobeType::kLambert; break;
-    case ClosureType::kGlossy: l.type = LobeType::kGgxReflection; l.fresnel = FresnelMode::kNone; break;
-    case ClosureType::kGlass: l.type = LobeType::kGgxGlass; l.fresnel = FresnelMode::kDielectric; break;
-    case ClosureType::kRefraction: l.type = LobeType::kGgxRefraction; l.fresnel = FresnelMode::kDielectric; break;
-    case ClosureType::kTransparent: l.type = LobeType::kTransparent; break;
-    case ClosureType::kTranslucent: l.type = LobeType::kTranslucent; break;
-    default: return;
+    case ClosureType::kDiffuse:
+      l.type = LobeType::kLambert;
+      break;
+    case ClosureType::kGlossy:
+      l.type = LobeType::kGgxReflection;
+      l.fresnel = FresnelMode::kNone;
+      break;
+    case ClosureType::kGlass:
+      l.type = LobeType::kGgxGlass;
+      l.fresnel = FresnelMode::kDielectric;
+      break;
+    case ClosureType::kRefraction:
+      l.type = LobeType::kGgxRefraction;
+      l.fresnel = FresnelMode::kDielectric;
+      break;
+    case ClosureType::kTransparent:
+      l.type = LobeType::kTransparent;
+      break;
+    case ClosureType::kTranslucent:
+      l.type = LobeType::kTranslucent;
+      break;
+    default:
+      return;
   }
   out->bsdf.add(l);
 }
 
 }  // namespace
+
+// The ranges the add-on clamps constants to (addon/photon/sync_materials.py): reflectances and
+// transmittances in [0, 1], emission colours and strengths finite.
+InputRange input_range(ClosureType type, Param p) {
+  switch (p) {
+    case Param::kColor:
+      return type == ClosureType::kEmission ? InputRange{0.0f, kHugeInput} : InputRange{0.0f, 1.0f};
+    case Param::kEmission:
+    case Param::kStrength:
+      return {0.0f, kHugeInput};
+    case Param::kSpecular:
+      return {0.0f, 10.0f};
+    case Param::kIor:
+      return {1e-3f, 100.0f};
+    default:
+      return {0.0f, 1.0f};
+  }
+}
+
+const char* input_label(ClosureType type, Param p) {
+  const bool principled = type == ClosureType::kPrincipled;
+  switch (p) {
+    case Param::kColor:
+      return principled ? "Base Color" : "Color";
+    case Param::kRoughness:
+      return "Roughness";
+    case Param::kMetallic:
+      return "Metallic";
+    case Param::kSpecular:
+      return "Specular";
+    case Param::kSpecularTint:
+      return "Specular Tint";
+    case Param::kTransmission:
+      return "Transmission";
+    case Param::kIor:
+      return "IOR";
+    case Param::kEmission:
+      return "Emission";
+    case Param::kStrength:
+      return principled ? "Emission Strength" : "Strength";
+    case Param::kAlpha:
+      return "Alpha";
+    case Param::kClearcoat:
+      return "Clearcoat";
+    case Param::kClearcoatRoughness:
+      return "Clearcoat Roughness";
+    default:
+      return "input";
+  }
+}
 
 ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const Accel& accel,
                            const TextureSet* textures) {
@@ -182,11 +274,12 @@ Vec3 emitted_radiance(const Material& material, const SurfaceInteraction& si,
   for (const Closure& c : material.closures) {
     if (c.type != ClosureType::kEmission && c.type != ClosureType::kPrincipled) continue;
     float w = closure_weight(c, in);
+    const ClosureReader r{in, c};
     if (c.type == ClosureType::kEmission) {
-      e += in.color(c[Param::kColor]) * (w * std::max(in.scalar(c[Param::kStrength]), 0.0f));
+      e += r.color(Param::kColor) * (w * std::max(r.scalar(Param::kStrength), 0.0f));
     } else {
-      w *= in.unit(c[Param::kAlpha]);
-      e += in.color(c[Param::kEmission]) * (w * std::max(in.scalar(c[Param::kStrength]), 0.0f));
+      w *= r.unit(Param::kAlpha);
+      e += r.color(Param::kEmission) * (w * std::max(r.scalar(Param::kStrength), 0.0f));
     }
   }
   return is_finite(e) ? e : Vec3(0.0f);

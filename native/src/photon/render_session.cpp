@@ -169,12 +169,16 @@ void RenderSession::run_render() {
   FlushDenormalsObserver observer(arena);
 
   std::vector<std::string> warnings;
-  set_status("Building BVH, lights and textures");
+  set_status(scene_->textures.empty() ? "Building BVH and lights"
+                                      : "Converting textures, building BVH and lights");
   auto t0 = Clock::now();
   std::unique_ptr<SceneResources> resources;
-  arena.execute(
-      [&] { resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings); });
-  const double build_seconds = seconds_since(t0);
+  arena.execute([&] {
+    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel_);
+  });
+  const double texture_seconds = resources->textures().seconds();
+  const double build_seconds = seconds_since(t0) - texture_seconds;
+  if (cancel_) return;
   const RenderContext& context = resources->context();
   std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
 
@@ -198,6 +202,9 @@ void RenderSession::run_render() {
     std::lock_guard<std::mutex> lock(mutex_);
     warnings_.insert(warnings_.end(), warnings.begin(), warnings.end());
     stats_.build_seconds = build_seconds;
+    stats_.texture_seconds = texture_seconds;
+    stats_.textures = resources->textures().size();
+    stats_.textures_reused = resources->textures().reused();
     stats_.prepare_seconds = prepare_seconds;
     stats_.unique_triangles = resources->accel().triangle_count();
     stats_.instances = resources->accel().instance_count();

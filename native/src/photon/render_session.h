@@ -34,7 +34,10 @@ RenderSettings sanitized_settings(const RenderSettings& settings);
 int run_in_arena(int threads, const std::function<void()>& fn);
 
 struct RenderStats {
-  double build_seconds = 0.0;
+  double texture_seconds = 0.0;  // converting images (or finding them converted)
+  size_t textures = 0;
+  size_t textures_reused = 0;     // found in the persistent texture cache
+  double build_seconds = 0.0;     // BVH, lights and emissive triangles (textures excluded)
   double prepare_seconds = 0.0;
   double render_seconds = 0.0;
   uint64_t camera_samples = 0;

@@ -4,6 +4,7 @@
 // a part (a bake without textures would bake untextured albedo).
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,8 +21,10 @@ class SceneResources {
  public:
   // `scene` and `settings` must outlive this object. Build it inside the task arena that will
   // render, so the BVH build uses the same threads. Warnings go to `warnings` (may be null).
+  // Textures are prepared first; when `cancel` becomes true meanwhile, they stop within
+  // ~100 ms and textures().cancelled() is true (the rest is then built without textures).
   SceneResources(const Scene& scene, const RenderSettings& settings,
-                 std::vector<std::string>* warnings);
+                 std::vector<std::string>* warnings, const std::atomic<bool>* cancel = nullptr);
   SceneResources(const SceneResources&) = delete;
   SceneResources& operator=(const SceneResources&) = delete;
 
@@ -32,9 +35,9 @@ class SceneResources {
   const EmissiveMeshes& emissive() const { return emissive_; }
 
  private:
+  TextureSet textures_;  // first: the BVH is not needed to convert images
   Accel accel_;
   LightSet lights_;
-  TextureSet textures_;
   EmissiveMeshes emissive_;
   RenderContext context_;
 };

@@ -1,13 +1,17 @@
 #include "photon/textures.h"
 
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/texture.h>
+#include <tbb/parallel_for.h>
 #include <unistd.h>
 
-#include <cstdio>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <system_error>
+
+#include "photon/texture_convert.h"
 
 namespace photon {
 namespace fs = std::filesystem;
@@ -19,6 +23,7 @@ struct TextureSet::Entry {
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
   int channels = 0;
   bool srgb_after_lookup = false;  // 8-bit sRGB: interpolated as stored, then linearised
+  float max_color = 0.0f, max_alpha = 0.0f;
 };
 
 struct TextureSet::System {
@@ -33,94 +38,18 @@ struct TextureSet::System {
 
 namespace {
 
-// FNV-1a over the bytes of `text`.
-uint64_t hash_text(const std::string& text) {
-  uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
-
 float srgb_to_linear(float c) {
   return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
 }
 
-// Converts `path` to a tiled, MIP-mapped OpenEXR in the cache (once per source file version).
-// 8-bit sRGB images keep their sRGB values (`*srgb_after_lookup` is set): Cycles interpolates
-// such images as stored and converts after the lookup (NODE_IMAGE_COMPRESS_AS_SRGB), which
-// makes texel edges darker than interpolating linear values would. Everything else is stored
-// linear. Returns the converted file, or "" with `error` set.
-std::string converted_texture(const ImageTexture& tex, bool* srgb_after_lookup,
-                              std::string* error) {
-  std::error_code ec;
-  const fs::path source(tex.path);
-  if (tex.path.empty() || !fs::is_regular_file(source, ec)) {
-    *error = "file not found";
-    return "";
-  }
-  const auto size = fs::file_size(source, ec);
-  const auto mtime = fs::last_write_time(source, ec).time_since_epoch().count();
-  OIIO::ImageSpec config;
-  config.attribute("oiio:UnassociatedAlpha", 1);
-  OIIO::ImageBuf src(tex.path, 0, 0, nullptr, &config);
-  if (!src.init_spec(tex.path, 0, 0)) {
-    *error = src.geterror();
-    if (error->empty()) *error = "unreadable image";
-    return "";
-  }
-  *srgb_after_lookup = tex.srgb && src.spec().format == OIIO::TypeDesc::UINT8;
-  char name[64];
-  std::snprintf(name, sizeof name, "%016llx.exr",
-                static_cast<unsigned long long>(hash_text(
-                    fs::absolute(source, ec).string() + "|" + std::to_string(size) + "|" +
-                    std::to_string(mtime) + "|" + (tex.srgb ? "srgb" : "linear") + "|v2")));
-  const fs::path dir(TextureSet::cache_directory());
-  fs::create_directories(dir, ec);
-  const fs::path out = dir / name;
-  if (fs::is_regular_file(out, ec)) return out.string();
-
-  // Straight alpha as stored in PNG/TGA (Blender's Image Texture outputs unpremultiplied
-  // colour), then sRGB -> linear on the colour channels only.
-  if (!src.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-    *error = src.geterror();
-    if (error->empty()) *error = "unreadable image";
-    return "";
-  }
-  OIIO::ImageBuf linear = src;
-  if (tex.srgb && !*srgb_after_lookup && src.nchannels() >= 3) {
-    OIIO::ROI roi = src.roi();
-    roi.chend = 3;
-    if (!OIIO::ImageBufAlgo::colorconvert(linear, src, "sRGB", "linear", false, "", "",
-                                           nullptr, roi)) {
-      *error = linear.geterror();
-      return "";
-    }
-  }
-  OIIO::ImageSpec spec = linear.spec();
-  spec.set_format(OIIO::TypeDesc::HALF);
-  spec.attribute("maketx:fileformatname", "openexr");
-  spec.attribute("maketx:filtername", "box");
-  // Write to a temporary name and rename, so concurrent renders never read half a file.
-  const fs::path tmp = dir / (std::string(name) + "." + std::to_string(::getpid()) + ".tmp.exr");
-  if (!OIIO::ImageBufAlgo::make_texture(OIIO::ImageBufAlgo::MakeTxTexture, linear, tmp.string(),
-                                        spec)) {
-    *error = OIIO::geterror();
-    if (error->empty()) *error = "could not write the converted texture";
-    fs::remove(tmp, ec);
-    return "";
-  }
-  fs::rename(tmp, out, ec);
-  if (ec) {
-    *error = ec.message();
-    return "";
-  }
-  return out.string();
-}
-
 OIIO::TextureOpt::Wrap wrap_mode(TextureExtension e) {
   switch (e) {
-    case TextureExtension::kExtend: return OIIO::TextureOpt::WrapClamp;
-    case TextureExtension::kClip: return OIIO::TextureOpt::WrapBlack;
-    default: return OIIO::TextureOpt::WrapPeriodic;
+    case TextureExtension::kExtend:
+      return OIIO::TextureOpt::WrapClamp;
+    case TextureExtension::kClip:
+      return OIIO::TextureOpt::WrapBlack;
+    default:
+      return OIIO::TextureOpt::WrapPeriodic;
   }
 }
 
@@ -128,6 +57,10 @@ OIIO::TextureOpt::Wrap wrap_mode(TextureExtension e) {
 
 std::string TextureSet::cache_directory() {
   if (const char* env = std::getenv("PHOTON_TEXTURE_CACHE"); env && *env) return env;
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return (fs::path(xdg) / "photon" / "textures").string();
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return (fs::path(home) / ".cache" / "photon" / "textures").string();
   std::error_code ec;
   fs::path tmp = fs::temp_directory_path(ec);
   if (ec) tmp = "/tmp";
@@ -137,40 +70,89 @@ std::string TextureSet::cache_directory() {
 TextureSet::TextureSet() = default;
 
 TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
-                       std::vector<std::string>* warnings)
+                       std::vector<std::string>* warnings, const std::atomic<bool>* cancel)
     : entries_(textures.size()) {
   if (textures.empty()) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  const size_t n = textures.size();
+  auto name = [&](size_t i) {
+    return textures[i].pixels ? "Generated image '" + textures[i].path + "'"
+                              : "Image '" + textures[i].path + "'";
+  };
+  std::vector<ConvertRequest> requests(n);
+  std::vector<uint64_t> keys(n, 0);
+  std::vector<std::string> errors(n);
+  for (size_t i = 0; i < n; ++i)
+    requests[i] = ConvertRequest{textures[i].path, textures[i].pixels, textures[i].srgb};
+  // Content keys (hashing reads every byte), then one conversion per distinct key; both in
+  // parallel over textures, and each conversion is itself parallel.
+  tbb::parallel_for(size_t(0), n,
+                    [&](size_t i) { keys[i] = texture_key(requests[i], cancel, &errors[i]); });
+  std::map<uint64_t, size_t> first;  // key -> first texture with it
+  std::vector<size_t> unique;
+  for (size_t i = 0; i < n; ++i)
+    if (keys[i] && first.emplace(keys[i], i).second) unique.push_back(i);
+  const std::string dir = cache_directory();
+  std::vector<ConvertedTexture> converted(n);
+  std::vector<char> ok(n, 0);
+  tbb::parallel_for(size_t(0), unique.size(), [&](size_t u) {
+    const size_t i = unique[u];
+    ok[i] = convert_texture(requests[i], keys[i], dir, cancel, &converted[i], &errors[i]);
+  });
+  cancelled_ = cancel && cancel->load();
+  std::vector<std::string> in_use;
   system_ = std::make_unique<System>();
-  for (size_t i = 0; i < textures.size(); ++i) {
+  for (size_t i = 0; i < n && !cancelled_; ++i) {
     Entry& e = entries_[i];
     e.extension = textures[i].extension;
     e.interpolation = textures[i].interpolation;
-    std::string error;
-    const std::string file = converted_texture(textures[i], &e.srgb_after_lookup, &error);
-    if (file.empty()) {
+    const size_t j = keys[i] ? first[keys[i]] : i;
+    if (!ok[j]) {
       if (warnings)
-        warnings->push_back("Image '" + textures[i].path + "' cannot be used (" + error +
+        warnings->push_back(name(i) + " cannot be used (" +
+                            (errors[i].empty() ? errors[j] : errors[i]) +
                             "): its inputs use their fallback colour");
       continue;
     }
-    e.file = OIIO::ustring(file);
+    const ConvertedTexture& c = converted[j];
+    if (i == j) {
+      reused_ += c.reused ? 1 : 0;
+      in_use.push_back(c.file);
+      // The converted file holds the pixels now; the add-on's copy can go.
+      if (textures[i].pixels) textures[i].pixels->release();
+    }
+    e.srgb_after_lookup = c.srgb_after_lookup;
+    e.max_color = c.max_color;
+    e.max_alpha = c.max_alpha;
+    e.file = OIIO::ustring(c.file);
     e.handle = system_->ts->get_texture_handle(e.file);
     const OIIO::ImageSpec* spec = e.handle ? system_->ts->imagespec(e.handle, nullptr) : nullptr;
     if (!spec) {
       if (warnings)
-        warnings->push_back("Image '" + textures[i].path + "' cannot be opened as a texture: " +
-                            system_->ts->geterror());
+        warnings->push_back(name(i) + " cannot be opened as a texture: " + system_->ts->geterror());
       e.file = OIIO::ustring();
       e.handle = nullptr;
       continue;
     }
     e.channels = spec->nchannels;
   }
+  evict_texture_cache(dir, texture_cache_limit_bytes(), in_use);
+  seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+float TextureSet::max_color(int index) const {
+  return valid(index) ? entries_[index].max_color : 0.0f;
+}
+
+float TextureSet::max_alpha(int index) const {
+  return valid(index) ? entries_[index].max_alpha : 0.0f;
 }
 
 TextureSet::~TextureSet() = default;
 
-size_t TextureSet::size() const { return entries_.size(); }
+size_t TextureSet::size() const {
+  return entries_.size();
+}
 
 bool TextureSet::valid(int index) const {
   return index >= 0 && static_cast<size_t>(index) < entries_.size() && entries_[index].handle;
@@ -203,7 +185,7 @@ bool TextureSet::lookup(int index, Vec2 uv, float rgba[4]) const {
                    0.0f, n, result))
     return false;
   if (n == 1) result[1] = result[2] = result[0];  // grey images
-  if (n == 2) {                                    // grey + alpha
+  if (n == 2) {                                   // grey + alpha
     result[3] = result[1];
     result[1] = result[2] = result[0];
   }

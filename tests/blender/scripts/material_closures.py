@@ -23,6 +23,13 @@ class RecordingScene:
                               "interpolation": interpolation})
         return len(self.textures) - 1
 
+    def add_texture_pixels(self, pixels, name, srgb=True, extension="REPEAT",
+                           interpolation="Linear"):
+        self.textures.append({"name": name, "width": pixels.width, "height": pixels.height,
+                              "pixels": [float(v) for v in pixels.array], "srgb": srgb,
+                              "extension": extension, "interpolation": interpolation})
+        return len(self.textures) - 1
+
 
 class RecordingReporter:
     """Warnings grouped by the material being converted (`current`)."""
@@ -236,14 +243,14 @@ def main(folder):
     from photon import sync_materials, sync_textures
     try:
         from photon import _photon
-        write_image = getattr(_photon, "write_texture", None)
+        pixels_type = getattr(_photon, "TexturePixels", None)
     except ImportError:
-        write_image = None
+        pixels_type = None
     os.makedirs(folder, exist_ok=True)
     build(folder)
     scene = RecordingScene()
     reporter = RecordingReporter()
-    textures = sync_textures.TextureTable(scene, reporter, write_image)
+    textures = sync_textures.TextureTable(scene, reporter, pixels_type)
     result = {"materials": {}}
     for mat in bpy.data.materials:
         reporter.current = mat.name
