@@ -16,6 +16,7 @@ from .sync_inputs import (DEFAULT_COLOR, MaterialContext, Param, clamp_constant,
 from .sync_textures import TextureTable
 
 INF = 1e6       # bound for "absurd" emission values
+MAX_BSDF_LOBES = 8  # Bsdf::kMaxLobes (native/src/photon/bsdf.h): lobes kept per point
 
 # Native params by node input name(s) (3.4 names first, 4.x names after).
 COLOR = Param("color", 'color', 0.0, 1.0, [0.8, 0.8, 0.8])
@@ -185,6 +186,10 @@ def convert_material(material, reporter, textures):
         unique = list(dict.fromkeys(ctx.ignored_principled))
         reporter.warning(f"Material '{name}': Principled BSDF inputs not supported yet are "
                          f"rendered at their defaults: {', '.join(unique)}")
+    scattering = sum(1 for c in closures if c["type"] != "EMISSION")
+    if scattering > MAX_BSDF_LOBES:
+        reporter.warning(f"Material '{name}': {scattering} BSDF closures; Photon shades the "
+                         f"{MAX_BSDF_LOBES} strongest lobes at each point and drops the rest")
     return name, closures
 
 

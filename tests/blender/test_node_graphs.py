@@ -96,12 +96,18 @@ def test_textured_diamond_keeps_distinct_texture_products_apart(blender):
         assert got[key] == pytest.approx(weight, rel=1e-9), key
 
 
+# The native BSDF holds 8 lobes per point (keeping the strongest); more closures say so.
+LOBE_WARNING = ("Material '{}': 64 BSDF closures; Photon shades the 8 strongest lobes at each "
+                "point and drops the rest")
+
+
 def test_many_texture_products_are_capped_with_one_warning(blender):
     result = convert(blender, "tex_diamonds", 10)  # 2^10 different products of 10 textures
     closures = result["closures"]
     assert len(closures) == MAX_CLOSURES
     assert all(len(c["weight"]) == 10 for c in closures)
-    assert len(result["warnings"]) == 1, result["warnings"]
+    assert len(result["warnings"]) == 2, result["warnings"]
+    assert result["warnings"][1] == LOBE_WARNING.format("TexsDiamond10")
     assert re.fullmatch(r"Material 'TexsDiamond10': its shader mixes make at least \d+ closures; "
                         r"rendering the 64 with the largest mix weights and dropping at least "
                         r"\d+ \(Cycles' limit is 64 too\)", result["warnings"][0])
@@ -122,7 +128,8 @@ def test_wide_add_chain_keeps_the_closures_of_largest_weight_and_warns(blender):
     assert len(closures) == MAX_CLOSURES
     assert result["warnings"] == [
         "Material 'AddChain2000': its shader mixes make 2000 closures; rendering the 64 with "
-        "the largest mix weights and dropping 1936 (Cycles' limit is 64 too)"]
+        "the largest mix weights and dropping 1936 (Cycles' limit is 64 too)",
+        LOBE_WARNING.format("AddChain2000")]
     kept = sorted((constant_weight(c) for c in closures), reverse=True)
     largest = sorted(result["weights"], reverse=True)[:MAX_CLOSURES]
     assert kept == pytest.approx(largest, rel=1e-9)
@@ -142,7 +149,8 @@ def test_large_graphs_render_in_bounded_time(blender, tmp_path, kind, size):
     assert "Photon: rendered frame 1" in proc.stdout, proc.log
     warnings = [line for line in proc.stdout.splitlines() if "Photon: warning: Material" in line]
     if kind == "add_chain":
-        assert len(warnings) == 1 and "make 2000 closures" in warnings[0], proc.log
+        assert len(warnings) == 2 and "make 2000 closures" in warnings[0], proc.log
+        assert "8 strongest lobes" in warnings[1], proc.log
     else:
         assert warnings == [], proc.log
     pixels = read_image(tmp_path / "out_0001.exr")[..., :3]

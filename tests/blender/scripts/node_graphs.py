@@ -175,7 +175,7 @@ def build(kind, size):
 def convert(mat):
     from photon import _photon, sync_materials, sync_textures
     scene, reporter = RecordingScene(), RecordingReporter()
-    textures = sync_textures.TextureTable(scene, reporter, _photon.write_texture)
+    textures = sync_textures.TextureTable(scene, reporter, _photon.TexturePixels)
     reporter.current = mat.name
     start = time.perf_counter()
     name, closures = sync_materials.convert_material(mat, reporter, textures)
