@@ -89,7 +89,7 @@ TEST(CancelLatency, RadiancePrecompute) {
 
 TEST(CancelLatency, IrradianceCacheBuild) {
   RenderSettings s = cornell_settings(256, 1);
-  s.final_gather_rays = 64;  // 4096 rays per record, thousands of records
+  s.final_gather_rays = 256;  // 16384 rays per record, thousands of records
   EXPECT_LT(cancel_during(s, "Irradiance cache", 500), kLatencyBound);
 }
 
