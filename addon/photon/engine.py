@@ -40,11 +40,21 @@ def make_settings(native, scene, full_width, full_height, region):
     settings.final_gather_rays = max(0, int(props.final_gather_rays))
     settings.photon_time = max(0.0, float(props.photon_time))
     settings.irradiance_cache = bool(props.irradiance_cache)
+    settings.memory_limit = min(max(float(props.memory_limit), 0.0001), 1.0)
     settings.radiosity_patch_size = max(0.0, float(props.radiosity_patch_size))
     settings.radiosity_rays = max(10, int(props.radiosity_rays)) * 1000
     settings.radiosity_threshold = min(max(float(props.radiosity_threshold), 1e-4), 1.0)
     settings.radiosity_iterations = min(max(int(props.radiosity_iterations), 0), 100)
     return settings
+
+
+def can_stop_early(scene, session):
+    """Esc while photons are traced (or radiosity is solved) ends that stage and renders with
+    what it has; in any other stage, and for Ctrl-C in background mode (which Blender turns
+    into test_break()), the render is cancelled."""
+    if bpy.app.background:
+        return False
+    return scene.photon.integrator == "RADIOSITY" or session.status.startswith("Tracing photons")
 
 
 class PhotonRenderEngine(bpy.types.RenderEngine):
@@ -122,7 +132,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                     self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
                     tiles_done += 1
                 if not cancelled and not photons_stopped and self.test_break():
-                    if session.preparing:
+                    if session.preparing and can_stop_early(scene, session):
                         # Esc while photons are traced ends the tracing; the image is rendered
                         # with the photons traced so far (Blender keeps test_break() set from
                         # here on, so the rest of this render cannot be cancelled).

@@ -67,6 +67,12 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
                     "(0 = use the counts). Esc during photon tracing renders with the "
                     "photons traced so far",
         default=0.0, min=0.0, soft_max=600.0, max=86400.0, subtype="TIME_ABSOLUTE", unit="TIME")
+    memory_limit: FloatProperty(
+        name="Memory Limit",
+        description="Fraction of the memory available when a render starts that the photon "
+                    "maps may use at their peak (estimated before tracing); larger photon "
+                    "counts are scaled down to fit, with a warning",
+        default=0.75, min=0.01, max=1.0, subtype="FACTOR")
     radiosity_patch_size: FloatProperty(
         name="Patch Size",
         description="Edge length of the radiosity patches (elements) surfaces are split into; "
@@ -90,8 +96,9 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
                     "with fresh rays, averaged to reduce noise (0 = shooting only)",
         default=4, min=0, soft_max=16, max=100)
     threads: IntProperty(
-        name="Threads", description="Render threads (0 = all cores)",
-        default=0, min=0, soft_max=256)
+        name="Threads",
+        description="Render threads (0 = all cores); more than 4 per core are not used",
+        default=0, min=0, soft_max=256, max=4096)
     tile_size: IntProperty(
         name="Tile Size", description="Width and height of the render tiles in pixels",
         default=64, min=8, max=4096, subtype="PIXEL")

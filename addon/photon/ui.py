@@ -81,6 +81,7 @@ class PHOTON_PT_photon_mapping(PhotonPanel, bpy.types.Panel):
         col.prop(props, "photons")
         col.prop(props, "caustic_photons")
         layout.prop(props, "photon_time")
+        layout.prop(props, "memory_limit")
         col = layout.column(align=True)
         col.prop(props, "gather_count")
         col.prop(props, "caustic_gather_count")

@@ -357,6 +357,7 @@ PYBIND11_MODULE(_photon, m) {
       .def_readwrite("final_gather_rays", &RenderSettings::final_gather_rays)
       .def_readwrite("photon_time", &RenderSettings::photon_time)
       .def_readwrite("irradiance_cache", &RenderSettings::irradiance_cache)
+      .def_readwrite("memory_limit", &RenderSettings::memory_limit)
       .def_readwrite("radiosity_patch_size", &RenderSettings::radiosity_patch_size)
       .def_readwrite("radiosity_rays", &RenderSettings::radiosity_rays)
       .def_readwrite("radiosity_threshold", &RenderSettings::radiosity_threshold)

@@ -46,8 +46,8 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
                        const BakeOptions& options, const std::vector<BakePoint>& points,
                        const PrepareControl& control,
                        const std::function<void()>& on_prepared, std::atomic<size_t>* points_done) {
-  const RenderSettings settings = sanitized_settings(input_settings);
   BakeResult result;
+  const RenderSettings settings = sanitized_settings(input_settings, &result.warnings);
   const size_t n = points.size();
   result.radiance.assign(n, Vec3(0.0f));
   result.position.assign(n, Vec3(0.0f));
@@ -85,8 +85,10 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
     probe_context.settings = &probe_settings;
     t0 = Clock::now();
     tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const auto& range) {
-      if (control.cancelled()) return;
-      for (size_t i = range.begin(); i != range.end(); ++i) {
+      size_t shaded = 0;
+      // The partitioner hands out ranges far larger than the grain: poll per point.
+      for (size_t i = range.begin(); i != range.end(); ++i, ++shaded) {
+        if (control.cancelled()) break;
         const BakePoint& point = points[i];
         uint32_t triangle = point.triangle;
         if (point.instance < scene.instances.size()) {
@@ -138,7 +140,7 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
           result.status[i] = kBakeOk;
         }
       }
-      if (points_done) *points_done += range.size();
+      if (points_done) *points_done += shaded;
     });
     result.bake_seconds = seconds_since(t0);
   });

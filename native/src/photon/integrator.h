@@ -44,6 +44,9 @@ struct RenderSettings {
   int final_gather_rays = 16;         // per camera sample; 0 = read the global map directly
   float photon_time = 0.0f;           // > 0: trace photons for this many seconds instead
   bool irradiance_cache = true;       // final gathers at camera-visible points interpolated
+  // Photon counts are scaled down when the photon maps' estimated peak memory would exceed this
+  // fraction of the memory available when tracing starts (MemAvailable; photon_memory.h).
+  float memory_limit = 0.75f;
 
   // Radiosity (seed 002; radiosity_solver.h).
   float radiosity_patch_size = 0.0f;     // element edge length; 0 = automatic (~20k elements)

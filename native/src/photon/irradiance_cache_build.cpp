@@ -121,9 +121,10 @@ IrradianceCache build_irradiance_cache(const RenderContext& context,
     const int ny = (s.full_height + spacing - 1) / spacing;
     std::vector<std::vector<IrradianceRecord>> found(static_cast<size_t>(nx) * ny);
     tbb::parallel_for(tbb::blocked_range<size_t>(0, found.size(), 8), [&](const auto& range) {
-      if (control.cancelled()) return;
       uint64_t tested = 0;
+      // The partitioner hands out ranges far larger than the grain: poll per pixel.
       for (size_t i = range.begin(); i != range.end(); ++i) {
+        if (control.cancelled()) break;
         const int px = std::min(static_cast<int>(i % nx) * spacing + spacing / 2, s.full_width - 1);
         const int py = std::min(static_cast<int>(i / nx) * spacing + spacing / 2, s.full_height - 1);
         records_at_pixel(context, settings, gather, cache, level, px, py, &found[i], &tested);

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "photon/cancel_poll.h"
+
 namespace photon {
 namespace {
 
@@ -89,21 +91,39 @@ Photon Photon::make(const Vec3& p, const Vec3& direction, const Vec3& power, uin
   return ph;
 }
 
-PhotonMap::PhotonMap(std::vector<Photon> photons) : photons_(std::move(photons)) {
-  photons_.shrink_to_fit();
-  build(0, photons_.size(), 0);
+PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel)
+    : photons_(std::move(photons)) {
+  try {
+    if (photons_.capacity() != photons_.size()) {
+      // shrink_to_fit, in slices that poll for cancellation (a billion-photon copy takes seconds).
+      std::vector<Photon> exact;
+      exact.reserve(photons_.size());
+      constexpr size_t kSlice = size_t{1} << 20;
+      for (size_t i = 0; i < photons_.size(); i += kSlice) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) throw Cancelled();
+        exact.insert(exact.end(), photons_.begin() + i,
+                     photons_.begin() + std::min(photons_.size(), i + kSlice));
+      }
+      photons_.swap(exact);
+    }
+    build(0, photons_.size(), 0, cancel);
+  } catch (const Cancelled&) {
+    photons_ = std::vector<Photon>();
+  }
 }
 
 // Balances [lo, hi): the median along the widest axis of the range's bounds becomes the node at
 // (lo + hi) / 2, smaller coordinates to its left. Big halves are built in parallel; the result
 // depends only on the input order.
-void PhotonMap::build(size_t lo, size_t hi, int depth) {
+void PhotonMap::build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel) {
   if (hi - lo <= 1) {
     if (hi > lo) photons_[lo].axis = 0;
     return;
   }
+  CancelPoll poll(cancel);
   float bmin[3] = {INFINITY, INFINITY, INFINITY}, bmax[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (size_t i = lo; i < hi; ++i) {
+    poll();
     for (int a = 0; a < 3; ++a) {
       bmin[a] = std::min(bmin[a], photons_[i].position[a]);
       bmax[a] = std::max(bmax[a], photons_[i].position[a]);
@@ -114,15 +134,18 @@ void PhotonMap::build(size_t lo, size_t hi, int depth) {
     if (bmax[a] - bmin[a] > bmax[axis] - bmin[axis]) axis = a;
   const size_t mid = (lo + hi) / 2;
   std::nth_element(photons_.begin() + lo, photons_.begin() + mid, photons_.begin() + hi,
-                   [axis](const Photon& a, const Photon& b) {
+                   [axis, &poll](const Photon& a, const Photon& b) {
+                     poll();
                      return a.position[axis] < b.position[axis];
                    });
   photons_[mid].axis = static_cast<uint8_t>(axis);
+  // Cancelled thrown in either half reaches the constructor (TBB rethrows it here).
   if (hi - lo > 65536 && depth < 12) {
-    tbb::parallel_invoke([&] { build(lo, mid, depth + 1); }, [&] { build(mid + 1, hi, depth + 1); });
+    tbb::parallel_invoke([&] { build(lo, mid, depth + 1, cancel); },
+                         [&] { build(mid + 1, hi, depth + 1, cancel); });
   } else {
-    build(lo, mid, depth + 1);
-    build(mid + 1, hi, depth + 1);
+    build(lo, mid, depth + 1, cancel);
+    build(mid + 1, hi, depth + 1, cancel);
   }
 }
 

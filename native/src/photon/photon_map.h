@@ -4,6 +4,7 @@
 // memory beyond the photons themselves.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -49,7 +50,8 @@ class PhotonMap {
  public:
   PhotonMap() = default;
   // Takes the photons and balances the tree (parallel, deterministic for a given input order).
-  explicit PhotonMap(std::vector<Photon> photons);
+  // When `cancel` is set during the build the map is left empty (within ~a millisecond).
+  explicit PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel = nullptr);
 
   size_t size() const { return photons_.size(); }
   bool empty() const { return photons_.empty(); }
@@ -72,7 +74,7 @@ class PhotonMap {
                          uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const;
 
  private:
-  void build(size_t lo, size_t hi, int depth);
+  void build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel);
   std::vector<Photon> photons_;
 };
 

@@ -4,9 +4,11 @@
 #include <tbb/parallel_for.h>
 
 #include <chrono>
+#include <cstdio>
 
 #include "photon/direct_lighting.h"
 #include "photon/irradiance_cache_build.h"
+#include "photon/photon_memory.h"
 #include "photon/photon_tracer.h"
 #include "photon/sampling.h"
 
@@ -71,6 +73,80 @@ uint64_t derived_stream(Sampler& sampler) {
   return (a << 24) | b;
 }
 
+// Photons per pass of the pilot trace that measures how many photons a path stores; requests
+// under kPilotMinimum photons need no estimate (at worst a few hundred MB).
+constexpr uint64_t kPilotPhotons = 8192;
+constexpr uint64_t kPilotMinimum = 65536;
+constexpr uint64_t kPilotSeedTag = 0x9E3779B97F4A7C15ull;  // pilot streams differ from the real ones
+
+std::string thousands(uint64_t n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// Scales `trace`'s photon counts down when their estimated peak memory exceeds the
+// configured fraction of the available memory. A pilot trace of a few thousand photons (its
+// own random streams, discarded) measures the photons stored per photon emitted.
+void fit_photon_counts_to_memory(const RenderContext& context, const PhotonSources& sources,
+                                 const PrepareControl& control, PhotonTraceSettings* trace,
+                                 std::vector<std::pair<std::string, double>>* stats) {
+  const RenderSettings& s = *context.settings;
+  if (trace->time_budget > 0.0) return;  // counts unknown up front
+  const uint64_t global = sources.has_global() ? trace->global_photons : 0;
+  const uint64_t caustic = sources.has_caustic() ? trace->caustic_photons : 0;
+  if (global + caustic < kPilotMinimum) return;
+  control.report("Estimating photon memory", 0.0f);
+  PhotonTraceSettings pilot = *trace;
+  pilot.global_photons = global ? kPilotPhotons : 0;
+  pilot.caustic_photons = caustic ? kPilotPhotons : 0;
+  pilot.seed = trace->seed ^ kPilotSeedTag;
+  PrepareControl pilot_control;  // no progress, no early stop: only cancellation
+  pilot_control.cancel = control.cancel;
+  const PhotonTraceResult traced = trace_photons(context, sources, pilot, pilot_control);
+  if (control.cancelled()) return;
+
+  PhotonMemoryRequest request;
+  request.global_photons = global;
+  request.caustic_photons = caustic;
+  if (traced.global_emitted) {
+    request.global_stored_per_emitted = static_cast<double>(traced.global.size()) / traced.global_emitted;
+    request.gather_points_per_emitted =
+        static_cast<double>(traced.gather_points.size()) / traced.global_emitted;
+  }
+  if (traced.caustic_emitted)
+    request.caustic_stored_per_emitted =
+        static_cast<double>(traced.caustic.size()) / traced.caustic_emitted;
+  request.radiance_records = s.final_gather_rays > 0;
+  request.irradiance_pixels = s.final_gather_rays > 0 && s.irradiance_cache
+                                  ? static_cast<uint64_t>(s.full_width) * s.full_height
+                                  : 0;
+  const double available = static_cast<double>(available_memory_bytes());
+  const double budget = s.memory_limit * available;
+  const PhotonMemoryPlan plan = plan_photon_memory(request, budget);
+  stats->push_back({"memory_estimate_bytes", plan.planned_bytes});
+  stats->push_back({"memory_available_bytes", available});
+  if (plan.scale >= 1.0) return;
+  trace->global_photons = plan.global_photons;
+  trace->caustic_photons = plan.caustic_photons;
+  char percent[32];
+  std::snprintf(percent, sizeof percent, "%.0f%%", 100.0 * s.memory_limit);
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.3g%%", 100.0 * plan.scale);
+  if (control.warn)
+    control.warn("Photon memory: " + thousands(global) + " global and " + thousands(caustic) +
+                 " caustic photons would need about " + bytes_text(plan.requested_bytes) +
+                 " at the peak, more than the memory limit (" + percent + " of the " +
+                 bytes_text(available) + " available); tracing " +
+                 thousands(plan.global_photons) + " and " + thousands(plan.caustic_photons) +
+                 " instead (" + scale + " of the request, about " +
+                 bytes_text(plan.planned_bytes) +
+                 "). Raise the memory limit or lower the photon counts to avoid this");
+}
+
 }  // namespace
 
 void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
@@ -88,6 +164,9 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
   trace.caustic_photons = s.caustic_photons;
   trace.time_budget = s.photon_time;
   trace.seed = s.seed;
+  std::vector<std::pair<std::string, double>> memory_stats;
+  fit_photon_counts_to_memory(context, sources, control, &trace, &memory_stats);
+  if (control.cancelled()) return;
   PhotonTraceResult traced = trace_photons(context, sources, trace, control);
   if (control.cancelled()) return;
   if (traced.stopped_early && control.warn)
@@ -98,8 +177,10 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
   control.report("Building photon maps", 1.0f);
   auto t0 = Clock::now();
   const uint64_t global_stored = traced.global.size(), caustic_stored = traced.caustic.size();
-  global_ = PhotonMap(std::move(traced.global));
-  caustic_ = PhotonMap(std::move(traced.caustic));
+  global_ = PhotonMap(std::move(traced.global), control.cancel);
+  if (control.cancelled()) return;
+  caustic_ = PhotonMap(std::move(traced.caustic), control.cancel);
+  if (control.cancelled()) return;
   const double build_seconds = seconds_since(t0);
 
   // Christensen 1999: radiance (for albedo 1) precomputed at every gather point, so a final
@@ -111,9 +192,10 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
     std::vector<RadianceRecord> records(points.size());
     const size_t k = static_cast<size_t>(std::max(s.gather_count, 1));
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const auto& r) {
-      if (control.cancelled()) return;
       std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+      // The partitioner hands out ranges of up to points / (4 threads): poll per point.
       for (size_t i = r.begin(); i != r.end(); ++i) {
+        if (control.cancelled()) return;
         records[i].p = points[i].p;
         records[i].n = points[i].n;
         records[i].radiance = global_.radiance_estimate(points[i].p, points[i].n, k,
@@ -123,7 +205,9 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
       }
     });
     if (control.cancelled()) return;
-    radiance_ = RadianceCache(std::move(records), record_cell_size(global_, points, k, global_radius_));
+    radiance_ = RadianceCache(std::move(records),
+                              record_cell_size(global_, points, k, global_radius_), control.cancel);
+    if (control.cancelled()) return;
   }
   const double precompute_seconds = seconds_since(t0);
   if (s.final_gather_rays > 0 && s.irradiance_cache && !global_.empty()) {
@@ -148,6 +232,7 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
       {"caustic_gather_radius", caustic_radius_},
   };
   stats_.insert(stats_.end(), irradiance_stats_.begin(), irradiance_stats_.end());
+  stats_.insert(stats_.end(), memory_stats.begin(), memory_stats.end());
 }
 
 void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
@@ -157,8 +242,11 @@ void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
   settings.rays = std::clamp(kRecordRaysPerGatherRay * context.settings->final_gather_rays,
                              kMinRecordRays, kMaxRecordRays);
   IrradianceCacheBuildStats build;
+  // A record gathers up to 16384 rays: the gather polls for cancellation every 64 rays.
   auto gather = [&](const SurfaceInteraction& si, const Bsdf& bsdf, int rays, Sampler& sampler,
-                    float* harmonic) { return final_gather(context, si, bsdf, rays, sampler, harmonic); };
+                    float* harmonic) {
+    return final_gather(context, si, bsdf, rays, sampler, harmonic, control.cancel);
+  };
   irradiance_ = build_irradiance_cache(context, settings, gather, control, &build);
   irradiance_stats_ = {
       {"irradiance_records", static_cast<double>(irradiance_.size())},
@@ -232,7 +320,8 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
 
 Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const SurfaceInteraction& x,
                                        const Bsdf& bsdf, int n, Sampler& sampler,
-                                       float* harmonic_distance) const {
+                                       float* harmonic_distance,
+                                       const std::atomic<bool>* cancel) const {
   const Vec2 shift = sampler.get_2d();
   const Frame& frame = bsdf.frame();
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
@@ -244,6 +333,7 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
   double inverse_distances = 0.0;  // for the harmonic mean (Ward 1988)
   int traced = 0;
   for (int j = 0; j < n; ++j) {
+    if (cancel && (j & 63) == 0 && cancel->load(std::memory_order_relaxed)) break;
     // pdf = density * cos / pi, so each ray adds (albedo / pi) L cos / pdf = albedo L / density.
     float density;
     const Vec2 u = guide.sample(rotated_r2(static_cast<uint32_t>(j), shift), &density);

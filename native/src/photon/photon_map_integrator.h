@@ -47,9 +47,10 @@ class PhotonMapIntegrator : public Integrator {
   Vec3 gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
                   std::vector<PhotonNeighbor>* scratch, float* hit_distance = nullptr) const;
   // Reflected radiance for albedo 1 from `rays` final-gather rays; optionally the harmonic
-  // mean distance of their hits.
+  // mean distance of their hits. Returns early (a meaningless value) once `cancel` is set.
   Vec3 final_gather(const RenderContext& context, const SurfaceInteraction& x, const Bsdf& bsdf,
-                    int rays, Sampler& sampler, float* harmonic_distance = nullptr) const;
+                    int rays, Sampler& sampler, float* harmonic_distance = nullptr,
+                    const std::atomic<bool>* cancel = nullptr) const;
   void build_irradiance(const RenderContext& context, const PrepareControl& control);
   // Caustics and indirect light of the diffuse lobes at a camera-path vertex.
   void shade_diffuse(const RenderContext& context, const PathVertex& vertex, Sampler& sampler,

@@ -94,16 +94,19 @@ void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emi
   }
 }
 
-// Traces photons [begin, end) of one pass in parallel chunks and appends their results in
-// chunk order.
+// Traces photons [begin, end) of one pass in parallel chunks; their results, in chunk order,
+// become one block of `blocks` (concatenated once at the end, so the big arrays are never
+// reallocated and copied while tracing). Chunks poll for cancellation.
 void trace_range(const PathSetup& setup, const PhotonSources& sources, uint64_t begin,
-                 uint64_t end, uint32_t stratify_count, PhotonTraceResult* result,
-                 std::vector<Photon>* photons) {
+                 uint64_t end, uint32_t stratify_count, const PrepareControl& control,
+                 PhotonTraceResult* result, std::vector<std::vector<Photon>>* blocks,
+                 std::vector<std::vector<GatherPoint>>* gather_blocks) {
   const uint64_t chunks = (end - begin + kChunk - 1) / kChunk;
   std::vector<ChunkOutput> outputs(chunks);
   const uint64_t stream = setup.caustic_pass ? kCausticStream : kGlobalStream;
   tbb::parallel_for(tbb::blocked_range<uint64_t>(0, chunks, 1), [&](const auto& r) {
     for (uint64_t c = r.begin(); c != r.end(); ++c) {
+      if (control.cancelled()) return;
       ChunkOutput& out = outputs[c];
       const uint64_t lo = begin + c * kChunk, hi = std::min(end, lo + kChunk);
       for (uint64_t i = lo; i < hi; ++i) {
@@ -115,17 +118,42 @@ void trace_range(const PathSetup& setup, const PhotonSources& sources, uint64_t 
       }
     }
   });
+  size_t photon_count = 0, gather_count = 0;
+  for (const ChunkOutput& out : outputs) {
+    photon_count += out.photons.size();
+    gather_count += out.gather_points.size();
+  }
+  std::vector<Photon>& photons = blocks->emplace_back();
+  photons.reserve(photon_count);
+  std::vector<GatherPoint>& gather_points = gather_blocks->emplace_back();
+  gather_points.reserve(gather_count);
   for (ChunkOutput& out : outputs) {
-    photons->insert(photons->end(), out.photons.begin(), out.photons.end());
-    result->gather_points.insert(result->gather_points.end(), out.gather_points.begin(),
-                                 out.gather_points.end());
+    photons.insert(photons.end(), out.photons.begin(), out.photons.end());
+    gather_points.insert(gather_points.end(), out.gather_points.begin(), out.gather_points.end());
     result->rays += out.rays;
   }
 }
 
-void rescale(std::vector<Photon>* photons, float scale) {
+// Moves the blocks into one exactly sized array, block by block, polling for cancellation.
+template <typename T>
+void concatenate(std::vector<std::vector<T>>* blocks, std::vector<T>* out,
+                 const PrepareControl& control) {
+  size_t total = 0;
+  for (const auto& b : *blocks) total += b.size();
+  out->clear();
+  out->reserve(total);
+  for (auto& b : *blocks) {
+    if (control.cancelled()) break;
+    out->insert(out->end(), b.begin(), b.end());
+    std::vector<T>().swap(b);  // give the block's memory back now
+  }
+  blocks->clear();
+}
+
+void rescale(std::vector<Photon>* photons, float scale, const PrepareControl& control) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, photons->size(), 8192), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
+      if ((i & 0xFFFF) == 0 && control.cancelled()) return;
       Photon& ph = (*photons)[i];
       encode_rgbe(ph.power() * scale, ph.power_rgbe);
     }
@@ -164,7 +192,10 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
   PathSetup caustic_setup{&context, &settings, true, timed ? 1.0f : 1.0f / std::max<uint64_t>(want_caustic, 1)};
   const uint32_t strat_global = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_global, UINT32_MAX));
   const uint32_t strat_caustic = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_caustic, UINT32_MAX));
+  uint64_t stored = 0;
 
+  std::vector<std::vector<Photon>> global_blocks, caustic_blocks;
+  std::vector<std::vector<GatherPoint>> gather_blocks;
   for (uint64_t round = 0;; ++round) {
     if (control.should_stop()) {
       result.stopped_early = true;
@@ -183,12 +214,18 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
       g_end = static_cast<uint64_t>(std::ceil(done * want_global));
       c_end = static_cast<uint64_t>(std::ceil(done * want_caustic));
     }
-    if (g_end > result.global_emitted)
-      trace_range(global_setup, sources, result.global_emitted, g_end, strat_global, &result,
-                  &result.global);
-    if (c_end > result.caustic_emitted)
-      trace_range(caustic_setup, sources, result.caustic_emitted, c_end, strat_caustic, &result,
-                  &result.caustic);
+    if (g_end > result.global_emitted) {
+      trace_range(global_setup, sources, result.global_emitted, g_end, strat_global, control,
+                  &result, &global_blocks, &gather_blocks);
+      stored += global_blocks.back().size();
+    }
+    if (c_end > result.caustic_emitted) {
+      // The caustic pass makes no gather points: its (empty) blocks change nothing.
+      trace_range(caustic_setup, sources, result.caustic_emitted, c_end, strat_caustic, control,
+                  &result, &caustic_blocks, &gather_blocks);
+      stored += caustic_blocks.back().size();
+    }
+    if (control.cancelled()) return result;
     result.global_emitted = g_end;
     result.caustic_emitted = c_end;
     const double t = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -197,17 +234,22 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
                                        static_cast<float>(want_global + want_caustic);
     control.report("Tracing photons " + count_text(result.global_emitted + result.caustic_emitted) +
                        (timed ? "" : " / " + count_text(want_global + want_caustic)) + " (" +
-                       count_text(result.global.size() + result.caustic.size()) + " stored)",
+                       count_text(stored) + " stored)",
                    fraction);
     if (!timed && g_end >= want_global && c_end >= want_caustic) break;
   }
+  concatenate(&global_blocks, &result.global, control);
+  concatenate(&caustic_blocks, &result.caustic, control);
+  concatenate(&gather_blocks, &result.gather_points, control);
   // Each photon carries flux / (photons emitted); when that count was not known in advance
   // (time budget, early stop) the stored powers are rescaled now.
-  if (timed || result.stopped_early) {
+  if ((timed || result.stopped_early) && !control.cancelled()) {
     if (result.global_emitted)
-      rescale(&result.global, (timed ? 1.0f : want_global) / static_cast<float>(result.global_emitted));
+      rescale(&result.global, (timed ? 1.0f : want_global) / static_cast<float>(result.global_emitted),
+              control);
     if (result.caustic_emitted)
-      rescale(&result.caustic, (timed ? 1.0f : want_caustic) / static_cast<float>(result.caustic_emitted));
+      rescale(&result.caustic, (timed ? 1.0f : want_caustic) / static_cast<float>(result.caustic_emitted),
+              control);
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return result;

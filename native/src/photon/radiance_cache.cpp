@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "photon/cancel_poll.h"
 #include "photon/rng.h"
 
 namespace photon {
@@ -24,29 +25,52 @@ void RadianceCache::cell_of(const Vec3& p, int64_t* x, int64_t* y, int64_t* z) c
   *z = cell(p.z);
 }
 
-RadianceCache::RadianceCache(std::vector<RadianceRecord> records, float cell_size)
+RadianceCache::RadianceCache(std::vector<RadianceRecord> records, float cell_size,
+                             const std::atomic<bool>* cancel)
     : cell_size_(cell_size > 0.0f && std::isfinite(cell_size) ? cell_size : 1.0f),
       inv_cell_(1.0f / cell_size_) {
+  try {
+    build(std::move(records), cancel);
+  } catch (const Cancelled&) {
+    records_ = std::vector<RadianceRecord>();
+    slots_ = std::vector<Slot>();
+    slot_mask_ = 0;
+  }
+}
+
+void RadianceCache::build(std::vector<RadianceRecord> records, const std::atomic<bool>* cancel) {
+  CancelPoll poll(cancel);
   std::vector<std::pair<uint64_t, uint32_t>> keyed;
   keyed.reserve(records.size());
   for (uint32_t i = 0; i < records.size(); ++i) {
+    poll();
     if (!is_finite(records[i].p)) continue;
     int64_t x, y, z;
     cell_of(records[i].p, &x, &y, &z);
     keyed.push_back({cell_key(x, y, z), i});
   }
-  std::sort(keyed.begin(), keyed.end());
+  // The (key, index) pairs are unique, so the order is the same for any sort algorithm.
+  std::sort(keyed.begin(), keyed.end(), [&poll](const auto& a, const auto& b) {
+    poll();
+    return a < b;
+  });
   records_.reserve(keyed.size());
-  for (const auto& [key, i] : keyed) records_.push_back(records[i]);
+  for (const auto& [key, i] : keyed) {
+    poll();
+    records_.push_back(records[i]);
+  }
 
   size_t cells = 0;
-  for (size_t i = 0; i < keyed.size(); ++i)
+  for (size_t i = 0; i < keyed.size(); ++i) {
+    poll();
     if (i == 0 || keyed[i].first != keyed[i - 1].first) ++cells;
+  }
   size_t table = 16;
   while (table < 2 * cells) table *= 2;
   slots_.assign(table, Slot{});
   slot_mask_ = table - 1;
   for (size_t i = 0; i < keyed.size();) {
+    poll();
     size_t j = i;
     while (j < keyed.size() && keyed[j].first == keyed[i].first) ++j;
     uint64_t s = mix64(keyed[i].first) & slot_mask_;

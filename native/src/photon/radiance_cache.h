@@ -5,6 +5,7 @@
 // k-nearest search (photon_map_bench: 82 ns vs 1.4 us for an 8-nearest kd-tree query).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <vector>
 
@@ -24,7 +25,9 @@ class RadianceCache {
  public:
   RadianceCache() = default;
   // `cell_size` > 0. Records are reordered by cell; the result depends only on the input.
-  RadianceCache(std::vector<RadianceRecord> records, float cell_size);
+  // When `cancel` is set during the build the cache is left empty.
+  RadianceCache(std::vector<RadianceRecord> records, float cell_size,
+                const std::atomic<bool>* cancel = nullptr);
 
   bool empty() const { return records_.empty(); }
   size_t size() const { return records_.size(); }
@@ -40,6 +43,7 @@ class RadianceCache {
     uint64_t key = 0;
     uint32_t begin = 0, count = 0;  // count 0: empty slot
   };
+  void build(std::vector<RadianceRecord> records, const std::atomic<bool>* cancel);
   uint64_t cell_key(int64_t x, int64_t y, int64_t z) const;
   const Slot* find(uint64_t key) const;
   void cell_of(const Vec3& p, int64_t* x, int64_t* y, int64_t* z) const;

@@ -1,5 +1,7 @@
 #include "photon/render_session.h"
 
+#include <tbb/global_control.h>
+#include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_scheduler_observer.h>
@@ -34,7 +36,15 @@ class FlushDenormalsObserver : public tbb::task_scheduler_observer {
   void on_scheduler_entry(bool) override { set_flush_denormals(); }
 };
 
-RenderSettings sanitize(RenderSettings s) {
+// More render threads than a few per core only add scheduling overhead; far more than TBB's
+// worker limit (65,536 in oneTBB 2021) makes TBB warn and later crashes the process.
+constexpr int kMaxThreadsPerCore = 4;
+
+int machine_cores() { return std::max(1, tbb::info::default_concurrency()); }
+
+int thread_limit() { return kMaxThreadsPerCore * machine_cores(); }
+
+RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
   s.full_width = std::clamp(s.full_width, 1, 65536);
   s.full_height = std::clamp(s.full_height, 1, 65536);
   s.x0 = std::clamp(s.x0, 0, s.full_width - 1);
@@ -44,6 +54,15 @@ RenderSettings sanitize(RenderSettings s) {
   s.samples = std::clamp(s.samples, 1, 1 << 20);
   s.max_depth = std::clamp(s.max_depth, 0, 1024);
   s.threads = std::max(s.threads, 0);
+  if (s.threads > thread_limit()) {
+    if (warnings)
+      warnings->push_back("threads = " + std::to_string(s.threads) +
+                          " is more than this machine can use: clamped to " +
+                          std::to_string(thread_limit()) + " (at most " +
+                          std::to_string(kMaxThreadsPerCore) + " per core on " +
+                          std::to_string(machine_cores()) + " cores)");
+    s.threads = thread_limit();
+  }
   s.tile_size = std::clamp(s.tile_size, 4, 4096);
   // ~20-60 bytes per emitted photon are stored: 100M photons is already several GB.
   s.photons = std::min<uint64_t>(s.photons, 100000000ull);
@@ -54,16 +73,30 @@ RenderSettings sanitize(RenderSettings s) {
   if (!std::isfinite(s.gather_radius) || s.gather_radius < 0.0f) s.gather_radius = 0.0f;
   if (!std::isfinite(s.photon_time) || s.photon_time < 0.0f) s.photon_time = 0.0f;
   s.photon_time = std::min(s.photon_time, 86400.0f);
+  if (!(s.memory_limit > 0.0f)) s.memory_limit = RenderSettings().memory_limit;  // NaN too
+  s.memory_limit = std::clamp(s.memory_limit, 1e-4f, 1.0f);
   return s;
 }
 
 }  // namespace
 
-RenderSettings sanitized_settings(const RenderSettings& settings) { return sanitize(settings); }
+RenderSettings sanitized_settings(const RenderSettings& settings,
+                                  std::vector<std::string>* warnings) {
+  return sanitize(settings, warnings);
+}
+
+int arena_threads(int threads) {
+  if (threads <= 0) return tbb::this_task_arena::max_concurrency();
+  // TBB never runs more threads than the host allows (Blender's -t sets this): a bigger arena
+  // would only make TBB print a warning.
+  const auto allowed = static_cast<int>(std::min<size_t>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism), 1 << 20));
+  return std::max(1, std::min({threads, thread_limit(), allowed}));
+}
 
 int run_in_arena(int threads, const std::function<void()>& fn) {
   set_flush_denormals();
-  const int n = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+  const int n = arena_threads(threads);
   tbb::task_arena arena(n);
   FlushDenormalsObserver observer(arena);
   arena.execute(fn);
@@ -71,7 +104,8 @@ int run_in_arena(int threads, const std::function<void()>& fn) {
 }
 
 RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings)
-    : scene_(std::move(scene)), settings_(sanitize(settings)) {
+    : scene_(std::move(scene)) {
+  settings_ = sanitize(settings, &warnings_);
   image_.assign(static_cast<size_t>(region_width()) * region_height() * 4, 0.0f);
   const int ts = settings_.tile_size;
   tile_count_ = static_cast<size_t>((region_width() + ts - 1) / ts) *
@@ -163,8 +197,7 @@ void RenderSession::run() {
 
 void RenderSession::run_render() {
   set_flush_denormals();
-  const int threads =
-      settings_.threads > 0 ? settings_.threads : tbb::this_task_arena::max_concurrency();
+  const int threads = arena_threads(settings_.threads);
   tbb::task_arena arena(threads);
   FlushDenormalsObserver observer(arena);
 

@@ -27,9 +27,13 @@ struct Tile {
   std::vector<float> passes;
 };
 
-// `settings` clamped to what the renderer accepts (also used by lighting bakes).
-RenderSettings sanitized_settings(const RenderSettings& settings);
-// Runs `fn` in a TBB arena of `threads` threads (0 = all cores) whose threads flush denormals,
+// `settings` clamped to what the renderer accepts (also used by lighting bakes); a clamp the
+// user should know about (threads beyond what the machine can use) adds a warning.
+RenderSettings sanitized_settings(const RenderSettings& settings,
+                                  std::vector<std::string>* warnings = nullptr);
+// The arena size for `threads` (0 = all cores), at most a few threads per core.
+int arena_threads(int threads);
+// Runs `fn` in a TBB arena of arena_threads(threads) threads whose threads flush denormals,
 // as Embree recommends. Returns the thread count used.
 int run_in_arena(int threads, const std::function<void()>& fn);
 
