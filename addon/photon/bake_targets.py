@@ -33,11 +33,11 @@ class PointSet:
 
 
 class Corners(PointSet):
-    def __init__(self, triangles, barycentrics, loops, loop_vertex, groups):
+    def __init__(self, triangles, barycentrics, point_groups, groups):
         super().__init__(triangles, barycentrics)
-        self.loops = loops              # the loop of each point
-        self.loop_vertex = loop_vertex  # (L,) vertex of each loop
-        self.groups = groups            # (L,) id of the (vertex, split normal) group of each loop
+        self.point_groups = point_groups  # (P,) the (vertex, split normal) group of each point
+        self.groups = groups              # (L,) the group of each loop
+        self.loop_count = len(groups)
 
 
 class Lightmap(PointSet):
@@ -62,20 +62,31 @@ class Target:
 
 
 def corner_points(corner_loops, loop_vertex, loop_normals):
-    """One point per loop, in the first loop triangle that uses it, and the loop groups."""
-    flat = corner_loops.ravel()
-    loops, first = np.unique(flat, return_index=True)
+    """One point per (vertex, split normal) group: the corners that share a vertex and a normal
+    get one value (smooth and flat-but-coplanar parts are continuous, corners on two sides of a
+    hard edge keep their own), so one point is shaded for all of them, in a loop triangle
+    that uses the group (a quad mesh has about a quarter as many groups as corners)."""
+    normals = np.nan_to_num(loop_normals, nan=0.0, posinf=0.0, neginf=0.0)
+    quantised = np.round(normals / NORMAL_QUANTUM).astype(np.int64)
+    # One int64 key per loop: vertex and normal packed (normals are within [-1024, 1024]).
+    keys = (loop_vertex.astype(np.int64) << 36) | ((quantised[:, 0] + 2048) << 24) \
+        | ((quantised[:, 1] + 2048) << 12) | (quantised[:, 2] + 2048)
+    _, groups = np.unique(keys, return_inverse=True)
+    groups = groups.ravel()
+    flat_groups = groups[corner_loops.ravel()]
+    # One (triangle, corner) entry per group: with repeated indices, numpy's assignment keeps
+    # one of the values, the same one every time (any corner of the group will do).
+    entry = np.full(int(groups.max()) + 1 if len(groups) else 0, -1, np.int64)
+    entry[flat_groups] = np.arange(len(flat_groups))
+    point_groups = np.flatnonzero(entry >= 0)
+    first = entry[point_groups]
     triangles = first // 3
     corner = first % 3
     pull = CORNER_PULL / 3.0
-    bary = np.full((len(loops), 2), pull, np.float32)
+    bary = np.full((len(point_groups), 2), pull, np.float32)
     bary[corner == 1, 0] = 1.0 - CORNER_PULL + pull
     bary[corner == 2, 1] = 1.0 - CORNER_PULL + pull
-    normals = np.nan_to_num(loop_normals, nan=0.0, posinf=0.0, neginf=0.0)
-    quantised = np.round(normals / NORMAL_QUANTUM).astype(np.int64)
-    keys = np.column_stack([loop_vertex.astype(np.int64), quantised])
-    _, groups = np.unique(keys, axis=0, return_inverse=True)
-    return Corners(triangles, bary, loops, loop_vertex, groups.ravel())
+    return Corners(triangles, bary, point_groups, groups)
 
 
 def _topology_matches(mesh, evaluated):
