@@ -88,7 +88,7 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
                 while not job.finished:
                     time.sleep(0.02)
                     wm.progress_update(int(100 * job.progress))
-                    if time.perf_counter() - last_print > 2.0:
+                    if time.perf_counter() - last_print > 1.0:
                         last_print = time.perf_counter()
                         print(f"Photon: bake: {job.status} {100 * job.progress:.0f}%",
                               flush=True)

@@ -69,6 +69,7 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
     const SceneResources resources(scene, settings, &result.warnings);
     const Accel& accel = resources.accel();
     result.build_seconds = seconds_since(t0);
+    if (control.cancelled()) return;
     const RenderContext& context = resources.context();
     std::unique_ptr<Integrator> integrator = make_integrator(settings.integrator);
 

@@ -113,9 +113,9 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
     std::vector<RadianceRecord> records(points.size());
     const size_t k = static_cast<size_t>(std::max(s.gather_count, 1));
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const auto& r) {
-      if (control.cancelled()) return;
       std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
       for (size_t i = r.begin(); i != r.end(); ++i) {
+        if (control.cancelled()) return;
         records[i].p = points[i].p;
         records[i].n = points[i].n;
         records[i].radiance = global_.radiance_estimate(points[i].p, points[i].n, k, global_radius_,

@@ -73,7 +73,9 @@ void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emi
                               : kind == PathKind::kCaustic ? kPhotonCaustic
                                                            : kPhotonIndirect;
         out->photons.push_back(Photon::make(si.p, ray.direction, power, flags));
-        if (hash_combine(index, static_cast<uint64_t>(bounce)) % setup.settings->gather_point_stride == 0)
+        if (hash_combine(index, static_cast<uint64_t>(bounce)) %
+                setup.settings->gather_point_stride ==
+            0)
           out->gather_points.push_back({si.p, bsdf.ng()});
       } else if (kind == PathKind::kCaustic) {
         out->photons.push_back(Photon::make(si.p, ray.direction, power, kPhotonCaustic));
@@ -95,15 +97,17 @@ void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emi
 }
 
 // Traces photons [begin, end) of one pass in parallel chunks and appends their results in
-// chunk order.
-void trace_range(const PathSetup& setup, const PhotonSources& sources, uint64_t begin,
-                 uint64_t end, uint32_t stratify_count, PhotonTraceResult* result,
+// chunk order. A cancelled trace skips its remaining chunks (a round takes a few hundred ms;
+// a chunk a few ms), as its photons are thrown away.
+void trace_range(const PathSetup& setup, const PhotonSources& sources, uint64_t begin, uint64_t end,
+                 uint32_t stratify_count, const PrepareControl& control, PhotonTraceResult* result,
                  std::vector<Photon>* photons) {
   const uint64_t chunks = (end - begin + kChunk - 1) / kChunk;
   std::vector<ChunkOutput> outputs(chunks);
   const uint64_t stream = setup.caustic_pass ? kCausticStream : kGlobalStream;
   tbb::parallel_for(tbb::blocked_range<uint64_t>(0, chunks, 1), [&](const auto& r) {
     for (uint64_t c = r.begin(); c != r.end(); ++c) {
+      if (control.cancelled()) return;
       ChunkOutput& out = outputs[c];
       const uint64_t lo = begin + c * kChunk, hi = std::min(end, lo + kChunk);
       for (uint64_t i = lo; i < hi; ++i) {
@@ -134,9 +138,12 @@ void rescale(std::vector<Photon>* photons, float scale) {
 
 std::string count_text(uint64_t n) {
   char buf[32];
-  if (n >= 1000000) std::snprintf(buf, sizeof buf, "%.2fM", n / 1e6);
-  else if (n >= 1000) std::snprintf(buf, sizeof buf, "%.0fk", n / 1e3);
-  else std::snprintf(buf, sizeof buf, "%llu", static_cast<unsigned long long>(n));
+  if (n >= 1000000)
+    std::snprintf(buf, sizeof buf, "%.2fM", n / 1e6);
+  else if (n >= 1000)
+    std::snprintf(buf, sizeof buf, "%.0fk", n / 1e3);
+  else
+    std::snprintf(buf, sizeof buf, "%llu", static_cast<unsigned long long>(n));
   return buf;
 }
 
@@ -160,10 +167,14 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
   }
   if (want_global + want_caustic == 0) return result;
 
-  PathSetup global_setup{&context, &settings, false, timed ? 1.0f : 1.0f / std::max<uint64_t>(want_global, 1)};
-  PathSetup caustic_setup{&context, &settings, true, timed ? 1.0f : 1.0f / std::max<uint64_t>(want_caustic, 1)};
-  const uint32_t strat_global = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_global, UINT32_MAX));
-  const uint32_t strat_caustic = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_caustic, UINT32_MAX));
+  PathSetup global_setup{&context, &settings, false,
+                         timed ? 1.0f : 1.0f / std::max<uint64_t>(want_global, 1)};
+  PathSetup caustic_setup{&context, &settings, true,
+                          timed ? 1.0f : 1.0f / std::max<uint64_t>(want_caustic, 1)};
+  const uint32_t strat_global =
+      timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_global, UINT32_MAX));
+  const uint32_t strat_caustic =
+      timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_caustic, UINT32_MAX));
 
   for (uint64_t round = 0;; ++round) {
     if (control.should_stop()) {
@@ -184,17 +195,18 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
       c_end = static_cast<uint64_t>(std::ceil(done * want_caustic));
     }
     if (g_end > result.global_emitted)
-      trace_range(global_setup, sources, result.global_emitted, g_end, strat_global, &result,
-                  &result.global);
+      trace_range(global_setup, sources, result.global_emitted, g_end, strat_global, control,
+                  &result, &result.global);
     if (c_end > result.caustic_emitted)
-      trace_range(caustic_setup, sources, result.caustic_emitted, c_end, strat_caustic, &result,
-                  &result.caustic);
+      trace_range(caustic_setup, sources, result.caustic_emitted, c_end, strat_caustic, control,
+                  &result, &result.caustic);
     result.global_emitted = g_end;
     result.caustic_emitted = c_end;
     const double t = std::chrono::duration<double>(Clock::now() - t0).count();
-    const float fraction = timed ? static_cast<float>(std::min(1.0, t / settings.time_budget))
-                                 : static_cast<float>(result.global_emitted + result.caustic_emitted) /
-                                       static_cast<float>(want_global + want_caustic);
+    const float fraction =
+        timed ? static_cast<float>(std::min(1.0, t / settings.time_budget))
+              : static_cast<float>(result.global_emitted + result.caustic_emitted) /
+                    static_cast<float>(want_global + want_caustic);
     control.report("Tracing photons " + count_text(result.global_emitted + result.caustic_emitted) +
                        (timed ? "" : " / " + count_text(want_global + want_caustic)) + " (" +
                        count_text(result.global.size() + result.caustic.size()) + " stored)",
@@ -205,9 +217,11 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
   // (time budget, early stop) the stored powers are rescaled now.
   if (timed || result.stopped_early) {
     if (result.global_emitted)
-      rescale(&result.global, (timed ? 1.0f : want_global) / static_cast<float>(result.global_emitted));
+      rescale(&result.global,
+              (timed ? 1.0f : want_global) / static_cast<float>(result.global_emitted));
     if (result.caustic_emitted)
-      rescale(&result.caustic, (timed ? 1.0f : want_caustic) / static_cast<float>(result.caustic_emitted));
+      rescale(&result.caustic,
+              (timed ? 1.0f : want_caustic) / static_cast<float>(result.caustic_emitted));
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return result;
