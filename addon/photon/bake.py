@@ -70,6 +70,8 @@ class BakeJob:
                 triangles.append(part.triangles)
                 barycentrics.append(part.barycentrics)
         self.point_count = offset
+        self.corner_count = sum(t.corners.loop_count for t in self.targets if t.corners)
+        self.texel_count = sum(len(t.lightmap.texels) for t in self.targets if t.lightmap)
         self.session = native.BakeSession(
             self.native_scene, settings, np.concatenate(instances), np.concatenate(triangles),
             np.concatenate(barycentrics), brighter_side=bool(props.bake_brighter_side))
@@ -182,21 +184,29 @@ def write_lightmap(native, target, result, props, reporter):
     positions[texel] = values["position"][ok]
     normals[texel] = values["normal"][ok]
     world_size[texel] = lightmap.world_size[ok]
+    factor = lightmap.full_size // size
+    # Gutters in image texels: at the shading resolution, plus one ring so that bilinear
+    # upsampling at chart borders reads filled texels only.
+    dilate = int(props.lightmap_dilate)
+    dilate = -(-dilate // factor) + (1 if factor > 1 else 0)
     filtered, _coverage = native.filter_lightmap(
         image_values, covered, positions, normals, world_size, size, size,
-        radius=int(props.lightmap_filter_radius), dilate=int(props.lightmap_dilate))
+        radius=int(props.lightmap_filter_radius), dilate=dilate)
+    del image_values, positions, normals, world_size
+    rgba = native.upsample_lightmap(filtered, factor)
+    del filtered
 
+    full = lightmap.full_size
     name = f"{ATTRIBUTE}_{target.name}"
     image = bpy.data.images.get(name)
-    if image is not None and (tuple(image.size) != (size, size) or not image.is_float):
+    if image is not None and (tuple(image.size) != (full, full) or not image.is_float):
         bpy.data.images.remove(image)
         image = None
     if image is None:
-        image = bpy.data.images.new(name, size, size, alpha=False, float_buffer=True)
+        image = bpy.data.images.new(name, full, full, alpha=False, float_buffer=True)
     image.colorspace_settings.name = "Linear"
-    rgba = np.ones((size, size, 4), np.float32)
-    rgba[..., :3] = filtered
     image.pixels.foreach_set(rgba.ravel())
+    del rgba
     # Packed into the .blend as float EXR, so the lightmap travels with the file.
     image.file_format = 'OPEN_EXR'
     image.pack()

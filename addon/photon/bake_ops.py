@@ -52,12 +52,18 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
         stats = result["stats"]
         written = [t.name for t in job.targets]
         elapsed = time.perf_counter() - self._started
+        written_to = []
+        if job.corner_count:
+            written_to.append(f"{job.corner_count:,} corners "
+                              f"({job.corner_count / max(elapsed, 1e-9):,.0f}/s)")
+        if job.texel_count:
+            written_to.append(f"{job.texel_count:,} lightmap texels")
         self._reporter.info(
-            f"baked {job.point_count:,} points on {len(written)} object(s) in {elapsed:.2f} s "
-            f"({job.point_count / max(elapsed, 1e-9):,.0f} points/s; prepare "
-            f"{stats['prepare_seconds']:.2f} s, locate {stats['locate_seconds']:.2f} s, "
-            f"shared work {stats['share_seconds']:.2f} s, shading {stats['bake_seconds']:.2f} s, "
-            f"{stats['threads']} threads)")
+            f"baked {job.point_count:,} points into {' and '.join(written_to)} on "
+            f"{len(written)} object(s) in {elapsed:.2f} s ({job.point_count / max(elapsed, 1e-9):,.0f}"
+            f" points/s; prepare {stats['prepare_seconds']:.2f} s, locate "
+            f"{stats['locate_seconds']:.2f} s, shared work {stats['share_seconds']:.2f} s, "
+            f"shading {stats['bake_seconds']:.2f} s, {stats['threads']} threads)")
         records = stats.get("bake_irradiance_records")
         if records is not None:
             print(f"Photon: bake: irradiance cache of {records:,.0f} records in "

@@ -15,6 +15,10 @@ import numpy as np
 # shadow rays graze them.
 CORNER_PULL = 0.002
 NORMAL_QUANTUM = 1.0 / 1024.0  # split normals closer than this count as the same
+# Lightmap texels shaded per object at most (a 1448 x 1448 map fully covered): a larger map is
+# shaded at half, quarter, ... resolution and upsampled, which keeps time and memory bounded
+# (an 8192 x 8192 map would be 67M points, tens of GB of intermediate arrays).
+MAX_SHADED_TEXELS = 1 << 21
 
 
 def _get(collection, attribute, dtype, count, components=1):
@@ -41,11 +45,12 @@ class Corners(PointSet):
 
 
 class Lightmap(PointSet):
-    def __init__(self, triangles, barycentrics, texels, world_size, size):
+    def __init__(self, triangles, barycentrics, texels, world_size, size, full_size):
         super().__init__(triangles, barycentrics)
         self.texels = texels
         self.world_size = world_size
-        self.size = size
+        self.size = size            # resolution the texels are shaded at
+        self.full_size = full_size  # resolution of the image (an integer multiple of size)
 
 
 class Target:
@@ -155,12 +160,31 @@ def ensure_lightmap_uv(context, obj, name, size, reporter):
     return mesh.uv_layers.get(name)
 
 
-def lightmap_points(native, mesh, layer_name, corner_loops, world_corners, size):
+def shading_size(triangle_uvs, size):
+    """The lightmap resolution whose covered texels (estimated from the UV area) stay within
+    MAX_SHADED_TEXELS: `size` halved as often as needed."""
+    e1 = triangle_uvs[:, 1] - triangle_uvs[:, 0]
+    e2 = triangle_uvs[:, 2] - triangle_uvs[:, 0]
+    area = np.nan_to_num(0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])).sum()
+    covered = min(float(area), 1.0) * size * size
+    shaded = size
+    while shaded > 256 and covered * (shaded / size) ** 2 > MAX_SHADED_TEXELS:
+        shaded //= 2
+    return shaded, int(covered)
+
+
+def lightmap_points(native, mesh, layer_name, corner_loops, world_corners, size, name,
+                    reporter):
     uv = _get(mesh.uv_layers[layer_name].data, "uv", np.float32, len(mesh.loops), 2)
     triangle_uvs = np.ascontiguousarray(uv[corner_loops], np.float32)
+    shaded, covered = shading_size(triangle_uvs, size)
+    if shaded < size:
+        reporter.info(f"Object '{name}': its {size} x {size} lightmap covers about "
+                      f"{covered:,} texels; shaded at {shaded} x {shaded} (at most "
+                      f"{MAX_SHADED_TEXELS:,} texels are shaded per object) and upsampled")
     texels, triangles, bary, world_size = native.rasterize_uv(
-        triangle_uvs, np.ascontiguousarray(world_corners, np.float32), size, size)
-    return Lightmap(triangles, bary, texels, world_size, size)
+        triangle_uvs, np.ascontiguousarray(world_corners, np.float32), shaded, shaded)
+    return Lightmap(triangles, bary, texels, world_size, shaded, size)
 
 
 def collect(context, depsgraph, object_instances, props, want_attribute, want_lightmap,
@@ -229,7 +253,7 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
             world = np.nan_to_num(positions) @ matrix[:3, :3].T + matrix[:3, 3]
             target.lightmap = lightmap_points(native, mesh, props.lightmap_uv_name,
                                               corner_loops, world[loop_vertex[corner_loops]],
-                                              size)
+                                              size, name, reporter)
         if target.parts():
             targets.append(target)
     return targets

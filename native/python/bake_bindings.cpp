@@ -258,4 +258,25 @@ void bind_bake(py::module_& m) {
       py::arg("dilate") = 4,
       "Surface-aware 2D filter and gutter dilation of a baked lightmap; returns "
       "(image (h, w, 3), coverage (h, w)). Rows go upwards from v = 0.");
+
+  m.def(
+      "upsample_lightmap",
+      [](const FloatArray& image, int factor) {
+        if (image.ndim() != 3 || image.shape(2) != 3)
+          throw std::invalid_argument("upsample_lightmap: image (h, w, 3) expected");
+        if (factor < 1 || factor > 64) throw std::invalid_argument("factor must be within 1..64");
+        const int h = static_cast<int>(image.shape(0)), w = static_cast<int>(image.shape(1));
+        py::array_t<float> rgba(
+            {static_cast<size_t>(h) * factor, static_cast<size_t>(w) * factor, size_t{4}});
+        const Vec3* values = reinterpret_cast<const Vec3*>(image.data());
+        float* out = rgba.mutable_data();
+        {
+          py::gil_scoped_release release;
+          upsample_lightmap_rgba(values, w, h, factor, out);
+        }
+        return rgba;
+      },
+      py::arg("image"), py::arg("factor"),
+      "Bilinear upsampling of a filtered lightmap (h, w, 3) by an integer factor; returns RGBA "
+      "(h * factor, w * factor, 4) with alpha 1, rows upwards as the input.");
 }
