@@ -8,6 +8,8 @@ corner, one per covered lightmap texel), runs one native BakeSession for all of 
 tracing or the radiosity solve happens once) and writes the results back.
 """
 
+import time
+
 import numpy as np
 
 from . import bake_targets, report, sync
@@ -15,6 +17,11 @@ from .engine import make_settings, native_module
 
 ATTRIBUTE = "PhotonLighting"
 LIGHTMAP_PROPERTY = "photon_lightmap"  # object custom property: name of its lightmap image
+
+
+def format_seconds(seconds):
+    seconds = int(round(seconds))
+    return f"{seconds // 60} min {seconds % 60:02d} s" if seconds >= 60 else f"{seconds} s"
 
 
 class BakeError(Exception):
@@ -63,11 +70,14 @@ class BakeJob:
                 triangles.append(part.triangles)
                 barycentrics.append(part.barycentrics)
         self.point_count = offset
+        self.corner_count = sum(t.corners.loop_count for t in self.targets if t.corners)
+        self.texel_count = sum(len(t.lightmap.texels) for t in self.targets if t.lightmap)
         self.session = native.BakeSession(
             self.native_scene, settings, np.concatenate(instances), np.concatenate(triangles),
             np.concatenate(barycentrics), brighter_side=bool(props.bake_brighter_side))
 
     def start(self):
+        self._shading_since = None  # (time, points done) when shading was first seen
         self.session.start()
 
     @property
@@ -80,7 +90,22 @@ class BakeJob:
 
     @property
     def status(self):
-        return f"{self.session.status} ({self.point_count:,} points)"
+        """The native phase; while shading: points done / total, rate and time left."""
+        session = self.session
+        if session.preparing or session.finished:
+            return f"{session.status} ({self.point_count:,} points)"
+        now = time.perf_counter()
+        done = min(int(session.progress * self.point_count), self.point_count)
+        if self._shading_since is None:
+            self._shading_since = (now, done)
+        since, done_then = self._shading_since
+        elapsed = now - since
+        text = f"Baking {done:,} / {self.point_count:,} points"
+        if elapsed > 0.2 and done > done_then:
+            rate = (done - done_then) / elapsed
+            text += (f", {rate:,.0f} points/s, about "
+                     f"{format_seconds((self.point_count - done) / rate)} left")
+        return text
 
     def cancel(self):
         self.session.cancel()
@@ -112,27 +137,22 @@ def _slice(result, part):
 
 
 def write_attribute(target, result, reporter):
-    """Per-corner radiance into the mesh's FLOAT_COLOR corner attribute. Corners that share a
-    vertex and a (split) normal are averaged, so smooth and flat-but-coplanar parts are
-    continuous; corners on two sides of a hard edge keep their own values (crisp edges)."""
+    """Per-corner radiance into the mesh's FLOAT_COLOR corner attribute: every corner takes the
+    value of the point shaded for its (vertex, split normal) group (bake_targets.corner_points)."""
     corners = target.corners
     values = _slice(result, corners)
     ok = values["status"] == 0
+    group_count = int(corners.groups.max()) + 1 if corners.loop_count else 0
+    group_values = np.zeros((group_count, 3), np.float32)
+    group_values[corners.point_groups[ok]] = values["radiance"][ok]
     if not ok.all():
-        reporter.warning(f"Object '{target.name}': {int((~ok).sum())} of {len(ok)} corners "
-                         f"could not be baked (see above); they take their neighbours' values "
-                         f"or black")
-    loop_count = len(corners.loop_vertex)
-    group = corners.groups
-    group_count = int(group.max()) + 1 if len(group) else 0
-    # Each corner point belongs to one loop (corners.loops); groups are per loop.
-    point_group = group[corners.loops]
-    counts = np.bincount(point_group[ok], minlength=group_count)
-    sums = np.stack([np.bincount(point_group[ok], weights=values["radiance"][ok, c],
-                                 minlength=group_count) for c in range(3)], axis=1)
-    mean = sums / np.maximum(counts, 1)[:, None]
-    rgba = np.ones((loop_count, 4), np.float32)
-    rgba[:, :3] = mean[group]
+        failed = np.zeros(group_count, bool)
+        failed[corners.point_groups[~ok]] = True
+        reporter.warning(f"Object '{target.name}': {int(failed[corners.groups].sum())} of "
+                         f"{corners.loop_count} corners could not be baked (see above); they "
+                         f"are black")
+    rgba = np.ones((corners.loop_count, 4), np.float32)
+    rgba[:, :3] = group_values[corners.groups]
 
     mesh = target.mesh
     existing = mesh.attributes.get(ATTRIBUTE)
@@ -164,21 +184,29 @@ def write_lightmap(native, target, result, props, reporter):
     positions[texel] = values["position"][ok]
     normals[texel] = values["normal"][ok]
     world_size[texel] = lightmap.world_size[ok]
+    factor = lightmap.full_size // size
+    # Gutters in image texels: at the shading resolution, plus one ring so that bilinear
+    # upsampling at chart borders reads filled texels only.
+    dilate = int(props.lightmap_dilate)
+    dilate = -(-dilate // factor) + (1 if factor > 1 else 0)
     filtered, _coverage = native.filter_lightmap(
         image_values, covered, positions, normals, world_size, size, size,
-        radius=int(props.lightmap_filter_radius), dilate=int(props.lightmap_dilate))
+        radius=int(props.lightmap_filter_radius), dilate=dilate)
+    del image_values, positions, normals, world_size
+    rgba = native.upsample_lightmap(filtered, factor)
+    del filtered
 
+    full = lightmap.full_size
     name = f"{ATTRIBUTE}_{target.name}"
     image = bpy.data.images.get(name)
-    if image is not None and (tuple(image.size) != (size, size) or not image.is_float):
+    if image is not None and (tuple(image.size) != (full, full) or not image.is_float):
         bpy.data.images.remove(image)
         image = None
     if image is None:
-        image = bpy.data.images.new(name, size, size, alpha=False, float_buffer=True)
+        image = bpy.data.images.new(name, full, full, alpha=False, float_buffer=True)
     image.colorspace_settings.name = "Linear"
-    rgba = np.ones((size, size, 4), np.float32)
-    rgba[..., :3] = filtered
     image.pixels.foreach_set(rgba.ravel())
+    del rgba
     # Packed into the .blend as float EXR, so the lightmap travels with the file.
     image.file_format = 'OPEN_EXR'
     image.pack()

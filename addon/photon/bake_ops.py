@@ -45,36 +45,67 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
             self._reporter.error(f"Bake failed: {exc}")
             return {'CANCELLED'}
         if result is None:
-            self._reporter.warning("Bake cancelled; nothing was written")
+            self._reporter.warning(
+                f"Bake cancelled after {time.perf_counter() - self._started:.2f} s; no lighting "
+                f"was written (meshes and images keep their previous values)")
             return {'CANCELLED'}
         stats = result["stats"]
         written = [t.name for t in job.targets]
+        elapsed = time.perf_counter() - self._started
+        written_to = []
+        if job.corner_count:
+            written_to.append(f"{job.corner_count:,} corners "
+                              f"({job.corner_count / max(elapsed, 1e-9):,.0f}/s)")
+        if job.texel_count:
+            written_to.append(f"{job.texel_count:,} lightmap texels")
         self._reporter.info(
-            f"baked {job.point_count:,} points on {len(written)} object(s) in "
-            f"{time.perf_counter() - self._started:.2f} s (prepare {stats['prepare_seconds']:.2f} s, "
+            f"baked {job.point_count:,} points into {' and '.join(written_to)} on "
+            f"{len(written)} object(s) in {elapsed:.2f} s ({job.point_count / max(elapsed, 1e-9):,.0f}"
+            f" points/s; prepare {stats['prepare_seconds']:.2f} s, locate "
+            f"{stats['locate_seconds']:.2f} s, shared work {stats['share_seconds']:.2f} s, "
             f"shading {stats['bake_seconds']:.2f} s, {stats['threads']} threads)")
+        records = stats.get("bake_irradiance_records")
+        if records is not None:
+            print(f"Photon: bake: irradiance cache of {records:,.0f} records in "
+                  f"{stats['bake_irradiance_seconds']:.2f} s", flush=True)
         return {'FINISHED'}
 
     def execute(self, context):
-        job = self._make_job(context)
-        if job is None:
-            return {'CANCELLED'}
-        job.start()
-        wm = context.window_manager
-        wm.progress_begin(0, 100)
-        last_print = 0.0
+        # Blocking (scripts, background mode): Ctrl-C cancels the bake through a SIGINT
+        # handler installed for its duration (Blender's own only flags renders).
         try:
-            while not job.finished:
-                time.sleep(0.05)
-                wm.progress_update(int(100 * job.progress))
-                if time.perf_counter() - last_print > 2.0:
-                    last_print = time.perf_counter()
-                    print(f"Photon: bake: {job.status} {100 * job.progress:.0f}%", flush=True)
-        except KeyboardInterrupt:
-            job.cancel()
+            native = bake.native_module()
+        except Exception:  # noqa: BLE001 - _make_job reports the missing module
+            native = None
+        if native is not None:
+            native.watch_sigint(None)
+        try:
+            job = self._make_job(context)
+            if job is None:
+                return {'CANCELLED'}
+            native.watch_sigint(job.session)
+            if native.sigint_received():  # Ctrl-C while the scene was synced
+                job.session.cancel()
+            job.start()
+            wm = context.window_manager
+            wm.progress_begin(0, 100)
+            last_print = 0.0
+            try:
+                while not job.finished:
+                    time.sleep(0.02)
+                    wm.progress_update(int(100 * job.progress))
+                    if time.perf_counter() - last_print > 1.0:
+                        last_print = time.perf_counter()
+                        print(f"Photon: bake: {job.status} {100 * job.progress:.0f}%",
+                              flush=True)
+            except KeyboardInterrupt:
+                job.cancel()
+            finally:
+                wm.progress_end()
+            return self._finish(job)
         finally:
-            wm.progress_end()
-        return self._finish(job)
+            if native is not None:
+                native.unwatch_sigint()
 
     def invoke(self, context, event):
         if bpy.app.background or context.window is None:

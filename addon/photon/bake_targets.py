@@ -15,6 +15,10 @@ import numpy as np
 # shadow rays graze them.
 CORNER_PULL = 0.002
 NORMAL_QUANTUM = 1.0 / 1024.0  # split normals closer than this count as the same
+# Lightmap texels shaded per object at most (a 1448 x 1448 map fully covered): a larger map is
+# shaded at half, quarter, ... resolution and upsampled, which keeps time and memory bounded
+# (an 8192 x 8192 map would be 67M points, tens of GB of intermediate arrays).
+MAX_SHADED_TEXELS = 1 << 21
 
 
 def _get(collection, attribute, dtype, count, components=1):
@@ -33,19 +37,20 @@ class PointSet:
 
 
 class Corners(PointSet):
-    def __init__(self, triangles, barycentrics, loops, loop_vertex, groups):
+    def __init__(self, triangles, barycentrics, point_groups, groups):
         super().__init__(triangles, barycentrics)
-        self.loops = loops              # the loop of each point
-        self.loop_vertex = loop_vertex  # (L,) vertex of each loop
-        self.groups = groups            # (L,) id of the (vertex, split normal) group of each loop
+        self.point_groups = point_groups  # (P,) the (vertex, split normal) group of each point
+        self.groups = groups              # (L,) the group of each loop
+        self.loop_count = len(groups)
 
 
 class Lightmap(PointSet):
-    def __init__(self, triangles, barycentrics, texels, world_size, size):
+    def __init__(self, triangles, barycentrics, texels, world_size, size, full_size):
         super().__init__(triangles, barycentrics)
         self.texels = texels
         self.world_size = world_size
-        self.size = size
+        self.size = size            # resolution the texels are shaded at
+        self.full_size = full_size  # resolution of the image (an integer multiple of size)
 
 
 class Target:
@@ -62,20 +67,31 @@ class Target:
 
 
 def corner_points(corner_loops, loop_vertex, loop_normals):
-    """One point per loop, in the first loop triangle that uses it, and the loop groups."""
-    flat = corner_loops.ravel()
-    loops, first = np.unique(flat, return_index=True)
+    """One point per (vertex, split normal) group: the corners that share a vertex and a normal
+    get one value (smooth and flat-but-coplanar parts are continuous, corners on two sides of a
+    hard edge keep their own), so one point is shaded for all of them, in a loop triangle
+    that uses the group (a quad mesh has about a quarter as many groups as corners)."""
+    normals = np.nan_to_num(loop_normals, nan=0.0, posinf=0.0, neginf=0.0)
+    quantised = np.round(normals / NORMAL_QUANTUM).astype(np.int64)
+    # One int64 key per loop: vertex and normal packed (normals are within [-1024, 1024]).
+    keys = (loop_vertex.astype(np.int64) << 36) | ((quantised[:, 0] + 2048) << 24) \
+        | ((quantised[:, 1] + 2048) << 12) | (quantised[:, 2] + 2048)
+    _, groups = np.unique(keys, return_inverse=True)
+    groups = groups.ravel()
+    flat_groups = groups[corner_loops.ravel()]
+    # One (triangle, corner) entry per group: with repeated indices, numpy's assignment keeps
+    # one of the values, the same one every time (any corner of the group will do).
+    entry = np.full(int(groups.max()) + 1 if len(groups) else 0, -1, np.int64)
+    entry[flat_groups] = np.arange(len(flat_groups))
+    point_groups = np.flatnonzero(entry >= 0)
+    first = entry[point_groups]
     triangles = first // 3
     corner = first % 3
     pull = CORNER_PULL / 3.0
-    bary = np.full((len(loops), 2), pull, np.float32)
+    bary = np.full((len(point_groups), 2), pull, np.float32)
     bary[corner == 1, 0] = 1.0 - CORNER_PULL + pull
     bary[corner == 2, 1] = 1.0 - CORNER_PULL + pull
-    normals = np.nan_to_num(loop_normals, nan=0.0, posinf=0.0, neginf=0.0)
-    quantised = np.round(normals / NORMAL_QUANTUM).astype(np.int64)
-    keys = np.column_stack([loop_vertex.astype(np.int64), quantised])
-    _, groups = np.unique(keys, axis=0, return_inverse=True)
-    return Corners(triangles, bary, loops, loop_vertex, groups.ravel())
+    return Corners(triangles, bary, point_groups, groups)
 
 
 def _topology_matches(mesh, evaluated):
@@ -144,12 +160,31 @@ def ensure_lightmap_uv(context, obj, name, size, reporter):
     return mesh.uv_layers.get(name)
 
 
-def lightmap_points(native, mesh, layer_name, corner_loops, world_corners, size):
+def shading_size(triangle_uvs, size):
+    """The lightmap resolution whose covered texels (estimated from the UV area) stay within
+    MAX_SHADED_TEXELS: `size` halved as often as needed."""
+    e1 = triangle_uvs[:, 1] - triangle_uvs[:, 0]
+    e2 = triangle_uvs[:, 2] - triangle_uvs[:, 0]
+    area = np.nan_to_num(0.5 * np.abs(e1[:, 0] * e2[:, 1] - e1[:, 1] * e2[:, 0])).sum()
+    covered = min(float(area), 1.0) * size * size
+    shaded = size
+    while shaded > 256 and covered * (shaded / size) ** 2 > MAX_SHADED_TEXELS:
+        shaded //= 2
+    return shaded, int(covered)
+
+
+def lightmap_points(native, mesh, layer_name, corner_loops, world_corners, size, name,
+                    reporter):
     uv = _get(mesh.uv_layers[layer_name].data, "uv", np.float32, len(mesh.loops), 2)
     triangle_uvs = np.ascontiguousarray(uv[corner_loops], np.float32)
+    shaded, covered = shading_size(triangle_uvs, size)
+    if shaded < size:
+        reporter.info(f"Object '{name}': its {size} x {size} lightmap covers about "
+                      f"{covered:,} texels; shaded at {shaded} x {shaded} (at most "
+                      f"{MAX_SHADED_TEXELS:,} texels are shaded per object) and upsampled")
     texels, triangles, bary, world_size = native.rasterize_uv(
-        triangle_uvs, np.ascontiguousarray(world_corners, np.float32), size, size)
-    return Lightmap(triangles, bary, texels, world_size, size)
+        triangle_uvs, np.ascontiguousarray(world_corners, np.float32), shaded, shaded)
+    return Lightmap(triangles, bary, texels, world_size, shaded, size)
 
 
 def collect(context, depsgraph, object_instances, props, want_attribute, want_lightmap,
@@ -218,7 +253,7 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
             world = np.nan_to_num(positions) @ matrix[:3, :3].T + matrix[:3, 3]
             target.lightmap = lightmap_points(native, mesh, props.lightmap_uv_name,
                                               corner_loops, world[loop_vertex[corner_loops]],
-                                              size)
+                                              size, name, reporter)
         if target.parts():
             targets.append(target)
     return targets

@@ -3,7 +3,9 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <signal.h>
 
+#include <atomic>
 #include <cstring>
 #include <stdexcept>
 
@@ -29,7 +31,8 @@ py::array_t<float> vec_array(const std::vector<T>& v, size_t components) {
 std::vector<BakePoint> points_from(const IntArray& instances, const IntArray& triangles,
                                    const FloatArray& barycentrics) {
   const size_t n = static_cast<size_t>(instances.size());
-  if (static_cast<size_t>(triangles.size()) != n || static_cast<size_t>(barycentrics.size()) != 2 * n)
+  if (static_cast<size_t>(triangles.size()) != n ||
+      static_cast<size_t>(barycentrics.size()) != 2 * n)
     throw std::invalid_argument(
         "bake points: instances (N,), triangles (N,) and barycentrics (N, 2) must agree");
   std::vector<BakePoint> points(n);
@@ -61,6 +64,8 @@ py::dict result_dict(const BakeResult& r) {
   stats["build_seconds"] = r.build_seconds;
   stats["prepare_seconds"] = r.prepare_seconds;
   stats["bake_seconds"] = r.bake_seconds;
+  stats["locate_seconds"] = r.locate_seconds;
+  stats["share_seconds"] = r.share_seconds;
   stats["threads"] = r.threads;
   for (const auto& [name, value] : r.integrator_stats) stats[py::str(name)] = value;
   d["stats"] = stats;
@@ -77,9 +82,61 @@ std::vector<T> image_rows(const Array& a, size_t count, size_t components, const
   return out;
 }
 
+// Ctrl-C during a blocking bake. Blender's background-mode SIGINT handler only sets a flag that
+// renders poll (and kills Blender on the second Ctrl-C), so an operator never sees the first
+// one. While a bake runs, this handler cancels the watched session directly (an atomic store is
+// async-signal-safe) and then calls the previous handler, so Blender's own behaviour is kept.
+std::atomic<BakeSession*> g_sigint_session{nullptr};
+std::atomic<bool> g_sigint_received{false};
+struct sigaction g_previous_sigint;
+bool g_sigint_installed = false;
+
+void on_sigint(int signal_number) {
+  g_sigint_received.store(true);
+  if (BakeSession* session = g_sigint_session.load()) session->cancel();
+  const struct sigaction& previous = g_previous_sigint;
+  if (previous.sa_flags & SA_SIGINFO) {
+    if (previous.sa_sigaction) previous.sa_sigaction(signal_number, nullptr, nullptr);
+  } else if (previous.sa_handler != SIG_DFL && previous.sa_handler != SIG_IGN &&
+             previous.sa_handler != nullptr) {
+    previous.sa_handler(signal_number);
+  }
+}
+
+void watch_sigint(BakeSession* session) {
+  g_sigint_session.store(session);
+  if (g_sigint_installed) return;
+  g_sigint_received.store(false);
+  struct sigaction action {};
+  action.sa_handler = on_sigint;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;
+  if (sigaction(SIGINT, &action, &g_previous_sigint) == 0) g_sigint_installed = true;
+}
+
+bool unwatch_sigint() {
+  g_sigint_session.store(nullptr);
+  if (g_sigint_installed) {
+    sigaction(SIGINT, &g_previous_sigint, nullptr);
+    g_sigint_installed = false;
+  }
+  return g_sigint_received.load();
+}
+
 }  // namespace
 
 void bind_bake(py::module_& m) {
+  m.def(
+      "watch_sigint", [](BakeSession* session) { watch_sigint(session); },
+      py::arg("session") = nullptr,
+      "Until unwatch_sigint(): Ctrl-C (SIGINT) cancels `session` (None: only noted; call again "
+      "with the session once it exists), then reaches the handler that was installed before.");
+  m.def("unwatch_sigint", &unwatch_sigint,
+        "Restores the SIGINT handler of before watch_sigint(); True when a SIGINT came.");
+  m.def(
+      "sigint_received", [] { return g_sigint_received.load(); },
+      "True when a SIGINT came since watch_sigint() installed its handler.");
+
   m.attr("BAKE_OK") = static_cast<int>(kBakeOk);
   m.attr("BAKE_INVALID_POINT") = static_cast<int>(kBakeInvalidPoint);
   m.attr("BAKE_UNSUPPORTED") = static_cast<int>(kBakeUnsupported);
@@ -171,8 +228,8 @@ void bind_bake(py::module_& m) {
   m.def(
       "filter_lightmap",
       [](const FloatArray& values, const ByteArray& covered, const FloatArray& positions,
-         const FloatArray& normals, const FloatArray& world_size, int width, int height,
-         int radius, int dilate) {
+         const FloatArray& normals, const FloatArray& world_size, int width, int height, int radius,
+         int dilate) {
         if (width <= 0 || height <= 0) throw std::invalid_argument("bad lightmap size");
         const size_t count = static_cast<size_t>(width) * height;
         const auto v = image_rows<Vec3>(values, count, 3, "values");
@@ -189,8 +246,8 @@ void bind_bake(py::module_& m) {
           py::gil_scoped_release release;
           out = filter_lightmap(width, height, v, c, p, n, s, filter, &mask);
         }
-        py::array_t<float> image({static_cast<size_t>(height), static_cast<size_t>(width),
-                                  size_t{3}});
+        py::array_t<float> image(
+            {static_cast<size_t>(height), static_cast<size_t>(width), size_t{3}});
         std::memcpy(image.mutable_data(), out.data(), count * sizeof(Vec3));
         py::array_t<uint8_t> coverage({static_cast<size_t>(height), static_cast<size_t>(width)});
         std::memcpy(coverage.mutable_data(), mask.data(), count);
@@ -201,4 +258,25 @@ void bind_bake(py::module_& m) {
       py::arg("dilate") = 4,
       "Surface-aware 2D filter and gutter dilation of a baked lightmap; returns "
       "(image (h, w, 3), coverage (h, w)). Rows go upwards from v = 0.");
+
+  m.def(
+      "upsample_lightmap",
+      [](const FloatArray& image, int factor) {
+        if (image.ndim() != 3 || image.shape(2) != 3)
+          throw std::invalid_argument("upsample_lightmap: image (h, w, 3) expected");
+        if (factor < 1 || factor > 64) throw std::invalid_argument("factor must be within 1..64");
+        const int h = static_cast<int>(image.shape(0)), w = static_cast<int>(image.shape(1));
+        py::array_t<float> rgba(
+            {static_cast<size_t>(h) * factor, static_cast<size_t>(w) * factor, size_t{4}});
+        const Vec3* values = reinterpret_cast<const Vec3*>(image.data());
+        float* out = rgba.mutable_data();
+        {
+          py::gil_scoped_release release;
+          upsample_lightmap_rgba(values, w, h, factor, out);
+        }
+        return rgba;
+      },
+      py::arg("image"), py::arg("factor"),
+      "Bilinear upsampling of a filtered lightmap (h, w, 3) by an integer factor; returns RGBA "
+      "(h * factor, w * factor, 4) with alpha 1, rows upwards as the input.");
 }

@@ -5,8 +5,8 @@
 
 #include <chrono>
 
-#include "photon/scene_resources.h"
 #include "photon/render_session.h"
+#include "photon/scene_resources.h"
 
 namespace photon {
 namespace {
@@ -33,8 +33,9 @@ std::vector<std::vector<int32_t>> kept_triangle_maps(const Scene& scene) {
   return maps;
 }
 
-constexpr int kProbeSamples = 2;       // per side, to choose the brighter side
+constexpr int kProbeSamples = 2;        // per side, to choose the brighter side
 constexpr float kBackSideRatio = 2.0f;  // how much brighter the back must be to be baked
+constexpr size_t kChunk = 256;          // points per parallel task (a few ms of work)
 
 std::string count_message(size_t n, const char* what) {
   return std::to_string(n) + " point(s) " + what;
@@ -44,18 +45,21 @@ std::string count_message(size_t n, const char* what) {
 
 BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
                        const BakeOptions& options, const std::vector<BakePoint>& points,
-                       const PrepareControl& control,
-                       const std::function<void()>& on_prepared, std::atomic<size_t>* points_done) {
+                       const PrepareControl& control, const std::function<void()>& on_prepared,
+                       std::atomic<size_t>* points_done) {
   BakeResult result;
-  const RenderSettings settings = sanitized_settings(input_settings, &result.warnings);
+  RenderSettings settings = sanitized_settings(input_settings, &result.warnings);
+  // The camera's irradiance cache is never read by a bake (prepare_bake places its own).
+  settings.irradiance_cache = false;
   const size_t n = points.size();
   result.radiance.assign(n, Vec3(0.0f));
   result.position.assign(n, Vec3(0.0f));
   result.normal.assign(n, Vec3(0.0f));
   result.status.assign(n, kBakeNotDone);
   if (settings.integrator == IntegratorType::kRayTrace) {
-    result.error = "the RAY_TRACE integrator has no view-independent lighting solution to bake; "
-                   "bake from the photon maps or the radiosity solution";
+    result.error =
+        "the RAY_TRACE integrator has no view-independent lighting solution to bake; "
+        "bake from the photon maps or the radiosity solution";
     return result;
   }
 
@@ -65,6 +69,7 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
     const SceneResources resources(scene, settings, &result.warnings);
     const Accel& accel = resources.accel();
     result.build_seconds = seconds_since(t0);
+    if (control.cancelled()) return;
     const RenderContext& context = resources.context();
     std::unique_ptr<Integrator> integrator = make_integrator(settings.integrator);
 
@@ -75,73 +80,126 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
     result.prepare_seconds = seconds_since(t0);
     result.integrator_stats = integrator->prepare_stats();
     if (control.cancelled()) return;
-    if (on_prepared) on_prepared();
-    control.report("Baking " + std::to_string(n) + " points", 0.0f);
+    control.report("Locating " + std::to_string(n) + " points", 1.0f);
 
     const std::vector<std::vector<int32_t>> kept = kept_triangle_maps(scene);
+    // Point i on the scene (its triangle renumbered past dropped ones), on the side that is
+    // baked (`back` flips the normals).
+    auto resolve = [&](size_t i, bool back, Hit* hit, SurfaceInteraction* si) {
+      const BakePoint& point = points[i];
+      uint32_t triangle = point.triangle;
+      if (point.instance < scene.instances.size()) {
+        const std::vector<int32_t>& map = kept[scene.instances[point.instance].mesh];
+        if (!map.empty())
+          triangle = triangle < map.size() ? static_cast<uint32_t>(map[triangle]) : UINT32_MAX;
+      }
+      if (triangle == UINT32_MAX ||
+          !accel.surface_hit(point.instance, triangle, point.u, point.v, hit))
+        return false;
+      *si = accel.interaction(*hit);
+      if (back) si->ng = -si->ng, si->ns = -si->ns;
+      return true;
+    };
     RenderSettings probe_settings = settings;
     probe_settings.samples = std::min(settings.samples, kProbeSamples);
     RenderContext probe_context = context;
     probe_context.settings = &probe_settings;
     t0 = Clock::now();
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 64), [&](const auto& range) {
-      size_t shaded = 0;
-      // The partitioner hands out ranges far larger than the grain: poll per point.
-      for (size_t i = range.begin(); i != range.end(); ++i, ++shaded) {
-        if (control.cancelled()) break;
-        const BakePoint& point = points[i];
-        uint32_t triangle = point.triangle;
-        if (point.instance < scene.instances.size()) {
-          const std::vector<int32_t>& map = kept[scene.instances[point.instance].mesh];
-          if (!map.empty()) triangle = triangle < map.size() ? static_cast<uint32_t>(map[triangle])
-                                                             : UINT32_MAX;
-        }
-        Hit hit;
-        if (triangle == UINT32_MAX ||
-            !accel.surface_hit(point.instance, triangle, point.u, point.v, &hit)) {
-          result.status[i] = kBakeInvalidPoint;
-          continue;
-        }
-        const SurfaceInteraction front = accel.interaction(hit);
-        SurfaceInteraction side = front;
-        if (options.brighter_side) {
-          // A cheap estimate of both sides (kProbeSamples each) picks the side, then only that
-          // side gets the full estimate.
-          SurfaceInteraction back = front;
-          back.ng = -back.ng;
-          back.ns = -back.ns;
-          Sampler front_probe(settings.seed, 3 * i + 1, 0, 1), back_probe(settings.seed, 3 * i + 2, 0, 1);
-          Vec3 front_radiance, back_radiance;
-          const bool front_ok =
-              integrator->baked_radiance(probe_context, hit, front, front_probe, &front_radiance);
-          const bool back_ok =
-              integrator->baked_radiance(probe_context, hit, back, back_probe, &back_radiance);
-          // The front side keeps the point unless the back is clearly brighter: two dim
-          // sides (a box face outside, the light leaking into its closed inside) would
-          // otherwise be picked by sampling noise, point by point.
-          if (back_ok && (!front_ok || luminance(back_radiance) >
-                                           kBackSideRatio * luminance(front_radiance)))
-            side = back;
-        }
-        // The streams follow the point's index, so the result does not depend on which thread
-        // shades it.
-        Sampler sampler(settings.seed, 3 * i, 0, 1);
-        Vec3 radiance;
-        const bool ok = integrator->baked_radiance(context, hit, side, sampler, &radiance);
-        const SurfaceInteraction& kept_side = side;
-        result.position[i] = kept_side.p;
-        result.normal[i] = kept_side.ns;
-        if (!ok) {
-          result.status[i] = kBakeUnsupported;
-        } else if (!is_finite(radiance)) {
-          result.status[i] = kBakeNonFinite;
-        } else {
-          result.radiance[i] = radiance;
-          result.status[i] = kBakeOk;
-        }
-      }
-      if (points_done) *points_done += shaded;
-    });
+    // Chunks of kChunk points: cancellation is polled between chunks, a few ms apart.
+    const tbb::blocked_range<size_t> all(0, n, kChunk);
+
+    // 1. Where each point is, and which side is baked.
+    std::vector<uint8_t> back_side(n, 0);
+    tbb::parallel_for(
+        all,
+        [&](const auto& range) {
+          if (control.cancelled()) return;
+          for (size_t i = range.begin(); i != range.end(); ++i) {
+            Hit hit;
+            SurfaceInteraction front;
+            if (!resolve(i, false, &hit, &front)) {
+              result.status[i] = kBakeInvalidPoint;
+              continue;
+            }
+            SurfaceInteraction side = front;
+            if (options.brighter_side) {
+              // A cheap estimate of both sides picks the side, then only that side gets the full
+              // estimate.
+              SurfaceInteraction back = front;
+              back.ng = -back.ng;
+              back.ns = -back.ns;
+              Sampler front_probe(settings.seed, 3 * i + 1, 0, 1),
+                  back_probe(settings.seed, 3 * i + 2, 0, 1);
+              Vec3 front_radiance, back_radiance;
+              const bool front_ok =
+                  integrator->baked_probe(probe_context, hit, front, front_probe, &front_radiance);
+              const bool back_ok =
+                  integrator->baked_probe(probe_context, hit, back, back_probe, &back_radiance);
+              // The front side keeps the point unless the back is clearly brighter: two dim
+              // sides (a box face outside, the light leaking into its closed inside) would
+              // otherwise be picked by sampling noise, point by point.
+              if (back_ok && (!front_ok || luminance(back_radiance) >
+                                               kBackSideRatio * luminance(front_radiance))) {
+                side = back;
+                back_side[i] = 1;
+              }
+            }
+            result.position[i] = side.p;
+            result.normal[i] = side.ns;
+          }
+        },
+        tbb::simple_partitioner());
+    if (control.cancelled()) return;
+    result.locate_seconds = seconds_since(t0);
+
+    // 2. Work shared between points (an irradiance cache among them).
+    t0 = Clock::now();
+    std::vector<uint8_t> valid(n);
+    for (size_t i = 0; i < n; ++i) valid[i] = result.status[i] != kBakeInvalidPoint;
+    BakePointSet set;
+    set.count = n;
+    set.positions = result.position.data();
+    set.normals = result.normal.data();
+    set.valid = valid.data();
+    set.interaction = [&](size_t i, SurfaceInteraction* si) {
+      Hit hit;
+      return resolve(i, back_side[i] != 0, &hit, si);
+    };
+    integrator->prepare_bake(context, set, control);
+    result.integrator_stats = integrator->prepare_stats();
+    if (control.cancelled()) return;
+    result.share_seconds = seconds_since(t0);
+    if (on_prepared) on_prepared();
+    control.report("Baking " + std::to_string(n) + " points", 0.0f);
+
+    // 3. The estimate of every point.
+    t0 = Clock::now();
+    tbb::parallel_for(
+        all,
+        [&](const auto& range) {
+          if (control.cancelled()) return;
+          for (size_t i = range.begin(); i != range.end(); ++i) {
+            if (!valid[i]) continue;
+            Hit hit;
+            SurfaceInteraction side;
+            resolve(i, back_side[i] != 0, &hit, &side);
+            // The streams follow the point's index, so the result does not depend on which thread
+            // shades it.
+            Sampler sampler(settings.seed, 3 * i, 0, 1);
+            Vec3 radiance;
+            const bool ok = integrator->baked_radiance(context, hit, side, sampler, &radiance);
+            if (!ok) {
+              result.status[i] = kBakeUnsupported;
+            } else if (!is_finite(radiance)) {
+              result.status[i] = kBakeNonFinite;
+            } else {
+              result.radiance[i] = radiance;
+              result.status[i] = kBakeOk;
+            }
+          }
+          if (points_done) *points_done += range.size();
+        },
+        tbb::simple_partitioner());
     result.bake_seconds = seconds_since(t0);
   });
 
@@ -169,7 +227,10 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
 
 BakeSession::BakeSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
                          const BakeOptions& options, std::vector<BakePoint> points)
-    : scene_(std::move(scene)), settings_(settings), options_(options), points_(std::move(points)) {}
+    : scene_(std::move(scene)),
+      settings_(settings),
+      options_(options),
+      points_(std::move(points)) {}
 
 BakeSession::~BakeSession() {
   cancel();
@@ -185,14 +246,19 @@ void BakeSession::wait() {
   if (worker_.joinable()) worker_.join();
 }
 
-void BakeSession::cancel() { cancel_ = true; }
+void BakeSession::cancel() {
+  cancel_ = true;
+}
 
-void BakeSession::stop_preparation() { stop_preparation_ = true; }
+void BakeSession::stop_preparation() {
+  stop_preparation_ = true;
+}
 
 float BakeSession::progress() const {
   if (preparing_) return prepare_fraction_.load();
-  return points_.empty() ? 1.0f
-                         : static_cast<float>(points_done_.load()) / static_cast<float>(points_.size());
+  return points_.empty()
+             ? 1.0f
+             : static_cast<float>(points_done_.load()) / static_cast<float>(points_.size());
 }
 
 std::string BakeSession::status() const {
@@ -218,8 +284,9 @@ void BakeSession::run() {
   preparing_ = true;
   // Nothing may escape the worker thread: an exception there would terminate Blender.
   try {
-    result = bake_points(*scene_, settings_, options_, points_, control, [this] { preparing_ = false; },
-                         &points_done_);
+    result = bake_points(
+        *scene_, settings_, options_, points_, control, [this] { preparing_ = false; },
+        &points_done_);
   } catch (const std::exception& e) {
     result.error = std::string("bake failed: ") + e.what();
   } catch (...) {

@@ -54,6 +54,8 @@ struct BakeResult {
   std::string error;
   bool cancelled = false;
   double build_seconds = 0.0, prepare_seconds = 0.0, bake_seconds = 0.0;
+  double locate_seconds = 0.0;  // resolving points and choosing their side
+  double share_seconds = 0.0;   // Integrator::prepare_bake (irradiance cache among the points)
   int threads = 0;
   std::vector<std::pair<std::string, double>> integrator_stats;
 };

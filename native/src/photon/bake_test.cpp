@@ -1,11 +1,11 @@
 #include "photon/bake.h"
 
+#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
-
-#include <OpenImageIO/imagebuf.h>
 
 #include "photon/accel.h"
 #include "photon/lightmap.h"
@@ -74,8 +74,8 @@ TEST(Accel, SurfaceHitMatchesTheHitOfARay) {
   // Same geometric normal direction (Embree's is unnormalised): shading sees the same side.
   const SurfaceInteraction a = accel.interaction(traced), b = accel.interaction(made);
   EXPECT_GT(dot(a.ng, b.ng), 0.999f);
-  EXPECT_FALSE(accel.surface_hit(1, 0, 0.2f, 0.2f, &made));   // no such instance
-  EXPECT_FALSE(accel.surface_hit(0, 2, 0.2f, 0.2f, &made));   // a quad has two triangles
+  EXPECT_FALSE(accel.surface_hit(1, 0, 0.2f, 0.2f, &made));  // no such instance
+  EXPECT_FALSE(accel.surface_hit(0, 2, 0.2f, 0.2f, &made));  // a quad has two triangles
 }
 
 // A plane under a point light of intensity I at height h: L = albedo / pi * I cos / d^2 (no
@@ -86,7 +86,8 @@ TEST(Bake, PlaneUnderPointLightFollowsInverseSquareLawOnBothWindings) {
     scene.materials.push_back(Material::diffuse(Vec3(0.5f)));
     Mesh quad = make_quad({-10, -10, 0}, {20, 0, 0}, {0, 20, 0});
     if (flipped)
-      for (size_t t = 0; t < quad.triangle_count(); ++t) std::swap(quad.indices[3 * t + 1], quad.indices[3 * t + 2]);
+      for (size_t t = 0; t < quad.triangle_count(); ++t)
+        std::swap(quad.indices[3 * t + 1], quad.indices[3 * t + 2]);
     add_mesh_instance(&scene, quad, 0);
     scene.lights.push_back(point_light_above(100.0f, 1.0f));
     const Accel accel(scene, nullptr);
@@ -96,14 +97,16 @@ TEST(Bake, PlaneUnderPointLightFollowsInverseSquareLawOnBothWindings) {
       points.emplace_back();
       ASSERT_TRUE(point_below(accel, w.x, w.y, 0.5f, &points.back()));
     }
-    const BakeResult r = bake_points(scene, bake_settings(), BakeOptions{}, points, PrepareControl{});
+    const BakeResult r =
+        bake_points(scene, bake_settings(), BakeOptions{}, points, PrepareControl{});
     ASSERT_TRUE(r.error.empty()) << r.error;
     const double intensity = 100.0 / (4.0 * kPi);
     for (size_t i = 0; i < where.size(); ++i) {
       ASSERT_EQ(r.status[i], kBakeOk);
       const double d2 = 1.0 + where[i].x * where[i].x + where[i].y * where[i].y;
       const double expected = 0.5 / kPi * intensity / std::sqrt(d2) / d2;
-      EXPECT_NEAR(r.radiance[i].x, expected, 0.01 * expected) << "point " << i << " flipped " << flipped;
+      EXPECT_NEAR(r.radiance[i].x, expected, 0.01 * expected)
+          << "point " << i << " flipped " << flipped;
       EXPECT_GT(r.normal[i].z, 0.99f);  // the lit side was kept
     }
     // Front side only: a flipped plane bakes its dark underside.
@@ -182,8 +185,8 @@ TEST(Bake, CancelBeforeShadingLeavesPointsNotDone) {
   std::atomic<bool> cancel{true};
   PrepareControl control;
   control.cancel = &cancel;
-  const BakeResult r = bake_points(scene, bake_settings(), BakeOptions{},
-                                   {point_on(0, 0, 0.2f, 0.2f)}, control);
+  const BakeResult r =
+      bake_points(scene, bake_settings(), BakeOptions{}, {point_on(0, 0, 0.2f, 0.2f)}, control);
   EXPECT_TRUE(r.cancelled);
   EXPECT_EQ(r.status[0], kBakeNotDone);
   EXPECT_TRUE(r.error.empty());
@@ -236,10 +239,10 @@ TEST(Lightmap, FilterSmoothsASurfaceButNotAcrossSurfacesAndFillsGutters) {
   const std::vector<Vec3> out =
       filter_lightmap(w, h, values, covered, positions, normals, size, filter, &out_cover);
   for (int y = 0; y < h; ++y) {
-    EXPECT_NEAR(out[y * w + 1].x, 1.0f, 0.1f);    // smoothed towards the mean
-    EXPECT_FLOAT_EQ(out[y * w + 5].x, 5.0f);      // chart B untouched by chart A
-    EXPECT_TRUE(out_cover[y * w + 3]);            // the gutter was filled...
-    EXPECT_GT(out[y * w + 3].x, 1.0f);            // ...from both neighbours
+    EXPECT_NEAR(out[y * w + 1].x, 1.0f, 0.1f);  // smoothed towards the mean
+    EXPECT_FLOAT_EQ(out[y * w + 5].x, 5.0f);    // chart B untouched by chart A
+    EXPECT_TRUE(out_cover[y * w + 3]);          // the gutter was filled...
+    EXPECT_GT(out[y * w + 3].x, 1.0f);          // ...from both neighbours
   }
 }
 
@@ -259,7 +262,8 @@ TEST(Bake, TexturedAlbedoIsBaked) {
   Mesh quad = make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
   quad.corner_uvs.clear();
   for (uint32_t i : quad.indices)
-    quad.corner_uvs.push_back(Vec2(0.5f * (quad.positions[i].x + 1), 0.5f * (quad.positions[i].y + 1)));
+    quad.corner_uvs.push_back(
+        Vec2(0.5f * (quad.positions[i].x + 1), 0.5f * (quad.positions[i].y + 1)));
   add_mesh_instance(&scene, quad, 0);
   scene.lights.push_back(point_light_above(100.0f, 3.0f));
   const Accel accel(scene, nullptr);
@@ -273,6 +277,33 @@ TEST(Bake, TexturedAlbedoIsBaked) {
   ASSERT_EQ(r.status[0], kBakeOk);
   ASSERT_EQ(r.status[1], kBakeOk);
   EXPECT_NEAR(r.radiance[1].x / r.radiance[0].x, 0.2158f, 0.005f);
+}
+
+}  // namespace
+}  // namespace photon
+
+namespace photon {
+namespace {
+
+// Upsampling keeps texel centres aligned: a linear ramp stays the same ramp in between, the
+// edges clamp, and alpha is 1.
+TEST(Lightmap, UpsampleIsBilinearBetweenTexelCentres) {
+  const int w = 4, h = 2, f = 4;
+  std::vector<Vec3> ramp(w * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) ramp[y * w + x] = Vec3(static_cast<float>(x), 2.0f * y, 1.0f);
+  std::vector<float> rgba(static_cast<size_t>(w * f) * h * f * 4, -1.0f);
+  upsample_lightmap_rgba(ramp.data(), w, h, f, rgba.data());
+  for (int y = 0; y < h * f; ++y)
+    for (int x = 0; x < w * f; ++x) {
+      const float* p = &rgba[(static_cast<size_t>(y) * w * f + x) * 4];
+      const float sx = std::clamp((x + 0.5f) / f - 0.5f, 0.0f, w - 1.0f);
+      const float sy = std::clamp((y + 0.5f) / f - 0.5f, 0.0f, h - 1.0f);
+      EXPECT_NEAR(p[0], sx, 1e-5f) << x << ", " << y;
+      EXPECT_NEAR(p[1], 2.0f * sy, 1e-5f) << x << ", " << y;
+      EXPECT_EQ(p[2], 1.0f);
+      EXPECT_EQ(p[3], 1.0f);
+    }
 }
 
 }  // namespace

@@ -26,10 +26,10 @@ struct RenderSettings {
   int full_width = 64, full_height = 64;  // whole frame in pixels
   // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
-  int samples = 64;    // camera samples per pixel
-  int max_depth = 8;   // specular bounces after the camera ray
+  int samples = 64;   // camera samples per pixel
+  int max_depth = 8;  // specular bounces after the camera ray
   uint64_t seed = 0;
-  int threads = 0;     // 0 = all cores
+  int threads = 0;  // 0 = all cores
   int tile_size = 64;
   bool transparent_background = false;
   IntegratorType integrator = IntegratorType::kPhotonMap;
@@ -49,10 +49,10 @@ struct RenderSettings {
   float memory_limit = 0.75f;
 
   // Radiosity (seed 002; radiosity_solver.h).
-  float radiosity_patch_size = 0.0f;     // element edge length; 0 = automatic (~20k elements)
-  uint64_t radiosity_rays = 8000000;     // rays traced by the whole solve
-  float radiosity_threshold = 0.01f;     // shooting stops below this unshot fraction
-  int radiosity_iterations = 4;          // averaged Jacobi iterations after shooting
+  float radiosity_patch_size = 0.0f;  // element edge length; 0 = automatic (~20k elements)
+  uint64_t radiosity_rays = 8000000;  // rays traced by the whole solve
+  float radiosity_threshold = 0.01f;  // shooting stops below this unshot fraction
+  int radiosity_iterations = 4;       // averaged Jacobi iterations after shooting
 };
 
 // Read-only state shared by all threads during a render.
@@ -67,10 +67,10 @@ struct RenderContext {
 
 // What one camera sample sees, split into light passes whose sum is the Combined image.
 struct RadianceSample {
-  Vec3 direct;    // emission, direct light, and lights / world seen through specular paths
-  Vec3 indirect;  // light that bounced off at least one diffuse surface
-  Vec3 caustic;   // light that reached a diffuse surface through specular paths only
-  Vec3 photon_map;  // a view of the stored photons (not light; not part of Combined)
+  Vec3 direct;         // emission, direct light, and lights / world seen through specular paths
+  Vec3 indirect;       // light that bounced off at least one diffuse surface
+  Vec3 caustic;        // light that reached a diffuse surface through specular paths only
+  Vec3 photon_map;     // a view of the stored photons (not light; not part of Combined)
   float alpha = 0.0f;  // 1 when the camera ray hit something that is not background
   Vec3 radiance() const { return direct + indirect + caustic; }
 };
@@ -97,6 +97,16 @@ struct CameraHit {
   Hit hit;
 };
 
+// The points of a lighting bake, on the side each is baked: what Integrator::prepare_bake sees.
+struct BakePointSet {
+  size_t count = 0;
+  const Vec3* positions = nullptr;
+  const Vec3* normals = nullptr;   // shading normal of the baked side
+  const uint8_t* valid = nullptr;  // 0: the point is not shaded (may be null: all are)
+  // The interaction of point i on its baked side; false when there is none. Thread-safe.
+  std::function<bool(size_t i, SurfaceInteraction* si)> interaction;
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -121,6 +131,17 @@ class Integrator {
                               Vec3* radiance) const {
     (void)context, (void)hit, (void)si, (void)sampler, (void)radiance;
     return false;
+  }
+  // A cheap estimate of baked_radiance, only to choose which side of a point is baked.
+  virtual bool baked_probe(const RenderContext& context, const Hit& hit,
+                           const SurfaceInteraction& si, Sampler& sampler, Vec3* radiance) const {
+    return baked_radiance(context, hit, si, sampler, radiance);
+  }
+  // Called once before baked_radiance with every point the bake shades, so work shared between
+  // nearby points (an irradiance cache) is placed among them. Polls `control`.
+  virtual void prepare_bake(const RenderContext& context, const BakePointSet& points,
+                            const PrepareControl& control) {
+    (void)context, (void)points, (void)control;
   }
 };
 

@@ -1,12 +1,17 @@
 #include "photon/lightmap.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 
 namespace photon {
 namespace {
 
-float cross2(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+float cross2(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
 
 constexpr float kConeC = 1.1f;  // Jensen's cone filter constant
 
@@ -35,8 +40,10 @@ std::vector<TexelPoint> rasterize_uv_triangles(const Vec2* uvs, const Vec3* posi
       const float world_area2 = length(cross(q[1] - q[0], q[2] - q[0]));
       if (std::isfinite(world_area2)) world_size = std::sqrt(world_area2 / std::fabs(area2));
     }
-    const float lo_x = std::min({p[0].x, p[1].x, p[2].x}), hi_x = std::max({p[0].x, p[1].x, p[2].x});
-    const float lo_y = std::min({p[0].y, p[1].y, p[2].y}), hi_y = std::max({p[0].y, p[1].y, p[2].y});
+    const float lo_x = std::min({p[0].x, p[1].x, p[2].x}),
+                hi_x = std::max({p[0].x, p[1].x, p[2].x});
+    const float lo_y = std::min({p[0].y, p[1].y, p[2].y}),
+                hi_y = std::max({p[0].y, p[1].y, p[2].y});
     const int x0 = std::max(0, static_cast<int>(std::floor(lo_x - 0.5f)));
     const int x1 = std::min(width - 1, static_cast<int>(std::ceil(hi_x - 0.5f)));
     const int y0 = std::max(0, static_cast<int>(std::floor(lo_y - 0.5f)));
@@ -70,8 +77,7 @@ std::vector<Vec3> filter_lightmap(int width, int height, const std::vector<Vec3>
                                   const std::vector<Vec3>& positions,
                                   const std::vector<Vec3>& normals,
                                   const std::vector<float>& world_size,
-                                  const LightmapFilter& filter,
-                                  std::vector<uint8_t>* covered_out) {
+                                  const LightmapFilter& filter, std::vector<uint8_t>* covered_out) {
   const size_t count = static_cast<size_t>(std::max(width, 0)) * std::max(height, 0);
   std::vector<Vec3> out(count, Vec3(0.0f));
   std::vector<uint8_t> mask(count, 0);
@@ -131,6 +137,41 @@ std::vector<Vec3> filter_lightmap(int width, int height, const std::vector<Vec3>
   }
   if (covered_out) *covered_out = std::move(mask);
   return out;
+}
+
+void upsample_lightmap_rgba(const Vec3* values, int width, int height, int factor, float* rgba) {
+  if (width <= 0 || height <= 0 || factor <= 0) return;
+  const int out_w = width * factor, out_h = height * factor;
+  const float inv = 1.0f / static_cast<float>(factor);
+  // Source coordinate of an output texel centre, and its two neighbours and weight.
+  auto tap = [inv](int o, int n, int* i0, int* i1, float* t) {
+    const float x = (static_cast<float>(o) + 0.5f) * inv - 0.5f;
+    const float f = std::floor(x);
+    *t = x - f;
+    *i0 = std::clamp(static_cast<int>(f), 0, n - 1);
+    *i1 = std::clamp(static_cast<int>(f) + 1, 0, n - 1);
+  };
+  tbb::parallel_for(tbb::blocked_range<int>(0, out_h, 16), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y) {
+      int y0, y1;
+      float ty;
+      tap(y, height, &y0, &y1, &ty);
+      const Vec3* row0 = values + static_cast<size_t>(y0) * width;
+      const Vec3* row1 = values + static_cast<size_t>(y1) * width;
+      float* out = rgba + static_cast<size_t>(y) * out_w * 4;
+      for (int x = 0; x < out_w; ++x) {
+        int x0, x1;
+        float tx;
+        tap(x, width, &x0, &x1, &tx);
+        const Vec3 v = (row0[x0] * (1.0f - tx) + row0[x1] * tx) * (1.0f - ty) +
+                       (row1[x0] * (1.0f - tx) + row1[x1] * tx) * ty;
+        out[4 * x] = v.x;
+        out[4 * x + 1] = v.y;
+        out[4 * x + 2] = v.z;
+        out[4 * x + 3] = 1.0f;
+      }
+    }
+  });
 }
 
 }  // namespace photon

@@ -9,6 +9,7 @@
 #include "photon/direct_lighting.h"
 #include "photon/irradiance_cache_build.h"
 #include "photon/photon_memory.h"
+#include "photon/irradiance_cache_points.h"
 #include "photon/photon_tracer.h"
 #include "photon/sampling.h"
 
@@ -34,12 +35,13 @@ Vec2 rotated_r2(uint32_t j, Vec2 shift) {
   double u = shift.x + kA1 * (j + 1), v = shift.y + kA2 * (j + 1);
   u -= std::floor(u);
   v -= std::floor(v);
-  return {std::min(static_cast<float>(u), 0.99999994f), std::min(static_cast<float>(v), 0.99999994f)};
+  return {std::min(static_cast<float>(u), 0.99999994f),
+          std::min(static_cast<float>(v), 0.99999994f)};
 }
 
-constexpr size_t kFallbackCount = 32;     // photons when no precomputed record is near
-constexpr float kGatherMinCos = 0.5f;     // normals of gather point and surface must agree
-constexpr float kDefaultGlobalRadius = 0.1f;   // of the scene's bounding radius
+constexpr size_t kFallbackCount = 32;         // photons when no precomputed record is near
+constexpr float kGatherMinCos = 0.5f;         // normals of gather point and surface must agree
+constexpr float kDefaultGlobalRadius = 0.1f;  // of the scene's bounding radius
 constexpr float kDefaultCausticRadius = 0.05f;
 // Final-gather rays of an irradiance-cache record per final-gather ray of a camera sample:
 // 16 -> 1024, enough that records differ by under 1% and their interpolation shows no blotches.
@@ -198,8 +200,8 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
         if (control.cancelled()) return;
         records[i].p = points[i].p;
         records[i].n = points[i].n;
-        records[i].radiance = global_.radiance_estimate(points[i].p, points[i].n, k,
-                                                        global_radius_, kPhotonAny, &scratch);
+        records[i].radiance = global_.radiance_estimate(points[i].p, points[i].n, k, global_radius_,
+                                                        kPhotonAny, &scratch);
         // The same neighbours show where the indirect light comes from.
         records[i].guide = build_guide(global_, scratch, Frame(points[i].n));
       }
@@ -225,8 +227,8 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
       {"photon_trace_seconds", traced.seconds},
       {"photon_map_build_seconds", build_seconds},
       {"radiance_precompute_seconds", precompute_seconds},
-      {"photon_map_bytes",
-       static_cast<double>(global_.memory_bytes() + caustic_.memory_bytes() + radiance_.memory_bytes())},
+      {"photon_map_bytes", static_cast<double>(global_.memory_bytes() + caustic_.memory_bytes() +
+                                               radiance_.memory_bytes())},
       {"radiance_cell_size", radiance_.cell_size()},
       {"global_gather_radius", global_radius_},
       {"caustic_gather_radius", caustic_radius_},
@@ -263,7 +265,8 @@ std::vector<std::pair<std::string, double>> PhotonMapIntegrator::prepare_stats()
 
 Vec3 PhotonMapIntegrator::gathered_radiance(const Vec3& p, const Vec3& n,
                                             std::vector<PhotonNeighbor>* scratch) const {
-  if (const RadianceRecord* record = radiance_.nearest(p, n, kGatherMinCos)) return record->radiance;
+  if (const RadianceRecord* record = radiance_.nearest(p, n, kGatherMinCos))
+    return record->radiance;
   return global_.radiance_estimate(p, n, kFallbackCount, global_radius_, kPhotonAny, scratch);
 }
 
@@ -348,8 +351,8 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
     ++traced;
   }
   if (harmonic_distance)
-    *harmonic_distance = inverse_distances > 0.0 ? static_cast<float>(traced / inverse_distances)
-                                                 : INFINITY;
+    *harmonic_distance =
+        inverse_distances > 0.0 ? static_cast<float>(traced / inverse_distances) : INFINITY;
   return sum / static_cast<float>(n);
 }
 
@@ -361,7 +364,8 @@ Vec3 PhotonMapIntegrator::photon_dots(const SurfaceInteraction& x) const {
     if (map->empty()) continue;
     map->k_nearest(x.p, 8, global_radius_, kPhotonAny, &scratch);
     if (scratch.size() < 2) continue;
-    const float spacing2 = kPi * scratch.front().distance_squared / static_cast<float>(scratch.size());
+    const float spacing2 =
+        kPi * scratch.front().distance_squared / static_cast<float>(scratch.size());
     float best = INFINITY;
     uint32_t index = 0;
     for (const PhotonNeighbor& nb : scratch)
@@ -385,9 +389,10 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
   if (is_black(weight)) return;
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
   if (!caustic_.empty())
-    result->caustic += weight * caustic_.radiance_estimate(
-                                    x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
-                                    caustic_radius_, kPhotonCaustic, &scratch);
+    result->caustic +=
+        weight * caustic_.radiance_estimate(
+                     x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+                     caustic_radius_, kPhotonCaustic, &scratch);
   // Final gathering where it shows: at the first diffuse surface seen directly or through
   // perfect mirrors and glass. After a rough glossy bounce the blur hides the global map.
   Vec3 cached;
@@ -399,15 +404,15 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
   } else if (!global_.empty()) {
     // Photons that bounced off a diffuse or glossy surface at least once; direct light and
     // caustics come from the other two estimates.
-    result->indirect += weight * global_.radiance_estimate(
-                                     x.p, bsdf.ng(), static_cast<size_t>(std::max(s.gather_count, 1)),
-                                     global_radius_, kPhotonIndirect, &scratch);
+    result->indirect +=
+        weight * global_.radiance_estimate(x.p, bsdf.ng(),
+                                           static_cast<size_t>(std::max(s.gather_count, 1)),
+                                           global_radius_, kPhotonIndirect, &scratch);
   }
 }
 
 RadianceSample PhotonMapIntegrator::radiance_from_hit(const RenderContext& context,
-                                                      const Ray& camera_ray,
-                                                      const CameraHit& first,
+                                                      const Ray& camera_ray, const CameraHit& first,
                                                       Sampler& sampler) const {
   RadianceSample result;
   trace_camera_path(
@@ -431,6 +436,9 @@ bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit
     const RenderSettings& s = *context.settings;
     const int n = std::max(s.samples, 1);
     std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+    Vec3 cached(0.0f);
+    const bool gather = s.final_gather_rays > 0;
+    const bool from_cache = gather && bake_irradiance_.lookup(si.p, si.ns, &cached);
     // Direct light and final gathering are averaged over n stratified samples (the sampler's
     // 2D dimensions follow the R2 sequence over the n sample indices).
     const uint64_t stream = derived_stream(sampler);
@@ -438,14 +446,14 @@ bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit
     for (int k = 0; k < n; ++k) {
       Sampler inner(s.seed, stream, static_cast<uint32_t>(k), static_cast<uint32_t>(n));
       direct += direct_irradiance(context, si, inner);
-      if (s.final_gather_rays > 0)
+      if (gather && !from_cache)
         indirect += final_gather(context, si, sp.bsdf, s.final_gather_rays, inner);
     }
-    reflected = direct * (kInvPi / n) + indirect / static_cast<float>(n);
-    if (s.final_gather_rays == 0 && !global_.empty())
-      reflected += global_.radiance_estimate(si.p, si.ng,
-                                             static_cast<size_t>(std::max(s.gather_count, 1)),
-                                             global_radius_, kPhotonIndirect, &scratch);
+    reflected = direct * (kInvPi / n) + (from_cache ? cached : indirect / static_cast<float>(n));
+    if (!gather && !global_.empty())
+      reflected +=
+          global_.radiance_estimate(si.p, si.ng, static_cast<size_t>(std::max(s.gather_count, 1)),
+                                    global_radius_, kPhotonIndirect, &scratch);
     if (!caustic_.empty())
       reflected += caustic_.radiance_estimate(
           si.p, si.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)), caustic_radius_,
@@ -454,6 +462,42 @@ bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit
   }
   *radiance = sp.emission + reflected;
   return true;
+}
+
+bool PhotonMapIntegrator::baked_probe(const RenderContext& context, const Hit& hit,
+                                      const SurfaceInteraction& si, Sampler& sampler,
+                                      Vec3* radiance) const {
+  (void)hit, (void)sampler;
+  const ShadingPoint sp = shade(context, si, si.ng);
+  const Vec3 albedo = sp.bsdf.diffuse_reflectance();
+  if (is_black(albedo) && is_black(sp.emission)) return false;
+  // The photons tell a lit side from a dark one without tracing a ray: the total radiance
+  // (direct photons included) of the nearest precomputed record on this side, else a small
+  // estimate. Both sides of a bake point are probed, so this keeps the probe cheap.
+  Vec3 photons(0.0f);
+  if (!global_.empty()) photons = gathered_radiance(si.p, si.ng, &scratch_neighbors());
+  *radiance = sp.emission + albedo * photons;
+  return true;
+}
+
+void PhotonMapIntegrator::prepare_bake(const RenderContext& context, const BakePointSet& points,
+                                       const PrepareControl& control) {
+  bake_irradiance_ = IrradianceCache();
+  const RenderSettings& s = *context.settings;
+  if (s.final_gather_rays <= 0 || global_.empty()) return;
+  PointIrradianceCacheSettings settings;
+  settings.rays =
+      std::clamp(kRecordRaysPerGatherRay * s.final_gather_rays, kMinRecordRays, kMaxRecordRays);
+  settings.seed = s.seed;
+  auto gather = [&](const SurfaceInteraction& si, int rays, Sampler& sampler, float* harmonic) {
+    const ShadingPoint sp = shade(context, si, si.ng);
+    return final_gather(context, si, sp.bsdf, rays, sampler, harmonic, control.cancel);
+  };
+  PointIrradianceCacheStats build;
+  bake_irradiance_ = build_point_irradiance_cache(points, gather, settings, control, &build);
+  stats_.push_back({"bake_irradiance_records", static_cast<double>(bake_irradiance_.size())});
+  stats_.push_back({"bake_irradiance_candidates", static_cast<double>(build.candidates)});
+  stats_.push_back({"bake_irradiance_seconds", build.seconds});
 }
 
 }  // namespace photon

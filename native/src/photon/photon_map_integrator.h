@@ -30,8 +30,16 @@ class PhotonMapIntegrator : public Integrator {
   // with E_direct by light sampling and E_indirect by final gathering (or, with
   // final_gather_rays = 0, the global map), each averaged over settings.samples samples so the
   // bake is smooth; E_caustic from the caustic map. False for mirrors and glass.
+  // E_indirect comes from an irradiance cache placed among the bake's points by prepare_bake
+  // (irradiance_cache_points.h) where it covers the point, else from a final gather per sample.
   bool baked_radiance(const RenderContext& context, const Hit& hit, const SurfaceInteraction& si,
                       Sampler& sampler, Vec3* radiance) const override;
+  // Emission plus the photons' radiance near the point (no ray traced): enough to tell a lit
+  // side from a dark one.
+  bool baked_probe(const RenderContext& context, const Hit& hit, const SurfaceInteraction& si,
+                   Sampler& sampler, Vec3* radiance) const override;
+  void prepare_bake(const RenderContext& context, const BakePointSet& points,
+                    const PrepareControl& control) override;
 
   const PhotonMap& global_map() const { return global_; }
   const PhotonMap& caustic_map() const { return caustic_; }
@@ -58,8 +66,9 @@ class PhotonMapIntegrator : public Integrator {
   Vec3 photon_dots(const SurfaceInteraction& x) const;
 
   PhotonMap global_, caustic_;
-  RadianceCache radiance_;  // precomputed at a subset of the global photons
-  IrradianceCache irradiance_;  // final gathers at camera-visible diffuse points
+  RadianceCache radiance_;           // precomputed at a subset of the global photons
+  IrradianceCache irradiance_;       // final gathers at camera-visible diffuse points
+  IrradianceCache bake_irradiance_;  // final gathers among a bake's points
   float global_radius_ = 0.0f, caustic_radius_ = 0.0f;
   std::vector<std::pair<std::string, double>> stats_, irradiance_stats_;
 };
