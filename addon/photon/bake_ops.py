@@ -94,10 +94,12 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
                 while not job.finished:
                     time.sleep(0.02)
                     wm.progress_update(int(100 * job.progress))
+                    # Read the status on every poll (it times the shading rate from its first
+                    # reading); print it once a second.
+                    status = job.status
                     if time.perf_counter() - last_print > 1.0:
                         last_print = time.perf_counter()
-                        print(f"Photon: bake: {job.status} {100 * job.progress:.0f}%",
-                              flush=True)
+                        print(f"Photon: bake: {status} {100 * job.progress:.0f}%", flush=True)
             except KeyboardInterrupt:
                 job.cancel()
             finally:
