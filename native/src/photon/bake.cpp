@@ -89,8 +89,11 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
       for (size_t i = range.begin(); i != range.end(); ++i) {
         const BakePoint& point = points[i];
         uint32_t triangle = point.triangle;
-        if (point.instance < scene.instances.size()) {
-          const std::vector<int32_t>& map = kept[scene.instances[point.instance].mesh];
+        // An instance of a mesh that does not exist has no surface: accel rejects the point.
+        const uint32_t mesh =
+            point.instance < scene.instances.size() ? scene.instances[point.instance].mesh : 0;
+        if (point.instance < scene.instances.size() && mesh < kept.size()) {
+          const std::vector<int32_t>& map = kept[mesh];
           if (!map.empty()) triangle = triangle < map.size() ? static_cast<uint32_t>(map[triangle])
                                                              : UINT32_MAX;
         }
