@@ -28,14 +28,15 @@ void init_ray(const Ray& ray, uint32_t mask, RTCRay* r) {
 }
 
 // Embree 3 asserts on rays its RayK::valid() rejects (any origin or direction coordinate beyond
-// FLT_LARGE = 1.844e18 or NaN, NaN tnear / tfar), and Debian builds it with assertions on: an
-// absurd camera or scene would abort Blender. Such rays are not traced; they hit nothing.
+// FLT_LARGE = 1.844e18 or NaN, NaN tnear / tfar) and on a negative tnear, and Debian builds it
+// with assertions on: an absurd camera or scene would abort Blender. Such rays are not traced;
+// they hit nothing.
 bool traceable(const Ray& ray) {
   constexpr float kLarge = 1.844e18f;
   auto small = [](const Vec3& v) {
     return std::fabs(v.x) <= kLarge && std::fabs(v.y) <= kLarge && std::fabs(v.z) <= kLarge;
   };
-  return small(ray.origin) && small(ray.direction) && !std::isnan(ray.tmin) &&
+  return small(ray.origin) && small(ray.direction) && ray.tmin >= 0.0f &&
          !std::isnan(ray.tmax);
 }
 
