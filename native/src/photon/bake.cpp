@@ -104,6 +104,11 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
           continue;
         }
         const SurfaceInteraction front = accel.interaction(hit);
+        // Barycentrics far outside the triangle (or NaN) put the point at infinity.
+        if (!is_finite(front.p) || !is_finite(front.ns) || !is_finite(front.ng)) {
+          result.status[i] = kBakeInvalidPoint;
+          continue;
+        }
         SurfaceInteraction side = front;
         if (options.brighter_side) {
           // A cheap estimate of both sides (kProbeSamples each) picks the side, then only that
