@@ -4,6 +4,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -19,29 +20,27 @@ namespace {
 
 enum class Kind { kScalar, kColor };
 
-// A param's dict key, whether it is a colour, and the range constants are clamped to. Colours
-// may exceed 1 natively (emission colours); the add-on keeps reflectances within [0, 1].
+// A param's dict key and whether it is a colour; the ranges constants are clamped to live with
+// the core's sanitize_material (param_range), which every scene builder shares.
 struct ParamInfo {
   const char* key;
   Param param;
   Kind kind;
-  float lo, hi;
 };
 
-constexpr float kHuge = 1e6f;
 constexpr ParamInfo kParams[] = {
-    {"color", Param::kColor, Kind::kColor, 0.0f, kHuge},
-    {"roughness", Param::kRoughness, Kind::kScalar, 0.0f, 1.0f},
-    {"metallic", Param::kMetallic, Kind::kScalar, 0.0f, 1.0f},
-    {"specular", Param::kSpecular, Kind::kScalar, 0.0f, 10.0f},
-    {"specular_tint", Param::kSpecularTint, Kind::kScalar, 0.0f, 1.0f},
-    {"transmission", Param::kTransmission, Kind::kScalar, 0.0f, 1.0f},
-    {"ior", Param::kIor, Kind::kScalar, 1e-3f, 100.0f},
-    {"emission", Param::kEmission, Kind::kColor, 0.0f, kHuge},
-    {"strength", Param::kStrength, Kind::kScalar, 0.0f, kHuge},
-    {"alpha", Param::kAlpha, Kind::kScalar, 0.0f, 1.0f},
-    {"clearcoat", Param::kClearcoat, Kind::kScalar, 0.0f, 1.0f},
-    {"clearcoat_roughness", Param::kClearcoatRoughness, Kind::kScalar, 0.0f, 1.0f},
+    {"color", Param::kColor, Kind::kColor},
+    {"roughness", Param::kRoughness, Kind::kScalar},
+    {"metallic", Param::kMetallic, Kind::kScalar},
+    {"specular", Param::kSpecular, Kind::kScalar},
+    {"specular_tint", Param::kSpecularTint, Kind::kScalar},
+    {"transmission", Param::kTransmission, Kind::kScalar},
+    {"ior", Param::kIor, Kind::kScalar},
+    {"emission", Param::kEmission, Kind::kColor},
+    {"strength", Param::kStrength, Kind::kScalar},
+    {"alpha", Param::kAlpha, Kind::kScalar},
+    {"clearcoat", Param::kClearcoat, Kind::kScalar},
+    {"clearcoat_roughness", Param::kClearcoatRoughness, Kind::kScalar},
 };
 static_assert(std::size(kParams) == static_cast<size_t>(Param::kCount), "every Param has a key");
 
@@ -60,13 +59,10 @@ constexpr TypeName kTypes[] = {
   throw py::value_error(message);
 }
 
-float clamp_scalar(float v, float lo, float hi, float fallback) {
-  return std::isfinite(v) ? std::clamp(v, lo, hi) : fallback;
-}
-
-Vec3 clamp_color(const Vec3& v, float lo, float hi, const Vec3& fallback) {
-  return {clamp_scalar(v.x, lo, hi, fallback.x), clamp_scalar(v.y, lo, hi, fallback.y),
-          clamp_scalar(v.z, lo, hi, fallback.z)};
+// A texture index as stored in an Input: negative means none, anything past int32 is out of
+// range for every scene (sanitize_material then drops it).
+int32_t texture_index(int64_t index) {
+  return static_cast<int32_t>(std::clamp<int64_t>(index, -1, INT32_MAX));
 }
 
 void check_keys(const py::dict& d, std::initializer_list<const char*> allowed,
@@ -82,16 +78,13 @@ bool is_number(const py::handle& h) {
   return py::isinstance<py::float_>(h) || py::isinstance<py::int_>(h);
 }
 
-// value = float | [r, g, b] | {"texture": int, "channel": "COLOR" | "ALPHA"}. A texture index
-// outside [0, texture_count) falls back to `fallback`.
-Input parse_input(const py::handle& value, Kind kind, float lo, float hi, const Input& fallback,
-                  int64_t texture_count, const std::string& what) {
+// value = float | [r, g, b] | {"texture": int, "channel": "COLOR" | "ALPHA"}, read as given:
+// sanitize_material clamps constants and drops texture indices with no texture afterwards.
+Input parse_input(const py::handle& value, Kind kind, const Input& fallback,
+                  const std::string& what) {
   if (is_number(value)) {
-    const float v = clamp_scalar(value.cast<float>(), lo, hi, fallback.value.x);
     // A number for a colour is a grey (Blender's float -> colour conversion).
-    return kind == Kind::kScalar
-               ? Input::constant(v)
-               : Input::constant(clamp_color(Vec3(value.cast<float>()), lo, hi, fallback.value));
+    return Input::constant(value.cast<float>());
   }
   if (py::isinstance<py::dict>(value)) {
     py::dict d = py::reinterpret_borrow<py::dict>(value);
@@ -99,9 +92,8 @@ Input parse_input(const py::handle& value, Kind kind, float lo, float hi, const 
     if (!d.contains("texture") || !py::isinstance<py::int_>(d["texture"]))
       fail(what + ": a texture input needs an integer 'texture'");
     Input in = fallback;
-    const int64_t index = d["texture"].cast<int64_t>();
-    if (index < 0 || (texture_count >= 0 && index >= texture_count)) return fallback;
-    in.texture = static_cast<int32_t>(index);
+    in.texture = texture_index(d["texture"].cast<int64_t>());
+    if (in.texture < 0) return fallback;
     in.channel = TextureChannel::kColor;
     if (d.contains("channel")) {
       const std::string channel = py::str(d["channel"]);
@@ -118,13 +110,12 @@ Input parse_input(const py::handle& value, Kind kind, float lo, float hi, const 
     if (seq.size() != 3) fail(what + ": a colour needs 3 values");
     for (auto item : seq)
       if (!is_number(item)) fail(what + ": colour values must be numbers");
-    const Vec3 c{seq[0].cast<float>(), seq[1].cast<float>(), seq[2].cast<float>()};
-    return Input::constant(clamp_color(c, lo, hi, fallback.value));
+    return Input::constant(Vec3{seq[0].cast<float>(), seq[1].cast<float>(), seq[2].cast<float>()});
   }
   fail(what + ": expected a number, [r, g, b] or {'texture': index}");
 }
 
-Closure parse_closure(const py::handle& item, int64_t texture_count, const std::string& what) {
+Closure parse_closure(const py::handle& item, const std::string& what) {
   if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
   py::dict d = py::reinterpret_borrow<py::dict>(item);
   check_keys(d, {"type", "sharp", "params", "normal_map", "weight"}, what);
@@ -144,9 +135,8 @@ Closure parse_closure(const py::handle& item, int64_t texture_count, const std::
       const auto* info = std::find_if(std::begin(kParams), std::end(kParams),
                                       [&](const ParamInfo& i) { return key == i.key; });
       if (info == std::end(kParams)) fail(what + ": unknown param '" + key + "'");
-      closure[info->param] =
-          parse_input(p.second, info->kind, info->lo, info->hi, closure[info->param], texture_count,
-                      what + " param '" + key + "'");
+      closure[info->param] = parse_input(p.second, info->kind, closure[info->param],
+                                         what + " param '" + key + "'");
     }
   }
 
@@ -156,12 +146,8 @@ Closure parse_closure(const py::handle& item, int64_t texture_count, const std::
     check_keys(n, {"texture", "strength"}, what + " normal_map");
     if (!n.contains("texture") || !py::isinstance<py::int_>(n["texture"]))
       fail(what + ": normal_map needs an integer 'texture'");
-    const int64_t index = n["texture"].cast<int64_t>();
-    if (index >= 0 && (texture_count < 0 || index < texture_count)) {
-      closure.normal.texture = static_cast<int32_t>(index);
-      if (n.contains("strength"))
-        closure.normal.strength = clamp_scalar(n["strength"].cast<float>(), 0.0f, 100.0f, 1.0f);
-    }
+    closure.normal.texture = texture_index(n["texture"].cast<int64_t>());
+    if (n.contains("strength")) closure.normal.strength = n["strength"].cast<float>();
   }
 
   if (d.contains("weight")) {
@@ -172,8 +158,7 @@ Closure parse_closure(const py::handle& item, int64_t texture_count, const std::
       check_keys(f, {"fac", "complement"}, what + " weight");
       if (!f.contains("fac")) fail(what + ": a weight factor needs 'fac'");
       WeightFactor factor;
-      factor.fac = parse_input(f["fac"], Kind::kScalar, 0.0f, 1.0f, Input::constant(0.5f),
-                               texture_count, what + " weight fac");
+      factor.fac = parse_input(f["fac"], Kind::kScalar, Input::constant(0.5f), what + " weight fac");
       if (f.contains("complement")) factor.complement = f["complement"].cast<bool>();
       closure.weight.push_back(factor);
     }
@@ -204,8 +189,9 @@ Material parse_material(const std::string& name, const py::handle& closures,
   material.name = name;
   size_t i = 0;
   for (auto item : py::reinterpret_borrow<py::sequence>(closures))
-    material.closures.push_back(parse_closure(
-        item, texture_count, "material '" + name + "' closure " + std::to_string(i++)));
+    material.closures.push_back(
+        parse_closure(item, "material '" + name + "' closure " + std::to_string(i++)));
+  sanitize_material(&material, texture_count < 0 ? SIZE_MAX : static_cast<size_t>(texture_count));
   return material;
 }
 

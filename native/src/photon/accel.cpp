@@ -1,5 +1,6 @@
 #include "photon/accel.h"
 
+#include <cmath>
 #include <cstring>
 
 namespace photon {
@@ -24,6 +25,19 @@ void init_ray(const Ray& ray, uint32_t mask, RTCRay* r) {
   r->mask = mask;
   r->id = 0;
   r->flags = 0;
+}
+
+// Embree 3 asserts on rays its RayK::valid() rejects (any origin or direction coordinate beyond
+// FLT_LARGE = 1.844e18 or NaN, NaN tnear / tfar) and on a negative tnear, and Debian builds it
+// with assertions on: an absurd camera or scene would abort Blender. Such rays are not traced;
+// they hit nothing.
+bool traceable(const Ray& ray) {
+  constexpr float kLarge = 1.844e18f;
+  auto small = [](const Vec3& v) {
+    return std::fabs(v.x) <= kLarge && std::fabs(v.y) <= kLarge && std::fabs(v.z) <= kLarge;
+  };
+  return small(ray.origin) && small(ray.direction) && ray.tmin >= 0.0f &&
+         !std::isnan(ray.tmax);
 }
 
 void fill_hit(const RTCRayHit& rh, const Ray& ray, Hit* hit) {
@@ -131,6 +145,7 @@ Accel::~Accel() {
 }
 
 bool Accel::intersect(const Ray& ray, uint32_t mask, Hit* hit) const {
+  if (!traceable(ray)) return false;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
@@ -152,7 +167,12 @@ void Accel::intersect_coherent(const Ray* rays, size_t count, uint32_t mask, Hit
   for (size_t base = 0; base < count; base += kBatch) {
     const size_t n = std::min(kBatch, count - base);
     for (size_t i = 0; i < n; ++i) {
-      init_ray(rays[base + i], mask, &batch[i].ray);
+      if (traceable(rays[base + i])) {
+        init_ray(rays[base + i], mask, &batch[i].ray);
+      } else {
+        // Valid for Embree but inactive (tnear > tfar): it reports no hit.
+        init_ray(Ray{Vec3(0.0f), Vec3(0.0f, 0.0f, 1.0f), 1.0f, 0.0f}, mask, &batch[i].ray);
+      }
       batch[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
       batch[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
@@ -168,6 +188,7 @@ void Accel::intersect_coherent(const Ray* rays, size_t count, uint32_t mask, Hit
 }
 
 bool Accel::occluded(const Ray& ray, uint32_t mask) const {
+  if (!traceable(ray)) return true;  // no light along a ray that cannot be traced
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRay r;

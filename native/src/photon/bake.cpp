@@ -88,7 +88,9 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
     auto resolve = [&](size_t i, bool back, Hit* hit, SurfaceInteraction* si) {
       const BakePoint& point = points[i];
       uint32_t triangle = point.triangle;
-      if (point.instance < scene.instances.size()) {
+      // An instance of a mesh that does not exist has no surface: accel rejects the point.
+      if (point.instance < scene.instances.size() &&
+          scene.instances[point.instance].mesh < kept.size()) {
         const std::vector<int32_t>& map = kept[scene.instances[point.instance].mesh];
         if (!map.empty())
           triangle = triangle < map.size() ? static_cast<uint32_t>(map[triangle]) : UINT32_MAX;
@@ -97,6 +99,8 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
           !accel.surface_hit(point.instance, triangle, point.u, point.v, hit))
         return false;
       *si = accel.interaction(*hit);
+      // Barycentrics far outside the triangle (or NaN) put the point at infinity.
+      if (!is_finite(si->p) || !is_finite(si->ns) || !is_finite(si->ng)) return false;
       if (back) si->ng = -si->ng, si->ns = -si->ns;
       return true;
     };

@@ -1,5 +1,8 @@
 #include "photon/material.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace photon {
 namespace {
 
@@ -15,7 +18,50 @@ bool weight_is_zero(const Closure& c) {
   return false;
 }
 
+constexpr float kHuge = 1e6f;
+
+float clamp_or(float v, const ParamRange& r, float fallback) {
+  return std::isfinite(v) ? std::clamp(v, r.lo, r.hi) : fallback;
+}
+
+// A constant clamped into `r` component-wise (non-finite components take `fallback`'s), or a
+// texture lookup when the index names an existing texture, else `fallback`.
+void sanitize_input(Input* in, const ParamRange& r, const Input& fallback, size_t texture_count) {
+  if (in->texture >= 0 && static_cast<size_t>(in->texture) >= texture_count) *in = fallback;
+  if (in->texture < 0) in->texture = -1;
+  in->value = {clamp_or(in->value.x, r, fallback.value.x), clamp_or(in->value.y, r, fallback.value.y),
+               clamp_or(in->value.z, r, fallback.value.z)};
+}
+
 }  // namespace
+
+ParamRange param_range(Param p) {
+  switch (p) {
+    case Param::kColor:
+    case Param::kEmission:
+    case Param::kStrength:
+      return {0.0f, kHuge};
+    case Param::kSpecular:
+      return {0.0f, 10.0f};
+    case Param::kIor:
+      return {1e-3f, 100.0f};
+    default:
+      return {0.0f, 1.0f};
+  }
+}
+
+void sanitize_material(Material* material, size_t texture_count) {
+  static const auto kDefaults = Closure::default_params();
+  for (Closure& c : material->closures) {
+    for (size_t i = 0; i < kDefaults.size(); ++i)
+      sanitize_input(&c.params[i], param_range(static_cast<Param>(i)), kDefaults[i], texture_count);
+    if (c.normal.texture < 0 || static_cast<size_t>(c.normal.texture) >= texture_count)
+      c.normal = NormalMap{};
+    c.normal.strength = clamp_or(c.normal.strength, {0.0f, 100.0f}, 1.0f);
+    for (WeightFactor& f : c.weight)
+      sanitize_input(&f.fac, {0.0f, 1.0f}, Input::constant(0.5f), texture_count);
+  }
+}
 
 std::array<Input, static_cast<size_t>(Param::kCount)> Closure::default_params() {
   std::array<Input, static_cast<size_t>(Param::kCount)> p;

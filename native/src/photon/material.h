@@ -116,4 +116,18 @@ struct Material {
   bool may_be_specular() const;
 };
 
+// The range a Param's constants are clamped to: Blender's socket ranges, except that colours may
+// exceed 1 (emission colours) and IOR stays positive.
+struct ParamRange {
+  float lo, hi;
+};
+ParamRange param_range(Param p);
+
+// Makes a material safe to render, whoever built it (the add-on through the Python binding, the
+// CLI, tests): constants outside their Param's range are clamped and non-finite ones replaced by
+// Blender's default; texture indices outside [0, texture_count) become the default constant (a
+// normal map with such an index is dropped); normal-map strength is clamped to [0, 100] and mix
+// factors to [0, 1] (0.5 when not finite).
+void sanitize_material(Material* material, size_t texture_count);
+
 }  // namespace photon

@@ -1,11 +1,24 @@
 #include "photon/pixel_renderer.h"
 
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <memory>
 #include <vector>
 
 #include "photon/camera.h"
 
 namespace photon {
+namespace {
+
+// Samples are finite, but their sum can still overflow (a 1e38 W lamp): an average that left the
+// float range is written as the largest float, never as inf.
+float finite_average(float sum, float inv_spp) {
+  const float v = sum * inv_spp;
+  return std::isnan(v) ? 0.0f : std::clamp(v, -FLT_MAX, FLT_MAX);
+}
+
+}  // namespace
 
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
@@ -67,17 +80,17 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
     }
     float* out = rgba + static_cast<size_t>(row) * n * 4;
     for (size_t i = 0; i < n; ++i) {
-      out[4 * i + 0] = sums[i].x * inv_spp;
-      out[4 * i + 1] = sums[i].y * inv_spp;
-      out[4 * i + 2] = sums[i].z * inv_spp;
+      out[4 * i + 0] = finite_average(sums[i].x, inv_spp);
+      out[4 * i + 1] = finite_average(sums[i].y, inv_spp);
+      out[4 * i + 2] = finite_average(sums[i].z, inv_spp);
       out[4 * i + 3] = alphas[i] * inv_spp;
     }
     if (passes) {
       float* pout = passes + static_cast<size_t>(row) * n * kPassFloats;
       for (size_t i = 0; i < n * kPassCount; ++i) {
-        pout[3 * i + 0] = pass_sums[i].x * inv_spp;
-        pout[3 * i + 1] = pass_sums[i].y * inv_spp;
-        pout[3 * i + 2] = pass_sums[i].z * inv_spp;
+        pout[3 * i + 0] = finite_average(pass_sums[i].x, inv_spp);
+        pout[3 * i + 1] = finite_average(pass_sums[i].y, inv_spp);
+        pout[3 * i + 2] = finite_average(pass_sums[i].z, inv_spp);
       }
     }
   }

@@ -68,24 +68,37 @@ class PixelSource : public BandSource {
   std::shared_ptr<float[]> data_;
 };
 
-// A file read through a private ImageCache of bounded size: tiles come and go, the whole
-// image is never in memory.
+// The ImageCache every conversion reads its source through: bounded in size, so tiles come
+// and go and no whole image is ever in memory. One for the process, never destroyed: OIIO 2.4
+// keeps per-thread state of each cache in its worker threads, and creating and destroying a
+// private cache per file crashed inside OIIO (ImageCacheImpl::verify_file) once several had
+// come and gone.
+OIIO::ImageCache* conversion_cache() {
+  static OIIO::ImageCache* const cache = [] {
+    OIIO::ImageCache* c = OIIO::ImageCache::create(/*shared=*/false);
+    c->attribute("max_memory_MB", 256.0f);
+    c->attribute("autotile", kTile);
+    c->attribute("autoscanline", 1);
+    c->attribute("unassociatedalpha", 1);  // straight alpha, as Blender outputs it
+    return c;
+  }();
+  return cache;
+}
+
+// A source file read in bands through conversion_cache().
 class FileSource : public BandSource {
  public:
-  FileSource() {
-    cache_ = OIIO::ImageCache::create(/*shared=*/false);
-    cache_->attribute("max_memory_MB", 256.0f);
-    cache_->attribute("autotile", kTile);
-    cache_->attribute("autoscanline", 1);
-  }
+  FileSource() : cache_(conversion_cache()) {}
   ~FileSource() override {
     buf_.reset();
-    OIIO::ImageCache::destroy(cache_);
+    // Close the file and drop its tiles (a later render may convert a changed file of the
+    // same name).
+    if (!path_.empty()) cache_->invalidate(OIIO::ustring(path_), /*force=*/true);
   }
   bool open(const std::string& path, std::string* error) {
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as Blender outputs it
-    cache_->attribute("unassociatedalpha", 1);
+    path_ = path;
     buf_ = std::make_unique<OIIO::ImageBuf>(path, 0, 0, cache_, &config);
     if (!buf_->init_spec(path, 0, 0)) {
       *error = buf_->geterror();
@@ -121,6 +134,7 @@ class FileSource : public BandSource {
 
  private:
   OIIO::ImageCache* cache_ = nullptr;
+  std::string path_;
   std::unique_ptr<OIIO::ImageBuf> buf_;
 };
 

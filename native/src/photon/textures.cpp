@@ -33,7 +33,9 @@ struct TextureSet::System {
     ts->attribute("max_memory_MB", 1024.0f);
     ts->attribute("autotile", 64);
   }
-  ~System() { OIIO::TextureSystem::destroy(ts); }
+  // teardown_imagecache: a private TextureSystem's ImageCache (its open files and cached tiles)
+  // is freed only when asked to; without it every render with textures leaked its cache.
+  ~System() { OIIO::TextureSystem::destroy(ts, /*teardown_imagecache=*/true); }
 };
 
 namespace {
