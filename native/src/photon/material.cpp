@@ -6,7 +6,9 @@
 namespace photon {
 namespace {
 
-bool constant_zero(const Input& in) { return in.texture < 0 && max_component(in.value) <= 0.0f; }
+bool constant_zero(const Input& in) {
+  return in.texture < 0 && max_component(in.value) <= 0.0f;
+}
 
 // A closure weight that is a product of constant factors, one of which is 0 (or 1 - 1).
 bool weight_is_zero(const Closure& c) {
@@ -29,15 +31,17 @@ float clamp_or(float v, const ParamRange& r, float fallback) {
 void sanitize_input(Input* in, const ParamRange& r, const Input& fallback, size_t texture_count) {
   if (in->texture >= 0 && static_cast<size_t>(in->texture) >= texture_count) *in = fallback;
   if (in->texture < 0) in->texture = -1;
-  in->value = {clamp_or(in->value.x, r, fallback.value.x), clamp_or(in->value.y, r, fallback.value.y),
+  in->value = {clamp_or(in->value.x, r, fallback.value.x),
+               clamp_or(in->value.y, r, fallback.value.y),
                clamp_or(in->value.z, r, fallback.value.z)};
 }
 
 }  // namespace
 
-ParamRange param_range(Param p) {
+ParamRange param_range(ClosureType type, Param p) {
   switch (p) {
     case Param::kColor:
+      return type == ClosureType::kEmission ? ParamRange{0.0f, kHuge} : ParamRange{0.0f, 1.0f};
     case Param::kEmission:
     case Param::kStrength:
       return {0.0f, kHuge};
@@ -54,7 +58,8 @@ void sanitize_material(Material* material, size_t texture_count) {
   static const auto kDefaults = Closure::default_params();
   for (Closure& c : material->closures) {
     for (size_t i = 0; i < kDefaults.size(); ++i)
-      sanitize_input(&c.params[i], param_range(static_cast<Param>(i)), kDefaults[i], texture_count);
+      sanitize_input(&c.params[i], param_range(c.type, static_cast<Param>(i)), kDefaults[i],
+                     texture_count);
     if (c.normal.texture < 0 || static_cast<size_t>(c.normal.texture) >= texture_count)
       c.normal = NormalMap{};
     c.normal.strength = clamp_or(c.normal.strength, {0.0f, 100.0f}, 1.0f);

@@ -57,15 +57,15 @@ enum class ClosureType : uint8_t {
 // The inputs a closure reads, by role; each closure type uses a subset (the rest keep their
 // Blender defaults).
 enum class Param : uint8_t {
-  kColor,               // Base Color / Color
+  kColor,  // Base Color / Color
   kRoughness,
   kMetallic,
   kSpecular,
   kSpecularTint,
   kTransmission,
   kIor,
-  kEmission,            // Principled Emission colour
-  kStrength,            // Emission Strength (Principled) / Strength (Emission node)
+  kEmission,  // Principled Emission colour
+  kStrength,  // Emission Strength (Principled) / Strength (Emission node)
   kAlpha,
   kClearcoat,
   kClearcoatRoughness,
@@ -116,12 +116,13 @@ struct Material {
   bool may_be_specular() const;
 };
 
-// The range a Param's constants are clamped to: Blender's socket ranges, except that colours may
-// exceed 1 (emission colours) and IOR stays positive.
+// The range a closure input may take: Blender's socket ranges, except that emission colours and
+// strengths may exceed 1 (up to a finite bound) and IOR stays positive. Constants are clamped to
+// it when the material is built (sanitize_material), textured values after each lookup.
 struct ParamRange {
   float lo, hi;
 };
-ParamRange param_range(Param p);
+ParamRange param_range(ClosureType type, Param p);
 
 // Makes a material safe to render, whoever built it (the add-on through the Python binding, the
 // CLI, tests): constants outside their Param's range are clamped and non-finite ones replaced by

@@ -5,8 +5,6 @@ namespace {
 
 constexpr float kWeightCutoff = 1e-5f;  // closures below this weight are skipped (Cycles: 1e-5)
 
-constexpr float kHugeInput = 1e6f;  // the add-on's bound for emission colours and strengths
-
 // A texture lookup, unclamped (non-finite values already read as 0), or the constant.
 struct InputReader {
   Vec2 uv;
@@ -26,14 +24,14 @@ struct InputReader {
   }
   // Textured values are clamped to the input's range after the lookup, as constants are when
   // the material is built (an albedo texture of 1000 must not multiply energy by 1000).
-  Vec3 color(const Input& in, InputRange r) const {
+  Vec3 color(const Input& in, ParamRange r) const {
     bool textured;
     const Vec3 v = raw(in, &textured);
     if (!textured) return max(v, Vec3(0.0f));
     return {std::clamp(v.x, r.lo, r.hi), std::clamp(v.y, r.lo, r.hi), std::clamp(v.z, r.lo, r.hi)};
   }
   // A colour feeding a scalar socket becomes its luminance (Blender's implicit conversion).
-  float scalar(const Input& in, InputRange r) const {
+  float scalar(const Input& in, ParamRange r) const {
     bool textured;
     const Vec3 v = raw(in, &textured);
     if (!textured) return v.x;
@@ -46,8 +44,8 @@ struct InputReader {
 struct ClosureReader {
   const InputReader& in;
   const Closure& c;
-  Vec3 color(Param p) const { return in.color(c[p], input_range(c.type, p)); }
-  float scalar(Param p) const { return in.scalar(c[p], input_range(c.type, p)); }
+  Vec3 color(Param p) const { return in.color(c[p], param_range(c.type, p)); }
+  float scalar(Param p) const { return in.scalar(c[p], param_range(c.type, p)); }
   float unit(Param p) const { return in.unit(c[p]); }
 };
 
@@ -194,24 +192,6 @@ void add_closure(const Closure& c, float w, const InputReader& reader, ShadingPo
 }
 
 }  // namespace
-
-// The ranges the add-on clamps constants to (addon/photon/sync_materials.py): reflectances and
-// transmittances in [0, 1], emission colours and strengths finite.
-InputRange input_range(ClosureType type, Param p) {
-  switch (p) {
-    case Param::kColor:
-      return type == ClosureType::kEmission ? InputRange{0.0f, kHugeInput} : InputRange{0.0f, 1.0f};
-    case Param::kEmission:
-    case Param::kStrength:
-      return {0.0f, kHugeInput};
-    case Param::kSpecular:
-      return {0.0f, 10.0f};
-    case Param::kIor:
-      return {1e-3f, 100.0f};
-    default:
-      return {0.0f, 1.0f};
-  }
-}
 
 const char* input_label(ClosureType type, Param p) {
   const bool principled = type == ClosureType::kPrincipled;

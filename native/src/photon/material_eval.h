@@ -14,12 +14,6 @@ struct ShadingPoint {
   Vec3 emission{0.0f};  // emitted radiance, both sides (as in Cycles)
 };
 
-// The range of values an input may take (constants are clamped to it when the material is
-// built, textured values after each lookup).
-struct InputRange {
-  float lo, hi;
-};
-InputRange input_range(ClosureType type, Param p);
 // The Blender socket name of a param, for warnings ("Base Color").
 const char* input_label(ClosureType type, Param p);
 

@@ -20,7 +20,7 @@ void warn_out_of_range(const Scene& scene, const TextureSet& textures,
         const Input& in = c.params[k];
         if (!textures.valid(in.texture)) continue;
         const Param p = static_cast<Param>(k);
-        const InputRange r = input_range(c.type, p);
+        const ParamRange r = param_range(c.type, p);
         const float top = in.channel == TextureChannel::kAlpha ? textures.max_alpha(in.texture)
                                                                : textures.max_color(in.texture);
         if (!(top > r.hi)) continue;
