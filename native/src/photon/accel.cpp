@@ -36,8 +36,7 @@ bool traceable(const Ray& ray) {
   auto small = [](const Vec3& v) {
     return std::fabs(v.x) <= kLarge && std::fabs(v.y) <= kLarge && std::fabs(v.z) <= kLarge;
   };
-  return small(ray.origin) && small(ray.direction) && ray.tmin >= 0.0f &&
-         !std::isnan(ray.tmax);
+  return small(ray.origin) && small(ray.direction) && ray.tmin >= 0.0f && !std::isnan(ray.tmax);
 }
 
 void fill_hit(const RTCRayHit& rh, const Ray& ray, Hit* hit) {
@@ -54,14 +53,42 @@ void fill_hit(const RTCRayHit& rh, const Ray& ray, Hit* hit) {
 
 void Accel::on_embree_error(void* user, RTCError code, const char* message) {
   auto* self = static_cast<Accel*>(user);
+  if (code == RTC_ERROR_CANCELLED) return;  // a build abandoned on cancel is no error
   std::lock_guard<std::mutex> lock(self->warnings_mutex_);
   if (self->warnings_)
     self->warnings_->push_back("Embree error " + std::to_string(static_cast<int>(code)) + ": " +
                                (message ? message : ""));
 }
 
-Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
-    : scene_(scene), warnings_(warnings) {
+bool Accel::on_build_progress(void* cancel, double) {
+  return !static_cast<const std::atomic<bool>*>(cancel)->load(std::memory_order_relaxed);
+}
+
+bool Accel::commit(RTCScene scene) {
+  if (cancel_) {
+    if (cancel_->load(std::memory_order_relaxed)) return false;
+    rtcSetSceneProgressMonitorFunction(scene, &Accel::on_build_progress,
+                                       const_cast<std::atomic<bool>*>(cancel_));
+  }
+  rtcCommitScene(scene);
+  return !(cancel_ && cancel_->load(std::memory_order_relaxed));
+}
+
+void Accel::clear_after_cancel() {
+  cancelled_ = true;
+  if (top_) rtcReleaseScene(top_);
+  for (RTCScene& s : mesh_scenes_)
+    if (s) rtcReleaseScene(s), s = nullptr;
+  instances_.clear();
+  embree_instance_.assign(scene_.instances.size(), UINT32_MAX);
+  blas_count_ = triangle_count_ = 0;
+  top_ = rtcNewScene(device_);
+  rtcCommitScene(top_);  // empty: instant, and every query on it misses
+}
+
+Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
+             const std::atomic<bool>* cancel)
+    : scene_(scene), warnings_(warnings), cancel_(cancel) {
   device_ = rtcNewDevice(nullptr);
   rtcSetDeviceErrorFunction(device_, &Accel::on_embree_error, this);
 
@@ -78,17 +105,20 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
     // copy into a padded buffer owned by Embree instead of sharing the std::vector.
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), mesh.positions.size()));
-    if (vertices) std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    if (vertices)
+      std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                               mesh.indices.data(), 0, 3 * sizeof(uint32_t),
-                               mesh.triangle_count());
+                               mesh.indices.data(), 0, 3 * sizeof(uint32_t), mesh.triangle_count());
     rtcCommitGeometry(geom);
     RTCScene blas = rtcNewScene(device_);
     rtcSetSceneFlags(blas, RTC_SCENE_FLAG_ROBUST);
     rtcAttachGeometryByID(blas, geom, 0);
     rtcReleaseGeometry(geom);
-    rtcCommitScene(blas);
     mesh_scenes_[m] = blas;
+    if (!commit(blas)) {
+      clear_after_cancel();
+      return;
+    }
     ++blas_count_;
     triangle_count_ += mesh.triangle_count();
   }
@@ -124,7 +154,10 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings)
     embree_instance_[index] = static_cast<uint32_t>(instances_.size());
     instances_.push_back(data);
   }
-  rtcCommitScene(top_);
+  if (!commit(top_)) {
+    clear_after_cancel();
+    return;
+  }
   if (skipped && warnings_)
     warnings_->push_back("Skipped " + std::to_string(skipped) +
                          " instance(s) with a non-finite or singular transform");
@@ -197,8 +230,7 @@ bool Accel::occluded(const Ray& ray, uint32_t mask) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf when something blocks the ray
 }
 
-bool Accel::surface_hit(uint32_t scene_index, uint32_t triangle, float u, float v,
-                        Hit* hit) const {
+bool Accel::surface_hit(uint32_t scene_index, uint32_t triangle, float u, float v, Hit* hit) const {
   if (scene_index >= embree_instance_.size() || embree_instance_[scene_index] == UINT32_MAX)
     return false;
   const uint32_t instance = embree_instance_[scene_index];
@@ -273,9 +305,8 @@ const Material& Accel::triangle_material(uint32_t instance, uint32_t primitive,
   const InstanceData& inst = instances_[instance];
   const Mesh& mesh = *inst.mesh;
   const int32_t slot = mesh.material_slots.empty() ? 0 : mesh.material_slots[primitive];
-  const int32_t material = (slot >= 0 && static_cast<uint32_t>(slot) < inst.slot_count)
-                               ? inst.slot_materials[slot]
-                               : -1;
+  const int32_t material =
+      (slot >= 0 && static_cast<uint32_t>(slot) < inst.slot_count) ? inst.slot_materials[slot] : -1;
   if (material >= 0 && static_cast<size_t>(material) < scene_.materials.size()) {
     if (index) *index = static_cast<uint32_t>(material);
     return scene_.materials[material];

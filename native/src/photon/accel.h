@@ -4,6 +4,7 @@
 
 #include <embree3/rtcore.h>
 
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -38,8 +39,11 @@ struct SurfaceInteraction {
 class Accel {
  public:
   // Builds the BVHs. `scene` must outlive the Accel. Warnings (Embree errors, skipped instances)
-  // are appended to `warnings`.
-  Accel(const Scene& scene, std::vector<std::string>* warnings);
+  // are appended to `warnings`. When `cancel` becomes true during the build, Embree abandons it
+  // within a few ms and the Accel holds an empty scene instead (every ray misses); cancelled()
+  // tells.
+  Accel(const Scene& scene, std::vector<std::string>* warnings,
+        const std::atomic<bool>* cancel = nullptr);
   ~Accel();
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;
@@ -69,6 +73,7 @@ class Accel {
   size_t instance_count() const { return instances_.size(); }
   size_t blas_count() const { return blas_count_; }
   size_t triangle_count() const { return triangle_count_; }  // unique (not instanced) triangles
+  bool cancelled() const { return cancelled_; }  // the build was abandoned: the scene is empty
   // Bounding box of all instanced geometry in world space (empty scene: min > max).
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
@@ -96,8 +101,16 @@ class Accel {
   Vec3 bounds_max_{-INFINITY, -INFINITY, -INFINITY};
   std::vector<std::string>* warnings_;
   std::mutex warnings_mutex_;
+  const std::atomic<bool>* cancel_ = nullptr;
+  bool cancelled_ = false;
 
   static void on_embree_error(void* user, RTCError code, const char* message);
+  // Embree's build progress callback: false (stop) once the render is cancelled.
+  static bool on_build_progress(void* cancel, double);
+  // Commits `scene`, abandoning the build when cancelled; false when it was abandoned.
+  bool commit(RTCScene scene);
+  // Releases every BVH and leaves an empty, committed top level.
+  void clear_after_cancel();
 };
 
 // Offsets a ray origin off the surface along the geometric normal, on the side `w` leaves to, so

@@ -2,8 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "photon/test_scenes.h"
@@ -339,6 +342,63 @@ TEST(Accel, MaterialSlotsMapThroughTheInstance) {
   ASSERT_TRUE(bare_accel.intersect(make_ray({0.5f, 0.5f, 1.0f}, {0, 0, -1}), kVisibleAll, &hit));
   EXPECT_EQ(bare_accel.interaction(hit).mat, &Scene::default_material());
   EXPECT_FALSE(Scene::default_material().may_be_specular());
+}
+
+// A bumpy n x n grid of 2 n^2 triangles (bumps keep Embree's build from being trivial).
+Mesh bumpy_grid(int n) {
+  Mesh mesh;
+  mesh.positions.reserve(static_cast<size_t>(n + 1) * (n + 1));
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      mesh.positions.emplace_back(static_cast<float>(i) / n, static_cast<float>(j) / n,
+                                  0.01f * std::sin(0.37f * i) * std::cos(0.23f * j));
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+    }
+  return mesh;
+}
+
+TEST(Accel, CancelledBuildIsAbandonedPromptlyAndLeavesAnEmptyScene) {
+  Scene scene;
+  scene.materials.push_back(named_material("grey", Vec3(0.5f)));
+  add_mesh_instance(&scene, bumpy_grid(1000), 0);  // 2M triangles
+  const Ray down = make_ray({0.5f, 0.5f, 1.0f}, {0, 0, -1});
+
+  // How long the whole build takes, to cancel in the middle of it.
+  const auto t0 = std::chrono::steady_clock::now();
+  double full_seconds;
+  {
+    std::vector<std::string> warnings;
+    std::atomic<bool> never(false);
+    Accel accel(scene, &warnings, &never);
+    full_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    EXPECT_FALSE(accel.cancelled());
+    Hit hit;
+    EXPECT_TRUE(accel.intersect(down, kVisibleAll, &hit));
+  }
+
+  std::atomic<bool> cancel(false);
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(std::chrono::duration<double>(0.3 * full_seconds));
+    cancel = true;
+  });
+  std::vector<std::string> warnings;
+  const auto start = std::chrono::steady_clock::now();
+  Accel accel(scene, &warnings, &cancel);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  canceller.join();
+  ASSERT_TRUE(cancel);
+  EXPECT_TRUE(accel.cancelled());
+  EXPECT_TRUE(warnings.empty()) << warnings.front();  // an abandoned build is no error
+  // Cancelled at 30% of the full build: done within 100 ms of the flag (plus slack for a loaded
+  // machine), not at the end of the build.
+  EXPECT_LT(seconds, 0.3 * full_seconds + 0.15) << "full build " << full_seconds << " s";
+  Hit hit;
+  EXPECT_FALSE(accel.intersect(down, kVisibleAll, &hit));
+  EXPECT_FALSE(accel.occluded(down, kVisibleAll));
 }
 
 }  // namespace

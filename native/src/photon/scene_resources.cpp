@@ -35,7 +35,7 @@ void warn_out_of_range(const Scene& scene, const TextureSet& textures,
 }
 
 // What the BVH, lights and emissive triangles are built from once the render was cancelled
-// during texture conversion: nothing, so Esc is not held up by a BVH build.
+// during texture conversion or the BVH build: nothing, so Esc is not held up.
 const Scene& nothing() {
   static const Scene empty;
   return empty;
@@ -46,9 +46,11 @@ const Scene& nothing() {
 SceneResources::SceneResources(const Scene& scene, const RenderSettings& settings,
                                std::vector<std::string>* warnings, const std::atomic<bool>* cancel)
     : textures_(scene.textures, warnings, cancel),
-      accel_(textures_.cancelled() ? nothing() : scene, warnings),
-      lights_(textures_.cancelled() ? nothing().lights : scene.lights, warnings),
-      emissive_(textures_.cancelled() ? nothing() : scene, accel_, &textures_) {
+      accel_(textures_.cancelled() ? nothing() : scene, warnings, cancel),
+      lights_(textures_.cancelled() || accel_.cancelled() ? nothing().lights : scene.lights,
+              warnings),
+      emissive_(textures_.cancelled() || accel_.cancelled() ? nothing() : scene, accel_,
+                &textures_) {
   warn_out_of_range(scene, textures_, warnings);
   context_.scene = &scene;
   context_.accel = &accel_;
