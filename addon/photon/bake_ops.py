@@ -1,6 +1,7 @@
 """Operators and panel of the lighting bake: photon.bake_lighting (modal with Esc in the UI,
 blocking when run from a script or in background mode) and photon.show_baked_lighting."""
 
+import re
 import time
 import traceback
 
@@ -89,16 +90,17 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
             job.start()
             wm = context.window_manager
             wm.progress_begin(0, 100)
-            last_print = 0.0
+            last_print, last_stage = 0.0, None
             try:
                 while not job.finished:
                     time.sleep(0.02)
                     wm.progress_update(int(100 * job.progress))
                     # Read the status on every poll (it times the shading rate from its first
-                    # reading); print it once a second.
+                    # reading); print it when the stage changes, else once a second.
                     status = job.status
-                    if time.perf_counter() - last_print > 1.0:
-                        last_print = time.perf_counter()
+                    stage = re.split(r"\d", status, maxsplit=1)[0]
+                    if stage != last_stage or time.perf_counter() - last_print > 1.0:
+                        last_print, last_stage = time.perf_counter(), stage
                         print(f"Photon: bake: {status} {100 * job.progress:.0f}%", flush=True)
             except KeyboardInterrupt:
                 job.cancel()

@@ -33,6 +33,10 @@ def render(blender, out_dir, threads, tile_size, tag="", scene=SCENE, size=64, e
         expr += (f"; s.render.resolution_x = s.render.resolution_y = {size}; "
                  "s.render.resolution_percentage = 100")
     prefix = out_dir / f"det_{scene.stem}_t{threads}_s{tile_size}{tag}_"
+    # Photon never runs more threads than Blender allows (-t, default: the cores), so a count
+    # above the cores is asked of Blender too.
+    if threads and not extra:
+        extra = ("-t", str(threads))
     proc = blender.run([str(scene), "-E", "PHOTON", *extra, "--python-expr", expr,
                         "-o", f"{prefix}####", "-F", "OPEN_EXR", "-x", "1", "-f", "1"])
     match = re.search(r"^Photon: rendered frame 1 \d+x\d+ \(\d+ spp, (\d+) threads\)",
