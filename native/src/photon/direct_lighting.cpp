@@ -1,14 +1,23 @@
 #include "photon/direct_lighting.h"
 
+#include <cmath>
+
 #include "photon/emissive_mesh.h"
 #include "photon/material_eval.h"
 
 namespace photon {
 namespace {
 
+// Veach 1997, eq. 9.13 with beta = 2. Densities above ~1.8e19 (a light of tiny area seen from
+// afar) overflow when squared: then the same weight is taken in ratio form, so it stays 1 for
+// the far larger density instead of inf / inf = NaN, which dropped the light sample.
 inline float power_heuristic(float f, float g) {
   const float f2 = f * f, g2 = g * g;
-  return f2 + g2 > 0.0f ? f2 / (f2 + g2) : 0.0f;
+  if (std::isfinite(f2 + g2)) return f2 + g2 > 0.0f ? f2 / (f2 + g2) : 0.0f;
+  if (!(f > 0.0f) || std::isnan(g)) return 0.0f;
+  if (!std::isfinite(f)) return std::isfinite(g) ? 1.0f : 0.5f;
+  const float r = g / f;
+  return 1.0f / (1.0f + r * r);
 }
 
 bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, const Vec3& wi,

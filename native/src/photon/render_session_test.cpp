@@ -255,6 +255,27 @@ TEST(RenderSession, DiffuseFloorUnderAPointLightHasTheAnalyticRadiance) {
   }
 }
 
+// A point light whose radius is far below what float positions resolve (1e-12 m and less at
+// 2 m) is a point light: its disc's area underflows and its radiance overflows otherwise.
+TEST(RenderSession, PointLightOfTinyRadiusLightsLikeAPoint) {
+  const float power = 100.0f, h = 2.0f;
+  const Vec3 albedo(0.5f);
+  const double expected = 0.5 / kPiD * power / (4.0 * kPiD * h * h);
+  for (const float radius : {1e-7f, 1e-12f, 1e-20f, 1e-30f, 1e-44f}) {
+    auto scene = floor_scene(albedo, 1.0f);
+    Light light;
+    light.type = LightType::kPoint;
+    light.power = power;
+    light.radius = radius;
+    const float light_rows[12] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, h};
+    light.light_to_world = Transform::from_rows(light_rows);
+    scene->lights.push_back(light);
+    const RenderOutput out = render(scene, small_settings(4, 4, 4));
+    for (size_t i = 0; i < out.image.size(); i += 4)
+      EXPECT_NEAR(out.image[i], expected, 0.01 * expected) << "radius " << radius;
+  }
+}
+
 TEST(RenderSession, DiffuseFloorUnderASquareAreaLightHasTheAnalyticRadiance) {
   // Square light of side s at height h facing down, radiance L = P / (4 s^2). On its axis, four
   // a x a corner rectangles (a = s / 2), each contributing
