@@ -77,6 +77,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         # background mode: everything is caught and reported instead.
         try:
             self._render(depsgraph)
+        except report.SceneError as exc:  # the scene's own fault: its message, no traceback
+            message = f"Photon: {exc}"
+            print(message, flush=True)
+            self.report({'ERROR'}, message)
+            self.error_set(message)
         except Exception as exc:  # noqa: BLE001 - the engine must never propagate
             traceback.print_exc()
             message = f"Photon: render failed: {exc}"

@@ -3,6 +3,11 @@
 import sys
 
 
+class SceneError(Exception):
+    """A scene Photon cannot render meaningfully (e.g. a camera with a NaN transform): the
+    render stops with this message as its error, and no image is written."""
+
+
 class Reporter:
     def __init__(self, engine=None):
         self._engine = engine

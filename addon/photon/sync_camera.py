@@ -1,6 +1,10 @@
 """The scene camera as a native camera: view window, clipping and depth of field."""
 
+import math
+
 import numpy as np
+
+from .report import SceneError
 
 
 def render_size(render):
@@ -27,6 +31,18 @@ def render_region(render, width, height):
     return xmin, height - ymax, xmax, height - ymin
 
 
+def _check_transform(cam_obj):
+    """Raises SceneError for a camera transform no image can be made from: non-finite entries
+    (a NaN location, say) or a zero scale, which leaves no view direction."""
+    matrix = cam_obj.matrix_world
+    if not all(math.isfinite(v) for row in matrix for v in row):
+        raise SceneError(f"Camera '{cam_obj.name}' has a non-finite transform (NaN or infinite "
+                         f"location, rotation or scale); nothing was rendered")
+    if not abs(matrix.to_3x3().determinant()) > 0.0:
+        raise SceneError(f"Camera '{cam_obj.name}' has a zero scale, so it has no view "
+                         f"direction; nothing was rendered")
+
+
 def export_camera(native_scene, scene, depsgraph, reporter):
     cam_obj = scene.camera
     if cam_obj is None:
@@ -35,6 +51,7 @@ def export_camera(native_scene, scene, depsgraph, reporter):
                                 [-0.5, 0.5, -0.5, 0.5], 0.1, 1000.0)
         return
     cam_obj = cam_obj.evaluated_get(depsgraph)
+    _check_transform(cam_obj)
     if cam_obj.type != 'CAMERA':
         reporter.warning(f"Active camera '{cam_obj.name}' is not a camera object; "
                          f"using its transform with a 50 mm lens")

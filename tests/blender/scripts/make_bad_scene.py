@@ -61,8 +61,19 @@ def absurd_settings():
     cam.clip_end = 0.001
 
 
+def nan_camera():
+    builders.cornell_box(width=32, height=32, samples=1)
+    bpy.context.scene.camera.location.x = math.nan
+
+
+def zero_scale_camera():
+    builders.cornell_box(width=32, height=32, samples=1)
+    bpy.context.scene.camera.scale = (0.0, 0.0, 0.0)
+
+
 CASES = {f.__name__: f for f in (nan_geometry, zero_area_light, empty_scene, no_lights,
-                                 unsupported_node, absurd_settings)}
+                                 unsupported_node, absurd_settings, nan_camera,
+                                 zero_scale_camera)}
 
 
 def main(case, blend_path):
