@@ -93,6 +93,18 @@ def box(name, lo, hi, material=None):
     return mesh_object(name, verts, faces, material)
 
 
+def keyframe_motion(camera_obj, moving, light, keys):
+    """Animates a scene for animation tests: keys is [(frame, (camera x, object z, light
+    power))], keyed on the camera's location, `moving`'s location and the light's energy."""
+    for frame, (cam_x, z, power) in keys:
+        camera_obj.location.x = cam_x
+        camera_obj.keyframe_insert("location", frame=frame)
+        moving.location.z = z
+        moving.keyframe_insert("location", frame=frame)
+        light.data.energy = power
+        light.data.keyframe_insert("energy", frame=frame)
+
+
 def uv_sphere(name, center, radius, segments=48, rings=24, material=None):
     verts = [(0.0, 0.0, radius)]
     for r in range(1, rings):

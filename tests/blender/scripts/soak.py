@@ -43,13 +43,8 @@ def make(blend_path):
                               material=builders.diffuse_material("Ball", (0.2, 0.3, 0.9)))
     cam = scene.camera
     light = bpy.data.objects["CeilingLight"]
-    for frame, (cam_x, ball_z, power) in ((1, (-0.2, 0.3, 20.0)), (FRAMES, (0.2, 1.3, 80.0))):
-        cam.location.x = cam_x
-        cam.keyframe_insert("location", frame=frame)
-        ball.location.z = ball_z
-        ball.keyframe_insert("location", frame=frame)
-        light.data.energy = power
-        light.data.keyframe_insert("energy", frame=frame)
+    builders.keyframe_motion(cam, ball, light, [(1, (-0.2, 0.3, 20.0)),
+                                                (FRAMES, (0.2, 1.3, 80.0))])
     bpy.ops.wm.save_as_mainfile(filepath=blend_path)
     return {"saved": blend_path}
 
