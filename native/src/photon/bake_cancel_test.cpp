@@ -12,6 +12,7 @@
 
 #include "photon/bake.h"
 #include "photon/test_scenes.h"
+#include "photon/timing_slack.h"
 
 namespace photon {
 namespace {
@@ -89,7 +90,7 @@ TEST(BakeCancel, EveryStageStopsWithinHalfASecond) {
     std::string stage;
     const double latency = cancel_latency(scene, settings, points, c.ready, &stage);
     // Stages poll every few ms; the bound leaves room for a machine shared with other jobs.
-    EXPECT_LT(latency, 0.5) << c.name << " ('" << stage << "')";
+    EXPECT_LT(latency, 0.5 * timing_slack()) << c.name << " ('" << stage << "')";
     std::printf("cancel during %s ('%s'): stopped in %.1f ms\n", c.name, stage.c_str(),
                 1000.0 * latency);
   }

@@ -7,6 +7,7 @@
 #include <OpenImageIO/imageio.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,6 +18,9 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <system_error>
 
 namespace photon {
@@ -85,20 +89,35 @@ OIIO::ImageCache* conversion_cache() {
   return cache;
 }
 
-// A source file read in bands through conversion_cache().
+// A source file read in bands through conversion_cache(), by one FileSource at a time per path.
+// Two conversions of one file at once (an image used as colour and as data, or two renders)
+// in OIIO 2.4's cache read zero pixels now and then, and one closing the file under the other
+// asserted inside OIIO; so each path has a lock a FileSource holds from open to close.
 class FileSource : public BandSource {
  public:
   FileSource() : cache_(conversion_cache()) {}
   ~FileSource() override {
     buf_.reset();
+    if (path_.empty()) return;
     // Close the file and drop its tiles (a later render may convert a changed file of the
     // same name).
-    if (!path_.empty()) cache_->invalidate(OIIO::ustring(path_), /*force=*/true);
+    cache_->invalidate(OIIO::ustring(path_), /*force=*/true);
+    lock_.unlock();
+    std::lock_guard<std::mutex> guard(paths_mutex());
+    auto it = paths().find(path_);
+    if (--it->second.users == 0) paths().erase(it);
   }
   bool open(const std::string& path, std::string* error) {
+    {
+      std::lock_guard<std::mutex> guard(paths_mutex());
+      PathLock& entry = paths()[path];  // std::map: the entry stays put while others come
+      ++entry.users;
+      lock_ = std::unique_lock<std::mutex>(entry.mutex, std::defer_lock);
+    }
+    lock_.lock();
+    path_ = path;
     OIIO::ImageSpec config;
     config.attribute("oiio:UnassociatedAlpha", 1);  // straight alpha, as Blender outputs it
-    path_ = path;
     buf_ = std::make_unique<OIIO::ImageBuf>(path, 0, 0, cache_, &config);
     if (!buf_->init_spec(path, 0, 0)) {
       *error = buf_->geterror();
@@ -133,8 +152,22 @@ class FileSource : public BandSource {
   }
 
  private:
+  struct PathLock {
+    std::mutex mutex;
+    int users = 0;  // FileSources holding or waiting for `mutex`
+  };
+  static std::map<std::string, PathLock>& paths() {
+    static std::map<std::string, PathLock> p;
+    return p;
+  }
+  static std::mutex& paths_mutex() {
+    static std::mutex m;
+    return m;
+  }
+
   OIIO::ImageCache* cache_ = nullptr;
   std::string path_;
+  std::unique_lock<std::mutex> lock_;
   std::unique_ptr<OIIO::ImageBuf> buf_;
 };
 
@@ -456,8 +489,11 @@ uint64_t texture_key(const ConvertRequest& request, const std::atomic<bool>* can
   return key ? key : 1;
 }
 
-bool convert_texture(const ConvertRequest& request, uint64_t key, const std::string& cache_dir,
-                     const std::atomic<bool>* cancel, ConvertedTexture* out, std::string* error) {
+namespace {
+
+bool convert_texture_here(const ConvertRequest& request, uint64_t key, const std::string& cache_dir,
+                          const std::atomic<bool>* cancel, ConvertedTexture* out,
+                          std::string* error) {
   std::error_code ec;
   const fs::path dir(cache_dir);
   fs::create_directories(dir, ec);
@@ -521,6 +557,16 @@ bool convert_texture(const ConvertRequest& request, uint64_t key, const std::str
     return false;
   }
   return true;
+}
+
+}  // namespace
+
+bool convert_texture(const ConvertRequest& request, uint64_t key, const std::string& cache_dir,
+                     const std::atomic<bool>* cancel, ConvertedTexture* out, std::string* error) {
+  // Isolated: while this thread waits in the conversion's own parallel loops it must not pick
+  // up another texture's conversion, which could wait for the source-file lock this one holds.
+  return tbb::this_task_arena::isolate(
+      [&] { return convert_texture_here(request, key, cache_dir, cancel, out, error); });
 }
 
 uint64_t texture_cache_limit_bytes() {

@@ -6,12 +6,14 @@
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include "photon/material_eval.h"
 #include "photon/scene_resources.h"
 #include "photon/test_scenes.h"
 #include "photon/texture_convert.h"
+#include "photon/timing_slack.h"
 
 namespace photon {
 namespace {
@@ -157,7 +159,7 @@ TEST_F(TextureCache, CancelStopsConversionWithin100Milliseconds) {
   EXPECT_TRUE(set->cancelled());
   EXPECT_FALSE(set->valid(0));
   const double ms = std::chrono::duration<double, std::milli>(returned_at - cancelled_at).count();
-  EXPECT_LT(ms, 150.0) << "cancel took " << ms << " ms";
+  EXPECT_LT(ms, 150.0 * timing_slack()) << "cancel took " << ms << " ms";
   EXPECT_TRUE(cached_files().empty());  // no half-written texture is left behind
 }
 
@@ -193,6 +195,45 @@ TEST_F(TextureCache, TexturedInputsAreClampedToTheirRangeWithAWarning) {
       shade_surface(si, Vec3(0, 0, 1), resources.accel(), &resources.textures());
   EXPECT_NEAR(sp.bsdf.diffuse_reflectance().x, 1.0f, 1e-6f);
   EXPECT_FLOAT_EQ(sp.emission.x, 1000.0f);
+}
+
+TEST_F(TextureCache, OneFileConvertedConcurrentlyAsColourAndAsDataConvertsRightBothTimes) {
+  // Two image nodes on one file, one sRGB and one Non-Color, are two conversions of the same
+  // source at once; the first to finish must not close the file under the other. The same
+  // holds for a file that cannot be read: both fail cleanly.
+  const std::string small = write_exr("small.exr", 0.5f, 4, 4);
+  const std::string broken = (dir / "broken.png").string();
+  std::ofstream(broken, std::ios::binary) << "\x89PNG\r\n\x1a\n not a png";
+  for (int round = 0; round < 40; ++round) {
+    const std::string cache = (dir / ("cache" + std::to_string(round))).string();
+    const std::string& path = round % 2 ? broken : small;
+    ConvertRequest requests[4] = {{path, nullptr, true},
+                                  {path, nullptr, false},
+                                  {path, nullptr, true},
+                                  {path, nullptr, false}};
+    ConvertedTexture out[4];
+    std::string errors[4];
+    bool ok[4] = {};
+    std::vector<std::thread> threads;
+    for (int i = 0; i < 4; ++i)
+      threads.emplace_back([&, i] {
+        // Distinct keys per thread, so every thread converts rather than reusing.
+        ok[i] =
+            convert_texture(requests[i], 1000 * round + i + 1, cache, nullptr, &out[i], &errors[i]);
+      });
+    for (std::thread& t : threads) t.join();
+    for (int i = 0; i < 4; ++i) {
+      if (path == broken) {
+        EXPECT_FALSE(ok[i]);
+        EXPECT_FALSE(errors[i].empty());
+        continue;
+      }
+      ASSERT_TRUE(ok[i]) << "round " << round << " conversion " << i << ": " << errors[i];
+      // 0.5 read as sRGB is 0.214 linear.
+      EXPECT_NEAR(out[i].max_color, requests[i].srgb ? 0.21404f : 0.5f, 1e-5f)
+          << "round " << round << " conversion " << i;
+    }
+  }
 }
 
 }  // namespace
