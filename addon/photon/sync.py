@@ -4,7 +4,7 @@ import time
 
 import numpy as np
 
-from . import sync_camera, sync_lights, sync_materials, sync_mesh
+from . import sync_camera, sync_layers, sync_lights, sync_materials, sync_mesh
 
 
 class SyncStats:
@@ -49,6 +49,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
     pending = {}           # (mesh index, slot tuple, visibility) -> [(4x4 matrix, owner or None)]
     unsupported = {}       # object type -> object names
+    layer_visibility = sync_layers.LayerVisibility(native, depsgraph, reporter)
 
     for inst in depsgraph.object_instances:
         # Instance items die when iteration moves on: use them only inside this body.
@@ -78,7 +79,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
         if index is None:
             continue
         slots = tuple(materials.slot_indices(obj))
-        visibility = sync_lights.visibility_bits(native, obj)
+        visibility = layer_visibility.apply(inst, obj, sync_lights.visibility_bits(native, obj))
         owner = None if inst.is_instance else obj.name
         pending.setdefault((index, slots, visibility), []).append(
             (np.asarray(inst.matrix_world, dtype=np.float32), owner))
