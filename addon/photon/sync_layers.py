@@ -1,6 +1,17 @@
-"""Per-view-layer object flags: a collection's Indirect Only and Holdout toggles in the view
-layer being rendered (the depsgraph of that layer already leaves out excluded collections and
-disabled objects)."""
+"""Per-view-layer settings of the view layer being rendered: a collection's Indirect Only and
+Holdout toggles, and the layer's Material Override (the depsgraph of that layer already leaves
+out excluded collections and disabled objects)."""
+
+
+def material_override(depsgraph):
+    """The view layer's override material (evaluated when the depsgraph holds it), or None."""
+    material = getattr(depsgraph.view_layer, "material_override", None)
+    if material is None:
+        return None
+    try:
+        return depsgraph.id_eval_get(material)
+    except (KeyError, RuntimeError, ReferenceError):
+        return material
 
 
 def _any_layer_flag(layer_collection):

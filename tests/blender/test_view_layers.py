@@ -127,3 +127,15 @@ def test_stereo_views_render_from_each_eye(blender, tmp_path):
         other = np.abs(view - monos["R" if eye == "L" else "L"]).mean()
         print(f"view {eye}: mean |diff| to its eye's mono render {own:.2e}, to the other {other:.2e}")
         assert own < 1e-3 and other > 10.0 * own, (eye, own, other)
+
+
+def test_material_override_of_a_view_layer(blender, tmp_path):
+    render(blender, tmp_path / "own_", "mono")
+    render(blender, tmp_path / "over_", "mono", "material_override=Grey")
+    own = read_image(tmp_path / "own_0001.exr")
+    over = read_image(tmp_path / "over_0001.exr")
+    assert red_mask(own).sum() > 200 and blue_mask(own).sum() > 200
+    # Every surface is the grey floor material: no red sphere, no blue cube, still lit.
+    assert red_mask(over).sum() == 0 and blue_mask(over).sum() == 0
+    assert over[..., :3].mean() > 0.02
+    np.testing.assert_allclose(over[..., 0], over[..., 2], atol=1e-4)

@@ -12,7 +12,8 @@ MODE:
   mono     one view layer, no multiview; options move the camera (cam_x=metres along its x)
            and set its lens shift (shift_x=...), to stand in for one eye of `stereo`.
 Options: pivot=LEFT|RIGHT|CENTER and convergence=OFFAXIS|PARALLEL|TOE (stereo),
-exclude=COLLECTION[,...] and indirect_only=COLLECTION[,...] (in the first view layer),
+exclude=COLLECTION[,...], indirect_only=COLLECTION[,...] and material_override=MATERIAL (in the
+first view layer),
 integrator=..., samples=N.
 """
 
@@ -113,6 +114,8 @@ def build(mode, options):
         first.photon.use_pass_direct = True
     for name in filter(None, options.get("exclude", "").split(",")):
         first.layer_collection.children[name].exclude = True
+    if "material_override" in options:
+        first.material_override = bpy.data.materials[options["material_override"]]
     for name in filter(None, options.get("indirect_only", "").split(",")):
         first.layer_collection.children[name].indirect_only = True
     if mode == "stereo":
