@@ -89,6 +89,15 @@ def test_indirect_only_collection_hides_from_camera_but_casts_shadow(blender, tm
     assert darker.sum() > 50, f"no shadow of the indirect-only sphere ({darker.sum()} pixels)"
 
 
+def test_holdout_collection_is_reported_as_unsupported(blender, tmp_path):
+    proc = render(blender, tmp_path / "hold_", "mono", "holdout=LeftSet")
+    assert ("Photon: warning: Object 'LeftSphere' is a holdout in view layer 'ViewLayer': "
+            "holdouts are not supported yet" in proc.stdout), proc.log
+    # Only objects of the holdout collection are named.
+    assert "'RightCube' is a holdout" not in proc.stdout
+    assert "'Floor' is a holdout" not in proc.stdout
+
+
 def expected_disparity_px():
     """Right-eye minus left-eye image x of a point DEPTH metres ahead, for off-axis stereo:
     each eye, half the interocular distance off centre, converges on CONVERGENCE, so a point
@@ -139,3 +148,18 @@ def test_material_override_of_a_view_layer(blender, tmp_path):
     assert red_mask(over).sum() == 0 and blue_mask(over).sum() == 0
     assert over[..., :3].mean() > 0.02
     np.testing.assert_allclose(over[..., 0], over[..., 2], atol=1e-4)
+
+
+def test_stereo_pivot_left_keeps_the_left_eye_on_the_camera(blender, tmp_path):
+    # Blender's default pivot: the left eye is the camera itself, the right eye is a whole
+    # interocular distance to its right with the whole convergence shift.
+    render(blender, tmp_path / "pl_", "stereo", "pivot=LEFT")
+    render(blender, tmp_path / "cam_", "mono")
+    shift = (INTEROCULAR / SENSOR) * (LENS / CONVERGENCE)
+    render(blender, tmp_path / "far_", "mono", f"cam_x={INTEROCULAR}", f"shift_x={-shift}")
+    left = read_image(tmp_path / "pl_0001_L.exr")
+    right = read_image(tmp_path / "pl_0001_R.exr")
+    assert np.abs(left - read_image(tmp_path / "cam_0001.exr")).max() < 1e-5
+    own = np.abs(right - read_image(tmp_path / "far_0001.exr")).mean()
+    other = np.abs(right - left).mean()
+    assert own < 1e-3 and other > 10.0 * own, (own, other)

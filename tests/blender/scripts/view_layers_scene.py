@@ -12,7 +12,7 @@ MODE:
   mono     one view layer, no multiview; options move the camera (cam_x=metres along its x)
            and set its lens shift (shift_x=...), to stand in for one eye of `stereo`.
 Options: pivot=LEFT|RIGHT|CENTER and convergence=OFFAXIS|PARALLEL|TOE (stereo),
-exclude=COLLECTION[,...], indirect_only=COLLECTION[,...] and material_override=MATERIAL (in the
+exclude=, indirect_only= and holdout=COLLECTION[,...], and material_override=MATERIAL (in the
 first view layer),
 integrator=..., samples=N.
 """
@@ -118,6 +118,8 @@ def build(mode, options):
         first.material_override = bpy.data.materials[options["material_override"]]
     for name in filter(None, options.get("indirect_only", "").split(",")):
         first.layer_collection.children[name].indirect_only = True
+    for name in filter(None, options.get("holdout", "").split(",")):
+        first.layer_collection.children[name].holdout = True
     if mode == "stereo":
         scene.render.use_multiview = True
         scene.render.views_format = 'STEREO_3D'
