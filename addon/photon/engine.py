@@ -65,6 +65,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     # Keep Blender's shader nodes visible so artists author Principled materials for Photon.
     bl_use_shading_nodes_custom = False
     _passes = ()
+    _layer = ""  # the view layer being rendered
+    _view = ""   # the multiview view being rendered ("": every view of a mono render)
 
     def update_render_passes(self, scene=None, renderlayer=None):
         # Registering makes the passes exist in the compositor's Render Layers node.
@@ -89,18 +91,47 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             self.error_set(message)
 
     def _render(self, depsgraph):
+        # Blender calls render() once per view layer to render, each time with that layer's
+        # depsgraph (its collections and objects); the layer's passes and tiles go into the
+        # result's layer of that name.
         native = native_module()
         scene = depsgraph.scene
         reporter = report.Reporter(self)
         t_start = time.perf_counter()
+        view_layer = depsgraph.view_layer
+        self._layer = view_layer.name
+        self._passes = properties.enabled_passes(view_layer)
+        for name, _index in self._passes:
+            self.add_pass(name, 3, "RGB", layer=self._layer)
+        views = self._views(scene)
 
         self.update_stats("", "Photon | Syncing scene")
         native_scene, sync_stats = sync.sync_scene(native, depsgraph, reporter)
         try:
-            self._render_scene(native, depsgraph, reporter, native_scene, sync_stats, t_start)
+            for view in views:
+                if view:
+                    # Each multiview view (a stereo eye) from its own camera, as Cycles does.
+                    camera = sync_camera.view_camera(self, scene, depsgraph, view)
+                    sync_camera.export_camera(native_scene, scene, depsgraph, reporter, camera)
+                if not self._render_scene(native, depsgraph, reporter, native_scene, sync_stats,
+                                          t_start, view):
+                    break
         finally:
             # Packed and generated images were written for this render only.
             sync_stats.release()
+
+    def _views(self, scene):
+        """Names of the views to render: [""] (all of the result's views, one) without
+        multiview, else the views of the render result (Stereo 3D: left and right; MULTIVIEW:
+        the enabled views), read from a probe result as Cycles does."""
+        if not scene.render.use_multiview:
+            return [""]
+        probe = self.begin_result(0, 0, 1, 1, layer=self._layer)
+        try:
+            names = [view.name for view in probe.views]
+        finally:
+            self.end_result(probe, cancel=True, do_merge_results=False)
+        return names or [""]
 
     @staticmethod
     def _texture_stats(stats):
@@ -110,18 +141,18 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         return (f"textures {stats['texture_seconds']:.3f} s ({stats['textures']}, "
                 f"{stats['textures_reused']} cached), ")
 
-    def _render_scene(self, native, depsgraph, reporter, native_scene, sync_stats, t_start):
+    def _render_scene(self, native, depsgraph, reporter, native_scene, sync_stats, t_start,
+                      view=""):
+        """Renders one view into the result; returns False when the render was cancelled."""
         scene = depsgraph.scene
+        self._view = view
         if self.test_break():
-            return
+            return False
 
         width, height = sync_camera.render_size(scene.render)
         region = sync_camera.render_region(scene.render, width, height)
         settings = make_settings(native, scene, width, height, region)
         region_w, region_h = region[2] - region[0], region[3] - region[1]
-        self._passes = properties.enabled_passes(depsgraph.view_layer)
-        for name, _index in self._passes:
-            self.add_pass(name, 3, "RGB", layer=depsgraph.view_layer.name)
         settings.light_passes = bool(self._passes)
 
         session = native.RenderSession(native_scene, settings)
@@ -178,7 +209,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             f"({sync_stats.triangles} triangles, {sync_stats.instances} instances, "
             f"{sync_stats.lights} lights), {self._texture_stats(stats)}"
             f"BVH {stats['build_seconds']:.3f} s, "
-            f"render {stats['render_seconds']:.3f} s, total {elapsed:.3f} s")
+            f"render {stats['render_seconds']:.3f} s, total {elapsed:.3f} s"
+            f"{self._layer_view_label(scene, view)}")
         if "photons_emitted" in stats:
             reporter.info(
                 f"photons: {int(stats['photons_emitted']):,} global and "
@@ -208,11 +240,21 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 f"{stats['radiosity_unshot_power']:.4g} W")
         # Free native memory now rather than when Python collects: -a renders many frames.
         del session, native_scene
+        return not cancelled
+
+    def _layer_view_label(self, scene, view):
+        """', view layer 'X', view left' when a frame has several layers or views, else ''."""
+        label = ""
+        if sum(1 for layer in scene.view_layers if layer.use) > 1:
+            label += f", view layer '{self._layer}'"
+        if view:
+            label += f", view {view}"
+        return label
 
     def _write_tile(self, x, y_bottom, w, h, rgba, light_passes=None):
         # Native tiles are top row first; Blender's result rows go bottom-up.
         pixels = np.ascontiguousarray(rgba[::-1], dtype=np.float32)
-        result = self.begin_result(x, y_bottom, w, h)
+        result = self.begin_result(x, y_bottom, w, h, layer=self._layer, view=self._view)
         passes = result.layers[0].passes
         if len(passes) == 1:
             passes.foreach_set("rect", pixels.ravel())

@@ -4,7 +4,7 @@ import time
 
 import numpy as np
 
-from . import sync_camera, sync_lights, sync_materials, sync_mesh
+from . import sync_camera, sync_layers, sync_lights, sync_materials, sync_mesh
 
 
 class SyncStats:
@@ -49,6 +49,8 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
     pending = {}           # (mesh index, slot tuple, visibility) -> [(4x4 matrix, owner or None)]
     unsupported = {}       # object type -> object names
+    layer_visibility = sync_layers.LayerVisibility(native, depsgraph, reporter)
+    override = sync_layers.material_override(depsgraph)
 
     for inst in depsgraph.object_instances:
         # Instance items die when iteration moves on: use them only inside this body.
@@ -77,8 +79,11 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
         index = mesh_index[key]
         if index is None:
             continue
-        slots = tuple(materials.slot_indices(obj))
-        visibility = sync_lights.visibility_bits(native, obj)
+        if override is None:
+            slots = tuple(materials.slot_indices(obj))
+        else:  # the view layer's Material Override replaces every slot, as in Cycles
+            slots = (materials.index(override),) * max(1, len(obj.material_slots))
+        visibility = layer_visibility.apply(inst, obj, sync_lights.visibility_bits(native, obj))
         owner = None if inst.is_instance else obj.name
         pending.setdefault((index, slots, visibility), []).append(
             (np.asarray(inst.matrix_world, dtype=np.float32), owner))

@@ -43,8 +43,45 @@ def _check_transform(cam_obj):
                          f"direction; nothing was rendered")
 
 
-def export_camera(native_scene, scene, depsgraph, reporter):
-    cam_obj = scene.camera
+class ViewCamera:
+    """One multiview view's camera, as Blender's render pipeline places it: `camera` (the
+    evaluated object; MULTIVIEW format picks a camera per view by name suffix), `matrix` (its
+    eye's normalised model matrix) and `shift_x` (its eye's lens shift)."""
+
+    def __init__(self, camera, matrix, shift_x):
+        self.camera = camera
+        self.matrix = matrix
+        self.shift_x = shift_x
+
+
+def view_camera(engine, scene, depsgraph, view):
+    """The camera of multiview `view` (Stereo 3D 'left'/'right', or a MULTIVIEW view), as
+    Cycles reads it: active_view_set, then camera_override, camera_model_matrix and
+    camera_shift_x for that view. None when the active camera is not a camera object (the
+    stereo functions read camera data): every view then renders the plain camera."""
+    engine.active_view_set(view)
+    cam_obj = engine.camera_override or scene.camera
+    if cam_obj is None or cam_obj.type != 'CAMERA':
+        return None
+    cam_obj = cam_obj.evaluated_get(depsgraph)
+    spherical = engine.use_spherical_stereo(cam_obj)
+    matrix = engine.camera_model_matrix(cam_obj, use_spherical_stereo=spherical)
+    shift_x = engine.camera_shift_x(cam_obj, use_spherical_stereo=spherical)
+    return ViewCamera(cam_obj, matrix, shift_x)
+
+
+def _horizontal_fit(cam, window):
+    """True when the sensor width spans the frame width (Blender's BKE_camera_sensor_fit: AUTO
+    fits the larger of the frame's width and height, aspect included)."""
+    if cam.sensor_fit == 'AUTO':
+        return window[1] - window[0] >= window[3] - window[2]
+    return cam.sensor_fit == 'HORIZONTAL'
+
+
+def export_camera(native_scene, scene, depsgraph, reporter, view=None):
+    """Sets the native camera from the scene camera, or from `view` (a ViewCamera) for one
+    view of a multiview render."""
+    cam_obj = scene.camera if view is None else view.camera
     if cam_obj is None:
         reporter.warning("The scene has no camera; rendering from the default view")
         native_scene.set_camera("PERSP", np.identity(4, dtype=np.float32),
@@ -76,6 +113,15 @@ def export_camera(native_scene, scene, depsgraph, reporter):
         xs = [x / depth for x in xs]
         ys = [y / depth for y in ys]
     window = [min(xs), max(xs), min(ys), max(ys)]
+    placement = cam_obj.matrix_world if view is None else view.matrix
+    if view is not None and view.shift_x != cam.shift_x:
+        # view_frame() holds the camera's own shift; an off-axis stereo eye adds to it. Shift
+        # is a fraction of the sensor-fit side of the frame (BKE_camera_params_compute_viewplane:
+        # dx = shift * viewfac), the same fraction of the window's side here.
+        side = window[1] - window[0] if _horizontal_fit(cam, window) else window[3] - window[2]
+        offset = (view.shift_x - cam.shift_x) * side
+        window[0] += offset
+        window[1] += offset
 
     aperture_radius = 0.0
     focus_distance = 10.0
@@ -87,14 +133,14 @@ def export_camera(native_scene, scene, depsgraph, reporter):
             aperture_radius = (cam.lens * 1e-3) / (2.0 * fstop)
         if cam.dof.focus_object is not None:
             focus = cam.dof.focus_object.evaluated_get(depsgraph).matrix_world.translation
-            view_axis = cam_obj.matrix_world.to_3x3().normalized().col[2]
-            focus_distance = abs(view_axis.dot(cam_obj.matrix_world.translation - focus))
+            view_axis = placement.to_3x3().normalized().col[2]
+            focus_distance = abs(view_axis.dot(placement.translation - focus))
         else:
             focus_distance = cam.dof.focus_distance
         focus_distance = max(focus_distance, 1e-5)
 
-    # Cycles removes the camera object's scale; so do we.
-    matrix = cam_obj.matrix_world.normalized()
+    # Cycles removes the camera object's scale; so do we (camera_model_matrix has none).
+    matrix = placement.normalized()
     native_scene.set_camera(projection, np.asarray(matrix, dtype=np.float32), window,
                             float(cam.clip_start), float(cam.clip_end),
                             float(aperture_radius), float(focus_distance))

@@ -136,6 +136,26 @@ class PHOTON_PT_passes(bpy.types.Panel):
         col.prop(settings, "use_pass_photon_map", text="Photon Map")
 
 
+class PHOTON_PT_layer_override(bpy.types.Panel):
+    """The view layer's Material Override (Blender draws it only in Cycles' own panel)."""
+    bl_label = "Override"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "view_layer"
+    bl_options = {"DEFAULT_CLOSED"}
+    COMPAT_ENGINES = {ENGINE}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        layout.prop(context.view_layer, "material_override")
+
+
 class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
     bl_label = "Performance"
     bl_parent_id = "PHOTON_PT_render"
@@ -151,7 +171,7 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
 
 
 classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_performance,
-           PHOTON_PT_passes)
+           PHOTON_PT_passes, PHOTON_PT_layer_override)
 
 
 def register():
