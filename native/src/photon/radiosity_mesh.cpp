@@ -79,14 +79,22 @@ size_t patch_count_for(const std::vector<TriangleInput>& tris, float patch_size,
   return count + static_cast<size_t>(std::unique(keys.begin(), keys.end()) - keys.begin());
 }
 
-// The smallest patch size (within 2%) whose patch count does not exceed `target`, by bisection
-// on log(size): the count falls (nearly) monotonically as the size grows.
+// The smallest patch size (within 1%) whose patch count does not exceed `target`, by bisection
+// on log(size): the count falls (nearly) monotonically as the size grows. Sizes up to the
+// longest edge are searched first (the search of one patch per small triangle, unchanged for
+// meshes that cluster nothing); dense meshes need sizes up to the scene's extent.
 float size_for_count(const std::vector<TriangleInput>& tris, size_t target, float largest,
-                     const Sizing& sizing) {
-  if (patch_count_for(tris, largest, sizing) >= target) return largest;
+                     float extent, const Sizing& sizing) {
+  const size_t at_largest = patch_count_for(tris, largest, sizing);
+  if (at_largest == target) return largest;
   double lo = std::log(static_cast<double>(largest) * 1e-6),
          hi = std::log(static_cast<double>(largest));
-  for (int k = 0; k < 40 && hi - lo > 0.02; ++k) {
+  if (at_largest > target) {
+    if (!(extent > largest) || patch_count_for(tris, extent, sizing) >= target) return extent;
+    lo = hi;
+    hi = std::log(static_cast<double>(extent));
+  }
+  for (int k = 0; k < 40 && hi - lo > 0.01; ++k) {
     const double mid = 0.5 * (lo + hi);
     if (patch_count_for(tris, static_cast<float>(std::exp(mid)), sizing) > target)
       lo = mid;
@@ -219,12 +227,12 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
   if (largest > 0.0f) {
     // The bisection's upper end: large enough to put every small triangle in a few clusters.
     const float extent = std::max(largest, length(upper - lower));
-    float size =
-        automatic ? size_for_count(input, std::min(settings.auto_elements, ray_cap), extent, sizing)
-                  : settings.patch_size;
+    float size = automatic ? size_for_count(input, std::min(settings.auto_elements, ray_cap),
+                                            largest, extent, sizing)
+                           : settings.patch_size;
     const size_t count = patch_count_for(input, size, sizing);
     if (count > settings.max_elements) {
-      const float coarser = size_for_count(input, settings.max_elements, extent, sizing);
+      const float coarser = size_for_count(input, settings.max_elements, largest, extent, sizing);
       if (warnings)
         warnings->push_back("Radiosity: patch size " + std::to_string(size) +
                             " would make more than " + std::to_string(settings.max_elements) +
