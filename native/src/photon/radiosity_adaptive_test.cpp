@@ -1,6 +1,9 @@
 // Adaptive patch sizing: large triangles are subdivided, tiny ones clustered, and the automatic
 // patch count follows the ray budget (see radiosity_mesh.h).
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cstring>
 
 #include "photon/radiosity_field.h"
 #include "photon/radiosity_mesh.h"
@@ -161,6 +164,47 @@ TEST(RadiosityAdaptive, ClusteredClosedBoxKeepsTheAnalyticValue) {
       display_worst = std::max(display_worst, std::fabs(l[c] / expected[c] - 1.0));
   }
   EXPECT_LT(display_worst, 0.1);
+}
+
+// Meshing (clusters, bisection), solve and the kernel display ignore the thread count.
+TEST(RadiosityAdaptive, BitIdenticalWithOneAndTwoThreads) {
+  RadiosityFixture lit([&] {
+    Scene s = floor_and_sphere(200);
+    Light sun;
+    sun.type = LightType::kSun;
+    sun.power = 3.0f;
+    s.lights.push_back(sun);
+    return s;
+  }());
+  std::vector<float> display[2];
+  size_t patches[2] = {0, 0};
+  for (int threads : {1, 2}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    const RadiosityMesh mesh = automatic_mesh(lit, 300000);
+    patches[threads - 1] = mesh.patch_count();
+    RadiositySolveSettings s;
+    s.rays = 300000;
+    PrepareControl control;
+    RadiositySolveStats stats;
+    const RadiosityField field(mesh, solve_radiosity(lit.context, mesh, s, control, &stats));
+    ASSERT_FALSE(field.empty());
+    for (uint32_t e = 0; e < mesh.element_count(); e += 7) {
+      uint32_t vertex[3];
+      bool flip[3];
+      mesh.element_vertices(e, vertex, flip);
+      RadiosityLocation where;
+      where.element = e;
+      for (int c = 0; c < 3; ++c) where.vertex[c] = vertex[c], where.flip[c] = flip[c];
+      display[threads - 1].push_back(field.radiosity_at(where, 0).total().x);
+    }
+  }
+  EXPECT_EQ(patches[0], patches[1]);
+  ASSERT_EQ(display[0].size(), display[1].size());
+  EXPECT_EQ(0,
+            std::memcmp(display[0].data(), display[1].data(), display[0].size() * sizeof(float)));
+  float largest = 0.0f;
+  for (float v : display[0]) largest = std::max(largest, v);
+  EXPECT_GT(largest, 0.0f);  // the sun lit something
 }
 
 }  // namespace
