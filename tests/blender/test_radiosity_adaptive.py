@@ -17,5 +17,6 @@ def test_unbalanced_scene_shows_the_shadow_and_a_smooth_sphere(blender):
     assert result["lit"] > 0.05, report  # the sun lights the floor
     # The floor in the sphere's shadow gets only indirect light: far darker than in the sun.
     assert result["shadow"] < 0.5 * result["lit"], report
-    # Neighbouring pixels on the sphere differ by little (smooth shading, not per-patch noise).
-    assert result["noise"] < 0.03, report
+    # Neighbouring pixels on the sphere differ by little (smooth shading, not per-patch noise):
+    # measured 0.017 (one patch per triangle: 2.0).
+    assert result["noise"] < 0.05, report

@@ -4,8 +4,9 @@ with the RADIOSITY integrator and its automatic patch size.
 
 Args: OUT_DIR [RAYS_THOUSANDS] [SEGMENTS]
 Reports the floor's mean in the sphere's shadow and in the sun beside it (pixels at projected
-world points), and the sphere's pixel-to-neighbour noise (mean absolute difference of
-horizontally and vertically adjacent pixels inside the sphere's disc, over the disc's mean).
+world points), and the sphere's pixel-to-neighbour noise (mean absolute second difference of
+horizontally and vertically adjacent pixels inside the sphere's disc, over the disc's mean; a
+smooth gradient gives none).
 """
 
 import math
@@ -69,14 +70,16 @@ def sphere_noise(scene, pixels):
     rows, cols = np.mgrid[0:HEIGHT, 0:WIDTH]
     disc = (cols + 0.5 - col) ** 2 + (rows + 0.5 - row) ** 2 < radius ** 2
     lum = pixels[:, :, :3].mean(axis=2)
-    diffs = []
-    pair_h = disc[:, :-1] & disc[:, 1:]
-    diffs.append(np.abs(lum[:, :-1] - lum[:, 1:])[pair_h])
-    pair_v = disc[:-1, :] & disc[1:, :]
-    diffs.append(np.abs(lum[:-1, :] - lum[1:, :])[pair_v])
+    # Second differences along rows and columns: zero for smooth (linear) shading, so the
+    # sphere's light gradient does not count, only the pixel-to-neighbour jitter.
+    inner = disc[1:-1, 1:-1] & disc[1:-1, :-2] & disc[1:-1, 2:] & disc[:-2, 1:-1] & disc[2:, 1:-1]
+    second_h = np.abs(lum[1:-1, :-2] - 2 * lum[1:-1, 1:-1] + lum[1:-1, 2:])[inner]
+    second_v = np.abs(lum[:-2, 1:-1] - 2 * lum[1:-1, 1:-1] + lum[2:, 1:-1])[inner]
+    first_h = np.abs(lum[1:-1, 1:-1] - lum[1:-1, 2:])[inner]
     mean = float(lum[disc].mean())
     return {"disc_pixels": int(disc.sum()), "disc_mean": mean,
-            "noise": float(np.concatenate(diffs).mean()) / max(mean, 1e-9)}
+            "noise": float(0.5 * (second_h.mean() + second_v.mean())) / max(mean, 1e-9),
+            "first_difference": float(first_h.mean()) / max(mean, 1e-9)}
 
 
 def main(out_dir, rays_thousands="2000", segments="448"):
