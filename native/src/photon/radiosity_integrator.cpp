@@ -50,7 +50,10 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
     control.warn("Radiosity was stopped early: rendering the solution of " +
                  std::to_string(solved.incremental_iterations) + " shooting and " +
                  std::to_string(solved.regular_iterations) + " averaged iterations");
+  const auto t_field = std::chrono::steady_clock::now();
   field_ = RadiosityField(mesh_, power);
+  const double field_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_field).count();
 
   stats_ = {
       {"radiosity_elements", static_cast<double>(mesh_.element_count())},
@@ -60,6 +63,7 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
       {"radiosity_patch_size", mesh_.patch_size()},
       {"radiosity_area", mesh_.total_area()},
       {"radiosity_mesh_seconds", mesh_seconds},
+      {"radiosity_field_seconds", field_seconds},
       {"radiosity_rays", static_cast<double>(solved.rays)},
       {"radiosity_solve_seconds", solved.seconds},
       {"radiosity_rays_per_second", solved.seconds > 0.0 ? solved.rays / solved.seconds : 0.0},

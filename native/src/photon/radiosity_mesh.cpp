@@ -1,9 +1,12 @@
 #include "photon/radiosity_mesh.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
 #include <tbb/parallel_sort.h>
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <unordered_map>
 
 #include "photon/rng.h"
@@ -61,22 +64,34 @@ ClusterKey cluster_key(const TriangleInput& t, float size) {
               voxel_bits(t.centroid.z, size)};
 }
 
-// Patches for a patch size: n^2 per subdivided triangle plus one per occupied cluster.
+// Patches for a patch size: n^2 per subdivided triangle plus one per occupied cluster. Run
+// about a dozen times on every triangle by the size search, so in parallel; clusters are
+// counted by a 63-bit hash of their key (a collision would only undercount by one).
 size_t patch_count_for(const std::vector<TriangleInput>& tris, float patch_size,
                        const Sizing& sizing) {
-  size_t count = 0;
-  std::vector<ClusterKey> keys;
-  for (const TriangleInput& t : tris) {
-    if (!t.meshed) continue;
-    if (is_clustered(t, patch_size, sizing)) {
-      keys.push_back(cluster_key(t, patch_size));
-    } else {
-      const size_t n = subdivisions(t.longest, patch_size, sizing.max_subdivisions);
-      count += n * n;
-    }
-  }
+  constexpr uint64_t kNone = UINT64_MAX;
+  std::vector<uint64_t> keys(tris.size());
+  const size_t subdivided = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, tris.size(), 4096), size_t(0),
+      [&](const tbb::blocked_range<size_t>& range, size_t count) {
+        for (size_t i = range.begin(); i < range.end(); ++i) {
+          const TriangleInput& t = tris[i];
+          keys[i] = kNone;
+          if (!t.meshed) continue;
+          if (is_clustered(t, patch_size, sizing)) {
+            const ClusterKey k = cluster_key(t, patch_size);
+            keys[i] = hash_combine(k.a, k.b) >> 1;
+          } else {
+            const size_t n = subdivisions(t.longest, patch_size, sizing.max_subdivisions);
+            count += n * n;
+          }
+        }
+        return count;
+      },
+      std::plus<size_t>());
   tbb::parallel_sort(keys.begin(), keys.end());
-  return count + static_cast<size_t>(std::unique(keys.begin(), keys.end()) - keys.begin());
+  const auto end = std::lower_bound(keys.begin(), keys.end(), kNone);
+  return subdivided + static_cast<size_t>(std::unique(keys.begin(), end) - keys.begin());
 }
 
 // The smallest patch size (within 1%) whose patch count does not exceed `target`, by bisection
