@@ -228,8 +228,13 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 f"{stats['irradiance_cache_seconds']:.3f} s")
         if "radiosity_elements" in stats:
             reporter.info(
-                f"radiosity: {int(stats['radiosity_elements']):,} patches (size "
-                f"{stats['radiosity_patch_size']:.4g}), {int(stats['radiosity_rays']):,} rays in "
+                f"radiosity: {int(stats.get('radiosity_patches', stats['radiosity_elements'])):,} "
+                f"patches (size {stats['radiosity_patch_size']:.4g}, "
+                f"{int(stats['radiosity_elements']):,} elements, "
+                f"{int(stats.get('radiosity_clusters', 0)):,} clusters, meshed in "
+                f"{stats.get('radiosity_mesh_seconds', 0.0):.3f} s, displayed in "
+                f"{stats.get('radiosity_field_seconds', 0.0):.3f} s), "
+                f"{int(stats['radiosity_rays']):,} rays in "
                 f"{stats['radiosity_solve_seconds']:.3f} s "
                 f"({stats['radiosity_rays_per_second'] / 1e6:.2f} M rays/s), "
                 f"{int(stats['radiosity_shooting_iterations'])} shooting + "

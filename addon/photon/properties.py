@@ -75,9 +75,11 @@ class PhotonRenderSettings(bpy.types.PropertyGroup):
         default=0.75, min=0.01, max=1.0, subtype="FACTOR")
     radiosity_patch_size: FloatProperty(
         name="Patch Size",
-        description="Edge length of the radiosity patches (elements) surfaces are split into; "
-                    "smaller patches show sharper shadows but need more rays "
-                    "(0 = automatic: about 20000 patches for the whole scene)",
+        description="Edge length of the radiosity patches: larger triangles are split into "
+                    "patches of this size, much smaller ones are grouped into one patch per "
+                    "cell of this size; smaller patches show sharper shadows but need more rays "
+                    "(0 = automatic: about 20000 patches, fewer if the rays are too few for "
+                    "them, at least 256 rays per patch)",
         default=0.0, min=0.0, soft_max=1.0, max=1e6, subtype="DISTANCE", unit="LENGTH")
     radiosity_rays: IntProperty(
         name="Rays",

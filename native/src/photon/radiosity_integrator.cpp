@@ -2,10 +2,10 @@
 
 #include <chrono>
 
-#include "photon/radiosity_material.h"
-#include "photon/radiosity_solver.h"
 #include "photon/camera_path.h"
 #include "photon/material_eval.h"
+#include "photon/radiosity_material.h"
+#include "photon/radiosity_solver.h"
 
 namespace photon {
 namespace {
@@ -25,6 +25,8 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
   RadiosityMeshSettings mesh_settings;
   mesh_settings.patch_size =
       std::isfinite(s.radiosity_patch_size) ? std::max(s.radiosity_patch_size, 0.0f) : 0.0f;
+  // The automatic patch size keeps enough rays per patch (see RadiosityMeshSettings).
+  mesh_settings.rays = std::clamp<uint64_t>(s.radiosity_rays, kMinRays, kMaxRays);
   std::vector<std::string> warnings;
   mesh_ =
       RadiosityMesh(*context.scene, *context.accel, mesh_settings, is_radiosity_surface, &warnings);
@@ -48,14 +50,20 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
     control.warn("Radiosity was stopped early: rendering the solution of " +
                  std::to_string(solved.incremental_iterations) + " shooting and " +
                  std::to_string(solved.regular_iterations) + " averaged iterations");
+  const auto t_field = std::chrono::steady_clock::now();
   field_ = RadiosityField(mesh_, power);
+  const double field_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_field).count();
 
   stats_ = {
       {"radiosity_elements", static_cast<double>(mesh_.element_count())},
+      {"radiosity_patches", static_cast<double>(mesh_.patch_count())},
+      {"radiosity_clusters", static_cast<double>(mesh_.cluster_count())},
       {"radiosity_vertices", static_cast<double>(mesh_.vertex_count())},
       {"radiosity_patch_size", mesh_.patch_size()},
       {"radiosity_area", mesh_.total_area()},
       {"radiosity_mesh_seconds", mesh_seconds},
+      {"radiosity_field_seconds", field_seconds},
       {"radiosity_rays", static_cast<double>(solved.rays)},
       {"radiosity_solve_seconds", solved.seconds},
       {"radiosity_rays_per_second", solved.seconds > 0.0 ? solved.rays / solved.seconds : 0.0},

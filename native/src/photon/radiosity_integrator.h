@@ -27,7 +27,8 @@ class RadiosityIntegrator : public Integrator {
   const RadiosityField& field() const { return field_; }
   // Reflected radiance (B / pi) at a hit, seen from side `towards` of the surface; false when
   // the hit is not on a diffuse element.
-  bool reflected_radiance(const SurfaceInteraction& si, const Vec3& towards, RadiosityPower* radiance) const;
+  bool reflected_radiance(const SurfaceInteraction& si, const Vec3& towards,
+                          RadiosityPower* radiance) const;
 
  private:
   RadiosityMesh mesh_;

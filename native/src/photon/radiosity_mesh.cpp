@@ -1,6 +1,12 @@
 #include "photon/radiosity_mesh.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_sort.h>
+
+#include <algorithm>
 #include <cstring>
+#include <functional>
 #include <unordered_map>
 
 #include "photon/rng.h"
@@ -10,8 +16,12 @@ namespace {
 
 struct TriangleInput {
   Vec3 world[3];
+  Vec3 centroid;
   float longest = 0.0f;  // world-space longest edge
   float area = 0.0f;
+  uint32_t instance = 0;  // Embree instance id
+  uint32_t slot = 0;      // material slot
+  uint8_t axis = 0;       // dominant axis of the normal: 2 * axis + (component < 0)
   bool meshed = false;
 };
 
@@ -21,27 +31,87 @@ uint32_t subdivisions(float longest, float patch_size, uint32_t max_subdivisions
   return static_cast<uint32_t>(std::clamp(n, 1.0, static_cast<double>(max_subdivisions)));
 }
 
-size_t element_count_for(const std::vector<TriangleInput>& tris, float patch_size,
-                         uint32_t max_subdivisions) {
-  size_t count = 0;
-  for (const TriangleInput& t : tris)
-    if (t.meshed) {
-      const size_t n = subdivisions(t.longest, patch_size, max_subdivisions);
-      count += n * n;
-    }
-  return count;
+struct Sizing {
+  uint32_t max_subdivisions = 1;
+  float cluster_fraction = 0.5f;
+};
+
+bool is_clustered(const TriangleInput& t, float patch_size, const Sizing& sizing) {
+  return patch_size > 0.0f && t.longest < sizing.cluster_fraction * patch_size;
 }
 
-// The smallest patch size (within 1%) whose element count does not exceed `target`, by
-// bisection on log(size): the count falls monotonically as the size grows.
+// A cluster: instance, material slot, normal axis and the world voxel (edge = patch size) that
+// holds the triangle's centroid. Voxel coordinates are clamped to 21 bits each.
+struct ClusterKey {
+  uint64_t a = 0, b = 0;
+  bool operator==(const ClusterKey& o) const { return a == o.a && b == o.b; }
+  bool operator<(const ClusterKey& o) const { return a != o.a ? a < o.a : b < o.b; }
+};
+struct ClusterKeyHash {
+  size_t operator()(const ClusterKey& k) const {
+    return static_cast<size_t>(hash_combine(k.a, k.b));
+  }
+};
+uint64_t voxel_bits(float x, float size) {
+  constexpr double kHalf = 1 << 20;
+  const double v = std::clamp(std::floor(static_cast<double>(x) / size), -kHalf, kHalf - 1);
+  return static_cast<uint64_t>(static_cast<int64_t>(v) + static_cast<int64_t>(kHalf));
+}
+ClusterKey cluster_key(const TriangleInput& t, float size) {
+  return {static_cast<uint64_t>(t.instance) << 32 |
+              static_cast<uint64_t>(t.slot & 0x1fffffffu) << 3 | t.axis,
+          voxel_bits(t.centroid.x, size) << 42 | voxel_bits(t.centroid.y, size) << 21 |
+              voxel_bits(t.centroid.z, size)};
+}
+
+// Patches for a patch size: n^2 per subdivided triangle plus one per occupied cluster. Run
+// about a dozen times on every triangle by the size search, so in parallel; clusters are
+// counted by a 63-bit hash of their key (a collision would only undercount by one).
+size_t patch_count_for(const std::vector<TriangleInput>& tris, float patch_size,
+                       const Sizing& sizing) {
+  constexpr uint64_t kNone = UINT64_MAX;
+  std::vector<uint64_t> keys(tris.size());
+  const size_t subdivided = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, tris.size(), 4096), size_t(0),
+      [&](const tbb::blocked_range<size_t>& range, size_t count) {
+        for (size_t i = range.begin(); i < range.end(); ++i) {
+          const TriangleInput& t = tris[i];
+          keys[i] = kNone;
+          if (!t.meshed) continue;
+          if (is_clustered(t, patch_size, sizing)) {
+            const ClusterKey k = cluster_key(t, patch_size);
+            keys[i] = hash_combine(k.a, k.b) >> 1;
+          } else {
+            const size_t n = subdivisions(t.longest, patch_size, sizing.max_subdivisions);
+            count += n * n;
+          }
+        }
+        return count;
+      },
+      std::plus<size_t>());
+  tbb::parallel_sort(keys.begin(), keys.end());
+  const auto end = std::lower_bound(keys.begin(), keys.end(), kNone);
+  return subdivided + static_cast<size_t>(std::unique(keys.begin(), end) - keys.begin());
+}
+
+// The smallest patch size (within 1%) whose patch count does not exceed `target`, by bisection
+// on log(size): the count falls (nearly) monotonically as the size grows. Sizes up to the
+// longest edge are searched first (the search of one patch per small triangle, unchanged for
+// meshes that cluster nothing); dense meshes need sizes up to the scene's extent.
 float size_for_count(const std::vector<TriangleInput>& tris, size_t target, float largest,
-                     uint32_t max_subdivisions) {
-  if (element_count_for(tris, largest, max_subdivisions) >= target) return largest;
+                     float extent, const Sizing& sizing) {
+  const size_t at_largest = patch_count_for(tris, largest, sizing);
+  if (at_largest == target) return largest;
   double lo = std::log(static_cast<double>(largest) * 1e-6),
          hi = std::log(static_cast<double>(largest));
+  if (at_largest > target) {
+    if (!(extent > largest) || patch_count_for(tris, extent, sizing) >= target) return extent;
+    lo = hi;
+    hi = std::log(static_cast<double>(extent));
+  }
   for (int k = 0; k < 40 && hi - lo > 0.01; ++k) {
     const double mid = 0.5 * (lo + hi);
-    if (element_count_for(tris, static_cast<float>(std::exp(mid)), max_subdivisions) > target)
+    if (patch_count_for(tris, static_cast<float>(std::exp(mid)), sizing) > target)
       lo = mid;
     else
       hi = mid;
@@ -124,6 +194,7 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
   std::vector<TriangleInput> input;
   instance_first_triangle_.resize(accel.instance_count() + 1, 0);
   float largest = 0.0f;
+  Vec3 lower(INFINITY), upper(-INFINITY);
   for (uint32_t id = 0; id < accel.instance_count(); ++id) {
     instance_first_triangle_[id] = static_cast<uint32_t>(input.size());
     const Instance& inst = scene.instances[accel.scene_instance(id)];
@@ -137,36 +208,66 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
                             length(t.world[0] - t.world[2])});
       t.meshed = t.area > 0.0f && std::isfinite(t.area) && std::isfinite(t.longest) &&
                  meshed(accel.triangle_material(id, tri));
+      t.centroid = (t.world[0] + t.world[1] + t.world[2]) * (1.0f / 3.0f);
+      t.instance = id;
+      t.slot = mesh.material_slots.empty() ? 0u : static_cast<uint32_t>(mesh.material_slots[tri]);
+      const Vec3 g = cross(t.world[1] - t.world[0], t.world[2] - t.world[0]);
+      const float ax[3] = {std::fabs(g.x), std::fabs(g.y), std::fabs(g.z)};
+      const int axis = ax[0] >= ax[1] && ax[0] >= ax[2] ? 0 : ax[1] >= ax[2] ? 1 : 2;
+      t.axis = static_cast<uint8_t>(2 * axis + (g[axis] < 0.0f ? 1 : 0));
       if (t.meshed) {
         largest = std::max(largest, t.longest);
         total_area_ += t.area;
+        for (const Vec3& p : t.world) lower = min(lower, p), upper = max(upper, p);
       }
       input.push_back(t);
     }
   }
   instance_first_triangle_[accel.instance_count()] = static_cast<uint32_t>(input.size());
 
-  // Patch size: the user's, or automatic (about auto_elements elements); coarsened if the
-  // element count would exceed max_elements.
-  const uint32_t max_sub = std::max<uint32_t>(settings.max_subdivisions, 1);
+  // Patch size: the user's, or automatic (about auto_elements patches, and no more than the
+  // ray budget can light well); coarsened if the patch count would exceed max_elements.
+  Sizing sizing;
+  sizing.max_subdivisions = std::max<uint32_t>(settings.max_subdivisions, 1);
+  sizing.cluster_fraction = std::isfinite(settings.cluster_fraction)
+                                ? std::clamp(settings.cluster_fraction, 0.0f, 1.0f)
+                                : 0.5f;
+  const uint32_t max_sub = sizing.max_subdivisions;
+  const bool automatic = !(settings.patch_size > 0.0f && std::isfinite(settings.patch_size));
+  size_t ray_cap = SIZE_MAX;
+  if (settings.rays > 0)
+    ray_cap = std::max<size_t>(
+        settings.min_patches,
+        static_cast<size_t>(settings.rays / std::max<uint32_t>(settings.min_rays_per_patch, 1)));
   if (largest > 0.0f) {
-    float size = settings.patch_size > 0.0f && std::isfinite(settings.patch_size)
-                     ? settings.patch_size
-                     : size_for_count(input, settings.auto_elements, largest, max_sub);
-    if (element_count_for(input, size, max_sub) > settings.max_elements) {
-      const float coarser = size_for_count(input, settings.max_elements, largest, max_sub);
+    // The bisection's upper end: large enough to put every small triangle in a few clusters.
+    const float extent = std::max(largest, length(upper - lower));
+    float size = automatic ? size_for_count(input, std::min(settings.auto_elements, ray_cap),
+                                            largest, extent, sizing)
+                           : settings.patch_size;
+    const size_t count = patch_count_for(input, size, sizing);
+    if (count > settings.max_elements) {
+      const float coarser = size_for_count(input, settings.max_elements, largest, extent, sizing);
       if (warnings)
         warnings->push_back("Radiosity: patch size " + std::to_string(size) +
                             " would make more than " + std::to_string(settings.max_elements) +
-                            " elements; using " + std::to_string(coarser));
+                            " patches; using " + std::to_string(coarser));
       size = coarser;
+    } else if (!automatic && count > ray_cap && warnings) {
+      warnings->push_back("Radiosity: patch size " + std::to_string(size) + " makes " +
+                          std::to_string(count) + " patches for " + std::to_string(settings.rays) +
+                          " rays (fewer than " + std::to_string(settings.min_rays_per_patch) +
+                          " rays per patch): expect noise; use more rays or larger patches");
     }
     patch_size_ = size;
   }
 
-  // Triangles and elements.
+  // Triangles and elements; every element of a subdivided triangle is a patch, clustered
+  // triangles share their cluster's patch.
   triangles_.resize(input.size());
   uint32_t lattice_total = 0;
+  std::unordered_map<ClusterKey, uint32_t, ClusterKeyHash> cluster_patch;
+  uint32_t patches = 0;
   for (size_t t = 0; t < input.size(); ++t) {
     RadiosityTriangle& rt = triangles_[t];
     const TriangleInput& in = input[t];
@@ -182,6 +283,7 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
     rt.first_lattice = lattice_total;
     lattice_total += (n + 1) * (n + 2) / 2;
     elements_.resize(elements_.size() + static_cast<size_t>(n) * n);
+    element_patch_.resize(elements_.size());
     for (uint32_t i = 0; i < n; ++i)
       for (uint32_t j = 0; i + j < n; ++j) {
         elements_[rt.first_element + subdivision_element(n, i, j, true)] = {
@@ -190,6 +292,48 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
           elements_[rt.first_element + subdivision_element(n, i, j, false)] = {
               static_cast<uint32_t>(t), static_cast<uint16_t>(i), static_cast<uint16_t>(j), false};
       }
+    if (is_clustered(in, patch_size_, sizing)) {
+      rt.clustered = true;
+      const auto found = cluster_patch.try_emplace(cluster_key(in, patch_size_), patches);
+      if (found.second) ++patches;
+      element_patch_[rt.first_element] = found.first->second;
+    } else {
+      for (uint32_t k = 0; k < n * n; ++k) element_patch_[rt.first_element + k] = patches++;
+    }
+  }
+  cluster_count_ = cluster_patch.size();
+
+  // Patch membership (elements in order), areas, centroids, normals.
+  patch_first_.assign(patches + 1, 0);
+  for (uint32_t p : element_patch_) ++patch_first_[p + 1];
+  for (uint32_t p = 0; p < patches; ++p) patch_first_[p + 1] += patch_first_[p];
+  patch_elements_.resize(elements_.size());
+  {
+    std::vector<uint32_t> fill(patch_first_.begin(), patch_first_.end() - 1);
+    for (uint32_t e = 0; e < elements_.size(); ++e) patch_elements_[fill[element_patch_[e]]++] = e;
+  }
+  patch_cdf_.resize(elements_.size());
+  patch_area_.assign(patches, 0.0f);
+  patch_centroid_.assign(patches, Vec3(0.0f));
+  patch_normal_.assign(patches, Vec3(0.0f));
+  patch_instance_.assign(patches, 0);
+  for (uint32_t p = 0; p < patches; ++p) {
+    double area = 0.0;
+    Vec3 centroid(0.0f), normal(0.0f);
+    for (uint32_t k = patch_first_[p]; k < patch_first_[p + 1]; ++k) {
+      const uint32_t e = patch_elements_[k];
+      const float a = triangle_of(e).element_area;
+      area += a;
+      patch_cdf_[k] = static_cast<float>(area);
+      centroid += (corner(e, 0) + corner(e, 1) + corner(e, 2)) * (a / 3.0f);
+      normal += triangle_of(e).normal * a;
+    }
+    const uint32_t first = patch_elements_[patch_first_[p]];
+    patch_area_[p] = static_cast<float>(area);
+    patch_centroid_[p] = area > 0.0 ? centroid / static_cast<float>(area) : corner(first, 0);
+    patch_normal_[p] =
+        length_squared(normal) > 0.0f ? normalize(normal) : triangle_of(first).normal;
+    patch_instance_[p] = input[elements_[first].triangle].instance;
   }
 
   // Welded vertices, per instance: lattice points at the same object-space position whose
@@ -266,6 +410,20 @@ Vec3 RadiosityMesh::sample_point(uint32_t e, Vec2 u) const {
   const float su = std::sqrt(u.x);
   const float b1 = kCentre + kShrink * su * (1.0f - u.y), b2 = kCentre + kShrink * su * u.y;
   return c0 + (c1 - c0) * b1 + (c2 - c0) * b2;
+}
+
+Vec3 RadiosityMesh::sample_patch(uint32_t p, float u_element, Vec2 u, uint32_t* element) const {
+  const uint32_t begin = patch_first_[p], end = patch_first_[p + 1];
+  uint32_t k = begin;
+  if (end - begin > 1) {
+    const float target = u_element * patch_cdf_[end - 1];
+    k = static_cast<uint32_t>(
+        std::upper_bound(patch_cdf_.begin() + begin, patch_cdf_.begin() + end, target) -
+        patch_cdf_.begin());
+    k = std::min(k, end - 1);
+  }
+  *element = patch_elements_[k];
+  return sample_point(*element, u);
 }
 
 uint32_t RadiosityMesh::triangle_index(uint32_t instance, uint32_t primitive) const {

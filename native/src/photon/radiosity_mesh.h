@@ -5,6 +5,15 @@
 // radiosity. Element corners are welded into shared vertices within an instance (same position,
 // agreeing normals), and vertex radiosity is the area-weighted average of the elements around
 // it, so interpolating it across an element (Gouraud) hides the patch edges.
+//
+// Patches (the unknowns of the solve) are built from elements adaptively (Cohen & Wallace 1993,
+// ch. 8, on meshing to a target element size; Bekaert 1999, ch. 6, on clustering for
+// stochastic radiosity): a triangle larger than the patch size is subdivided and each of its
+// elements is a patch; triangles much smaller than the patch size keep one element each but
+// are clustered, by world-space voxel of the patch size and by the dominant axis of their
+// normal, into one patch per voxel, so a finely tessellated mesh does not turn into millions of
+// patches that each receive a handful of rays. The automatic patch size aims at a patch count
+// that is bounded by the solve's ray budget (enough rays per patch for a target noise).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +32,7 @@ struct RadiosityTriangle {
   uint32_t n = 0;             // subdivisions per edge; 0 = not meshed (not diffuse)
   uint32_t first_element = 0;
   uint32_t first_lattice = 0;  // (n + 1)(n + 2) / 2 lattice points
+  bool clustered = false;      // n = 1 and its element is part of a cluster patch
 };
 
 // An element's place in its triangle: cell (i, j) of the subdivision, upward (corners
@@ -45,9 +55,17 @@ struct RadiosityLocation {
 
 struct RadiosityMeshSettings {
   float patch_size = 0.0f;           // target element edge length; <= 0: automatic
-  size_t auto_elements = 20000;      // automatic size: about this many elements
+  size_t auto_elements = 20000;      // automatic size: about this many patches
   size_t max_elements = 4000000;     // larger meshes are coarsened (with a warning)
   uint32_t max_subdivisions = 1024;  // per triangle edge
+  // Ray budget of the solve (0 = unknown): the automatic size then also keeps the patch count
+  // at or below rays / min_rays_per_patch. A patch hit by k rays per step has a relative noise
+  // of about 1 / sqrt(k) (Bekaert 1999, sec. 6.3): 256 rays give about 6 %.
+  uint64_t rays = 0;
+  uint32_t min_rays_per_patch = 256;
+  size_t min_patches = 64;  // the ray cap never goes below this
+  // Triangles whose longest edge is below this fraction of the patch size are clustered.
+  float cluster_fraction = 0.5f;
 };
 
 class RadiosityMesh {
@@ -60,6 +78,8 @@ class RadiosityMesh {
                 std::vector<std::string>* warnings);
 
   size_t element_count() const { return elements_.size(); }
+  size_t patch_count() const { return patch_area_.size(); }
+  size_t cluster_count() const { return cluster_count_; }
   size_t vertex_count() const { return vertex_count_; }
   size_t triangle_count() const { return triangles_.size(); }
   float patch_size() const { return patch_size_; }
@@ -75,6 +95,21 @@ class RadiosityMesh {
   Vec3 corner(uint32_t e, int k) const;
   Vec3 sample_point(uint32_t e, Vec2 u) const;
 
+  // The patch element e belongs to. Every element of a patch has its normal within 55 degrees
+  // of the patch's axis, so an element's front side is its patch's front side.
+  uint32_t patch_of(uint32_t e) const { return element_patch_[e]; }
+  float patch_area(uint32_t p) const { return patch_area_[p]; }
+  Vec3 patch_centroid(uint32_t p) const { return patch_centroid_[p]; }
+  Vec3 patch_normal(uint32_t p) const { return patch_normal_[p]; }  // area-weighted, unit
+  uint32_t patch_instance(uint32_t p) const { return patch_instance_[p]; }
+  bool patch_clustered(uint32_t p) const {
+    return triangle_of(patch_elements_[patch_first_[p]]).clustered;
+  }
+  uint32_t patch_element_count(uint32_t p) const { return patch_first_[p + 1] - patch_first_[p]; }
+  // A uniform point on patch p: an element chosen with probability proportional to its area
+  // (by `u_element`), then a uniform point on it. `element` receives the element.
+  Vec3 sample_patch(uint32_t p, float u_element, Vec2 u, uint32_t* element) const;
+
   // The element hit by Embree at (instance, primitive, u, v); false for unmeshed triangles.
   bool locate(uint32_t instance, uint32_t primitive, float u, float v,
               RadiosityLocation* out) const;
@@ -89,6 +124,14 @@ class RadiosityMesh {
   std::vector<uint32_t> instance_first_triangle_;  // by Embree instance id
   std::vector<RadiosityElement> elements_;
   std::vector<uint32_t> lattice_;  // welded vertex << 1 | flip, per lattice point
+  std::vector<uint32_t> element_patch_;
+  std::vector<uint32_t> patch_first_;     // patch p owns patch_elements_[first[p], first[p+1])
+  std::vector<uint32_t> patch_elements_;  // in element order within each patch
+  std::vector<float> patch_cdf_;          // cumulative element area, per patch_elements_ entry
+  std::vector<float> patch_area_;
+  std::vector<Vec3> patch_centroid_, patch_normal_;
+  std::vector<uint32_t> patch_instance_;
+  size_t cluster_count_ = 0;
   size_t vertex_count_ = 0;
   float patch_size_ = 0.0f;
   double total_area_ = 0.0;

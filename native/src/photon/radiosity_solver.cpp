@@ -5,10 +5,10 @@
 #include <chrono>
 #include <cstdio>
 
+#include "photon/camera_path.h"
 #include "photon/photon_sources.h"
 #include "photon/radiosity_material.h"
 #include "photon/sampling.h"
-#include "photon/camera_path.h"
 
 namespace photon {
 namespace {
@@ -73,9 +73,8 @@ struct StepPlan {
 // element; the rest continues through the glossy and specular lobes (sampled, with Russian
 // roulette) or is absorbed. Rays that leave the scene escape. The books balance per ray:
 // arriving = deposited + absorbed + continuing.
-void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, Ray ray,
-               const Vec3& power, uint32_t mask, bool from_light, Sampler& sampler,
-               ChunkOutput* out) {
+void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, Ray ray, const Vec3& power,
+               uint32_t mask, bool from_light, Sampler& sampler, ChunkOutput* out) {
   out->shot.add(power);
   const int max_depth = context.settings->max_depth;
   Vec3 arriving = power;
@@ -96,9 +95,11 @@ void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, Ray ray,
     if (!is_black(reflected) && located) {
       // bsdf.ng() faces the arriving ray: that side receives (and re-emits) the light.
       const uint32_t side = dot(bsdf.ng(), mesh.normal(where.element)) >= 0.0f ? 0u : 1u;
-      const uint8_t kind = from_light ? (depth == 0 ? kDirect : specular_only ? kCaustic : kIndirect)
+      const uint8_t kind = from_light ? (depth == 0      ? kDirect
+                                         : specular_only ? kCaustic
+                                                         : kIndirect)
                                       : kIndirect;
-      out->deposits.push_back({2 * where.element + side, kind, reflected});
+      out->deposits.push_back({2 * mesh.patch_of(where.element) + side, kind, reflected});
     } else {
       reflected = Vec3(0.0f);
     }
@@ -154,9 +155,13 @@ void shoot_chunk(const RenderContext& context, const RadiosityMesh& mesh,
     if (!(ps > 0.0)) continue;
     // Every ray carries the same power P_T / N (in the mean of the channels).
     const Vec3 power = p * static_cast<float>(element_total / (plan.element_rays * ps));
-    const uint32_t element = static_cast<uint32_t>(slot / 2);
+    // A uniform point on the patch (an element of a cluster in proportion to its area); the
+    // element's own normal orients the side (all of a patch's elements face its way).
+    const uint32_t patch = static_cast<uint32_t>(slot / 2);
+    const float u_element = mesh.patch_element_count(patch) > 1 ? sampler.get_1d() : 0.0f;
+    uint32_t element = 0;
+    const Vec3 origin = mesh.sample_patch(patch, u_element, sampler.get_2d(), &element);
     const Vec3 n = slot % 2 == 0 ? mesh.normal(element) : -mesh.normal(element);
-    const Vec3 origin = mesh.sample_point(element, sampler.get_2d());
     Ray ray;
     ray.direction = Frame(n).to_world(sample_cosine_hemisphere(sampler.get_2d()));
     ray.origin = offset_ray_origin(origin, n, ray.direction);
@@ -169,7 +174,7 @@ StepResult shoot(const RenderContext& context, const RadiosityMesh& mesh,
                  const PhotonSources& sources, const StepPlan& plan, const PrepareControl& control,
                  const std::function<void(uint64_t)>& progress) {
   StepResult result;
-  const size_t slots = 2 * mesh.element_count();
+  const size_t slots = 2 * mesh.patch_count();
   for (auto& r : result.received) r.assign(slots, DVec3());
   const uint64_t total = plan.light_rays + plan.element_rays;
   const uint64_t chunks = (total + kChunkRays - 1) / kChunkRays;
@@ -242,7 +247,7 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const 
                                             RadiositySolveStats* stats_out) {
   const auto t0 = Clock::now();
   RadiositySolveStats stats;
-  const size_t slots = 2 * mesh.element_count();
+  const size_t slots = 2 * mesh.patch_count();
   std::vector<RadiosityPower> solution(slots);
   const PhotonSources sources(context);
   const double emitted = scalar(sources.total_power());

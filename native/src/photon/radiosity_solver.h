@@ -58,9 +58,9 @@ struct RadiositySolveStats {
   bool stopped_early = false;
 };
 
-// Solves for the reflected power of every element side (2 per element: front = the side
-// cross(e1, e2) points to, then back). Returns the best solution when stopped early; an empty
-// vector when cancelled.
+// Solves for the reflected power of every patch side (2 per patch: front = the side its
+// elements' cross(e1, e2) point to, then back). Returns the best solution when stopped early; an
+// empty vector when cancelled.
 std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const RadiosityMesh& mesh,
                                             const RadiositySolveSettings& settings,
                                             const PrepareControl& control,
