@@ -4,7 +4,7 @@ import time
 
 import numpy as np
 
-from . import sync_camera, sync_lights, sync_materials, sync_mesh
+from . import sync_camera, sync_hair, sync_lights, sync_materials, sync_mesh
 
 
 class SyncStats:
@@ -49,6 +49,9 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
     pending = {}           # (mesh index, slot tuple, visibility) -> [(4x4 matrix, owner or None)]
     unsupported = {}       # object type -> object names
+    hair = []              # (mesh index, slot list, visibility) of hair ribbons (world space)
+    hair_view = None       # the camera the ribbons face, read once the first hair shows up
+    render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
 
     for inst in depsgraph.object_instances:
         # Instance items die when iteration moves on: use them only inside this body.
@@ -58,6 +61,24 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             if sync_lights.export_light(native, native_scene, obj, inst.matrix_world, reporter):
                 stats.lights += 1
             continue
+        hair_here = obj_type == 'CURVES' or (not inst.is_instance and inst.show_particles
+                                             and sync_hair.has_hair(obj, render_mode))
+        if hair_here:
+            hair_view = hair_view or sync_hair.HairView(scene, depsgraph)
+            slots = materials.slot_indices(obj)
+            if obj_type == 'CURVES':
+                made = [sync_hair.curves_hair(native_scene, obj, inst.matrix_world, hair_view,
+                                              slots, reporter)]
+            else:
+                made = sync_hair.particle_hair(native_scene, obj, render_mode, hair_view,
+                                               slots, reporter)
+            visibility = sync_lights.visibility_bits(native, obj)
+            for index, triangles, hair_slots in filter(None, made):
+                stats.meshes += 1
+                stats.triangles += triangles
+                hair.append((index, hair_slots, visibility))
+            if obj_type == 'CURVES':
+                continue
         if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
             unsupported.setdefault(obj_type, set()).add(obj.name)
             continue
@@ -91,6 +112,10 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             for offset, (_, owner) in enumerate(entries):
                 if owner is not None:
                     object_instances.setdefault(owner, []).append(first + offset)
+
+    identity = np.identity(4, dtype=np.float32)[None]
+    for index, slots, visibility in hair:
+        stats.instances += native_scene.add_instances(index, identity, slots, visibility)
 
     for obj_type, names in sorted(unsupported.items()):
         shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")

@@ -1,0 +1,220 @@
+"""Hair (particle hair systems and Curves objects) as camera-facing ribbons of triangles.
+
+Each strand is a polyline of points with a radius; each segment becomes a quad of two triangles
+spanning the strand's width at its ends, turned to face the camera (the side vector is
+tangent x view direction), as ribbon-based hair renderers draw thin strands. The ribbons go
+through the ordinary mesh path with the particle system's (or Curves object's) material.
+
+Strand thickness follows Cycles 3.4 (intern/cycles/blender/curves.cpp): radius = radius_scale
+* 0.5 * width, width interpolated from root to tip by the hair shape, zero at the tip when
+"Close Tip" is on.
+"""
+
+import numpy as np
+
+# Points read with ParticleSystem.co_hair (one call per point, about 2 us each in Blender 3.4):
+# above this many the strands are thinned evenly, with a warning, to bound the sync time.
+MAX_HAIR_POINTS = 2_000_000
+# Radius of a Curves object's points without a "radius" attribute (Cycles 3.4's default).
+DEFAULT_CURVES_RADIUS = 0.005
+
+
+class HairView:
+    """Where ribbons face: towards `position` (perspective) or against `forward` (orthographic)."""
+
+    def __init__(self, scene, depsgraph):
+        self.position = np.zeros(3, dtype=np.float64)
+        self.forward = None
+        cam = scene.camera
+        if cam is None:
+            return
+        matrix = np.asarray(cam.evaluated_get(depsgraph).matrix_world, dtype=np.float64)
+        if not np.isfinite(matrix).all():
+            return
+        self.position = matrix[:3, 3].copy()
+        if cam.type == 'CAMERA' and cam.data.type == 'ORTHO':
+            forward = -matrix[:3, 2]
+            norm = np.linalg.norm(forward)
+            if norm > 0.0:
+                self.forward = forward / norm
+
+
+def _shape_radius(shape, root, tip, t):
+    """Cycles' shaperadius(): radius along the strand at fraction t in [0, 1]."""
+    radius = 1.0 - t
+    if shape < 0.0:
+        radius = np.power(radius, 1.0 + shape)
+    elif shape > 0.0:
+        radius = np.power(radius, 1.0 / (1.0 - shape))
+    return radius * (root - tip) + tip
+
+
+def ribbons(points, radii, counts, view):
+    """Triangles of camera-facing ribbons along strands.
+
+    points: (N, 3) world positions, strands stored one after another; radii: (N,); counts:
+    points per strand. Returns (positions (2N, 3) float32, triangles (T, 3) int32) with
+    degenerate and non-finite triangles already removed (a zero tip radius makes one triangle
+    of the last quad a sliver).
+    """
+    points = np.asarray(points, dtype=np.float64)
+    counts = np.asarray(counts, dtype=np.int64)
+    n = len(points)
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.int64)
+    is_first = np.zeros(n, dtype=bool)
+    is_last = np.zeros(n, dtype=bool)
+    is_first[starts[counts > 0]] = True
+    is_last[(starts + counts - 1)[counts > 0]] = True
+    index = np.arange(n)
+    following = np.where(is_last, index, np.minimum(index + 1, n - 1))
+    previous = np.where(is_first, index, np.maximum(index - 1, 0))
+    tangent = points[following] - points[previous]
+
+    if view.forward is not None:
+        to_view = np.broadcast_to(-view.forward, points.shape)
+    else:
+        to_view = view.position - points
+    side = np.cross(tangent, to_view)
+    norm = np.linalg.norm(side, axis=1)
+    # A strand pointing straight at the camera has no facing side: any perpendicular will do.
+    fallback = np.cross(tangent, np.array([0.0, 0.0, 1.0]))
+    weak = ~(norm > 1e-12 * np.maximum(np.linalg.norm(tangent, axis=1), 1e-30) ** 2)
+    side[weak] = fallback[weak]
+    norm = np.linalg.norm(side, axis=1)
+    with np.errstate(invalid='ignore', divide='ignore'):
+        side = side / norm[:, None] * np.asarray(radii, dtype=np.float64)[:, None]
+    side[~np.isfinite(side).all(axis=1)] = 0.0
+
+    positions = np.empty((2 * n, 3), dtype=np.float64)
+    positions[0::2] = points - side   # left edge of the ribbon
+    positions[1::2] = points + side   # right edge
+
+    seg = index[~is_last]  # segment seg -> seg + 1 inside one strand
+    left0, right0 = 2 * seg, 2 * seg + 1
+    left1, right1 = 2 * seg + 2, 2 * seg + 3
+    triangles = np.concatenate([np.stack([left0, right0, right1], axis=1),
+                                np.stack([left0, right1, left1], axis=1)]).astype(np.int32)
+    # Same relative test as the native mesh cleanup (scene.cpp), so no triangle is reported
+    # as dropped: slivers at closed tips and strands with repeated points are removed here.
+    p0, p1, p2 = (positions[triangles[:, c]] for c in range(3))
+    e1, e2 = p1 - p0, p2 - p0
+    area2 = np.linalg.norm(np.cross(e1, e2), axis=1)
+    scale = np.maximum((e1 * e1).sum(axis=1), (e2 * e2).sum(axis=1))
+    with np.errstate(invalid='ignore'):
+        keep = np.isfinite(area2) & (area2 > 1e-12 * scale) & (area2 > 0.0)
+    # The native side runs in float32: keep the test on the values it will see.
+    positions32 = positions.astype(np.float32)
+    keep &= np.isfinite(positions32[triangles]).all(axis=(1, 2))
+    return positions32, triangles[keep]
+
+
+def _hair_modifiers(obj, render_mode):
+    """(particle system, settings) of the object's enabled hair systems drawn as paths."""
+    for modifier in obj.modifiers:
+        if modifier.type != 'PARTICLE_SYSTEM':
+            continue
+        if not (modifier.show_render if render_mode else modifier.show_viewport):
+            continue
+        psys = modifier.particle_system
+        settings = psys.settings if psys is not None else None
+        if settings is None or settings.type != 'HAIR' or settings.render_type != 'PATH':
+            continue
+        yield psys, settings
+
+
+def has_hair(obj, render_mode):
+    return obj.type == 'MESH' and any(True for _ in _hair_modifiers(obj, render_mode))
+
+
+def _particle_strands(obj, psys, settings, render_mode, reporter):
+    """(points (S*K, 3), radii, counts) of a hair system's rendered strands, or None."""
+    parents = len(psys.particles)
+    children = len(psys.child_particles)
+    # As Cycles: with children, only the children are rendered.
+    first = parents if (settings.child_type != 'NONE' and children > 0) else 0
+    strands = parents + children - first
+    steps = settings.render_step if render_mode else settings.display_step
+    keys = (1 << max(0, min(int(steps), 10))) + 1
+    if settings.kink == 'SPIRAL':
+        keys += max(0, int(settings.kink_extra_steps))
+    if strands <= 0:
+        return None
+    chosen = np.arange(first, parents + children)
+    if strands * keys > MAX_HAIR_POINTS:
+        keep = max(1, MAX_HAIR_POINTS // keys)
+        chosen = chosen[np.linspace(0, strands - 1, keep).astype(np.int64)]
+        reporter.warning(f"Object '{obj.name}': hair '{psys.name}' has {strands:,} strands; "
+                         f"rendering {len(chosen):,} of them, evenly spread "
+                         f"(Photon reads at most {MAX_HAIR_POINTS:,} hair points)")
+    points = np.empty((len(chosen), keys, 3), dtype=np.float64)
+    co_hair = psys.co_hair
+    for row, particle in enumerate(chosen.tolist()):
+        strand = points[row]
+        for step in range(keys):
+            strand[step] = co_hair(obj, particle_no=particle, step=step)
+    t = np.linspace(0.0, 1.0, keys)
+    scale = float(settings.radius_scale) * 0.5
+    radius = _shape_radius(float(settings.shape), scale * float(settings.root_radius),
+                           scale * float(settings.tip_radius), t)
+    if settings.use_close_tip:
+        radius[-1] = 0.0
+    radius = np.maximum(radius, 0.0)
+    counts = np.full(len(chosen), keys, dtype=np.int64)
+    return points.reshape(-1, 3), np.tile(radius, len(chosen)), counts
+
+
+def particle_hair(native_scene, obj, render_mode, view, slots, reporter):
+    """Adds one ribbon mesh per hair system of `obj`: [(mesh index, triangles, slot list)].
+
+    `slots` are the object's native material indices; each system renders with the slot its
+    settings name (Particle Settings > Render > Material)."""
+    out = []
+    for psys, settings in _hair_modifiers(obj, render_mode):
+        strands = _particle_strands(obj, psys, settings, render_mode, reporter)
+        if strands is None:
+            continue
+        positions, triangles = ribbons(*strands, view)
+        if len(triangles) == 0:
+            continue
+        info = native_scene.add_mesh(f"{obj.name} hair {psys.name}", positions, triangles)
+        if info["triangles"] == 0:
+            continue
+        slot = min(max(int(settings.material) - 1, 0), len(slots) - 1)
+        out.append((info["index"], info["triangles"], [slots[slot]]))
+    return out
+
+
+def curves_hair(native_scene, obj, matrix, view, slots, reporter):
+    """Adds a Curves object's strands as ribbons: (mesh index, triangles, slot list) or None."""
+    curves = obj.data
+    point_count = len(curves.points)
+    curve_count = len(curves.curves)
+    if point_count == 0 or curve_count == 0:
+        return None
+    positions = np.empty(point_count * 3, dtype=np.float32)
+    curves.position_data.foreach_get("vector", positions)
+    offsets = np.empty(curve_count + 1, dtype=np.int32)
+    curves.curve_offset_data.foreach_get("value", offsets)
+    counts = np.diff(offsets.astype(np.int64))
+    if (counts < 0).any() or offsets[0] != 0 or offsets[-1] != point_count:
+        reporter.warning(f"Object '{obj.name}': curves with invalid point offsets; skipped")
+        return None
+    radius_attribute = curves.attributes.get("radius")
+    if (radius_attribute is not None and radius_attribute.data_type == 'FLOAT'
+            and radius_attribute.domain == 'POINT'):
+        radii = np.empty(point_count, dtype=np.float32)
+        radius_attribute.data.foreach_get("value", radii)
+    else:
+        radii = np.full(point_count, DEFAULT_CURVES_RADIUS, dtype=np.float32)
+    matrix = np.asarray(matrix, dtype=np.float64)
+    points = positions.reshape(-1, 3).astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+    # Radii live in object space: scale them by the transform's mean axis scale.
+    scale = float(np.cbrt(abs(np.linalg.det(matrix[:3, :3]))))
+    radii = np.maximum(np.nan_to_num(radii.astype(np.float64) * scale), 0.0)
+    ribbon_positions, triangles = ribbons(points, radii, counts, view)
+    if len(triangles) == 0:
+        return None
+    info = native_scene.add_mesh(f"{obj.name} curves", ribbon_positions, triangles)
+    if info["triangles"] == 0:
+        return None
+    return info["index"], info["triangles"], [slots[0]]
