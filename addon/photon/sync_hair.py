@@ -162,7 +162,13 @@ def _particle_strands(obj, psys, settings, render_mode, reporter):
     if settings.use_close_tip:
         radius[-1] = 0.0
     radius = np.maximum(radius, 0.0)
-    counts = np.full(len(chosen), keys, dtype=np.int64)
+    # co_hair gives (0, 0, 0) past the end of a strand's path cache (or for a system with no
+    # cache): such trailing points are not part of the strand.
+    present = (points != 0.0).any(axis=2)
+    counts = np.where(present.any(axis=1), keys - np.argmax(present[:, ::-1], axis=1), 0)
+    if (counts < keys).any():
+        keep = np.arange(keys)[None, :] < counts[:, None]
+        return points[keep], np.broadcast_to(radius, points.shape[:2])[keep], counts
     return points.reshape(-1, 3), np.tile(radius, len(chosen)), counts
 
 

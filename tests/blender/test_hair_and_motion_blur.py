@@ -66,6 +66,21 @@ def test_hair_thickness_follows_the_particle_settings(blender, tmp_path, bald):
     assert thick_area > 1.5 * thin_area, (thin_area, thick_area)
 
 
+def test_huge_hair_is_thinned_with_a_warning(blender, tmp_path, bald):
+    full, _ = render(blender, tmp_path, "particle_hair")
+    # 1,500 strands of 9 points (300 parents x 5 children, render steps 3): a budget of 900
+    # points keeps 100 strands, spread over the whole system.
+    result, proc = blender.run_script("hair_cap.py", 900, tmp_path / "capped.exr",
+                                      blend=tmp_path / "particle_hair.blend")
+    assert result == {"render": ["FINISHED"]}, proc.log
+    assert ("Photon: warning: Object 'Ball': hair 'Hair' has 1,500 strands; rendering 100 "
+            "of them") in proc.stdout, proc.log
+    capped = read_image(tmp_path / "capped.exr")[:, :, :3]
+    full_pixels = hair_pixels(full, bald).sum()
+    capped_pixels = hair_pixels(capped, bald).sum()
+    assert 0 < capped_pixels < 0.5 * full_pixels, (capped_pixels, full_pixels)
+
+
 def test_motion_blur_is_reported(blender, tmp_path):
     _, proc = render(blender, tmp_path, "motion_blur")
     assert proc.stdout.count(MOTION_BLUR_WARNING) == 1, proc.log
