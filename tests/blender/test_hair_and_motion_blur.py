@@ -2,6 +2,7 @@
 hair's material and thickness, and motion blur, which Photon does not render, is reported
 instead of silently ignored."""
 
+import importlib.util
 import sys
 from pathlib import Path
 
@@ -79,6 +80,61 @@ def test_huge_hair_is_thinned_with_a_warning(blender, tmp_path, bald):
     full_pixels = hair_pixels(full, bald).sum()
     capped_pixels = hair_pixels(capped, bald).sum()
     assert 0 < capped_pixels < 0.5 * full_pixels, (capped_pixels, full_pixels)
+
+
+@pytest.fixture(scope="module")
+def sync_hair(blender):
+    """The staged add-on's sync_hair module (numpy only, no bpy), loaded outside Blender."""
+    path = blender.stage / "addons" / "photon" / "sync_hair.py"
+    spec = importlib.util.spec_from_file_location("photon_sync_hair", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+class _View:
+    def __init__(self, position=(0.0, 0.0, 0.0), forward=None):
+        self.position = np.asarray(position, dtype=np.float64)
+        self.forward = None if forward is None else np.asarray(forward, dtype=np.float64)
+
+
+@pytest.mark.parametrize("view", [_View(position=(0.0, -5.0, 0.5)),
+                                  _View(forward=(0.0, 1.0, 0.0))], ids=["persp", "ortho"])
+def test_ribbons_face_the_camera_with_the_strand_width(sync_hair, view):
+    # Two strands along z in front of a camera looking along +y: radius 0.1 at the root,
+    # 0.05 in the middle, 0 at the tip; an empty strand between them.
+    points = np.array([[0, 0, 0], [0, 0, 0.5], [0, 0, 1.0],
+                       [1, 0, 0], [1, 0, 0.5], [1, 0, 1.0]], dtype=np.float32)
+    radii = np.array([0.1, 0.05, 0.0, 0.1, 0.05, 0.0], dtype=np.float32)
+    positions, triangles = sync_hair.ribbons(points, radii, [3, 0, 3], view)
+    # Two full quads per strand minus the tip sliver of each: 3 triangles a strand.
+    assert triangles.shape == (6, 3)
+    widths = np.linalg.norm(positions[1::2] - positions[0::2], axis=1)
+    np.testing.assert_allclose(widths, 2.0 * radii, atol=1e-6)
+    # Seen from the camera along y, each ribbon is spread across x, not along the view.
+    assert np.abs(positions[1::2, 1] - positions[0::2, 1]).max() < 0.05
+    # Each triangle faces the camera as far as a ribbon along z can: its normal is the
+    # direction to the camera with the strand's (z) component removed.
+    corners = positions[triangles]
+    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    normals /= np.linalg.norm(normals, axis=1)[:, None]
+    if view.forward is None:
+        to_view = view.position - corners.mean(axis=1)
+    else:
+        to_view = np.broadcast_to(-view.forward, normals.shape).copy()
+    to_view[:, 2] = 0.0
+    to_view /= np.linalg.norm(to_view, axis=1)[:, None]
+    assert np.abs((normals * to_view).sum(axis=1)).min() > 0.999
+    # Triangles stay within their strand.
+    assert set(np.unique(triangles // 6).tolist()) == {0, 1}
+
+
+def test_ribbons_drop_non_finite_strands(sync_hair):
+    points = np.array([[0, 0, 0], [0, 0, 1], [np.nan, 0, 0], [1, 0, 1]], dtype=np.float32)
+    positions, triangles = sync_hair.ribbons(points, np.full(4, 0.1), [2, 2],
+                                             _View(position=(0, -5, 0.5)))
+    assert len(triangles) == 2
+    assert np.isfinite(positions[triangles]).all()
 
 
 def test_motion_blur_is_reported(blender, tmp_path):
