@@ -15,6 +15,9 @@ import numpy as np
 # Points read with ParticleSystem.co_hair (one call per point, about 2 us each in Blender 3.4):
 # above this many the strands are thinned evenly, with a warning, to bound the sync time.
 MAX_HAIR_POINTS = 2_000_000
+# How far the ribbons' edge normals lean towards the side (a tube's edge would be 90 degrees;
+# interpolating normals that far apart across a flat ribbon passes through zero length).
+ROUND_EDGE_DEGREES = 60.0
 # Radius of a Curves object's points without a "radius" attribute (Cycles 3.4's default).
 DEFAULT_CURVES_RADIUS = 0.005
 
@@ -53,9 +56,15 @@ def ribbons(points, radii, counts, view):
     """Triangles of camera-facing ribbons along strands.
 
     points: (N, 3) world positions, strands stored one after another; radii: (N,); counts:
-    points per strand. Returns (positions (2N, 3) float32, triangles (T, 3) int32) with
-    degenerate and non-finite triangles already removed (a zero tip radius makes one triangle
-    of the last quad a sliver), so the native mesh cleanup has nothing to report.
+    points per strand. Returns (positions (2N, 3) float32, triangles (T, 3) int32, corner
+    normals (3T, 3) float32) with degenerate and non-finite triangles already removed (a zero
+    tip radius makes one triangle of the last quad a sliver), so the native mesh cleanup has
+    nothing to report.
+
+    Shading normals round the flat ribbon like the cylinder it stands for: at its edges they
+    lean ROUND_EDGE_DEGREES from the facing direction towards the side, and interpolated
+    across the ribbon they sweep between the two, so a strand is lit like a tube, brighter on
+    its side towards the light.
     """
     points = np.asarray(points, dtype=np.float32)
     radii = np.asarray(radii, dtype=np.float32)
@@ -84,8 +93,19 @@ def ribbons(points, radii, counts, view):
         side[weak] = np.cross(tangent[weak], np.array([0.0, 0.0, 1.0], dtype=np.float32))
         length[weak] = np.sqrt(np.einsum('ij,ij->i', side[weak], side[weak]))
     with np.errstate(invalid='ignore', divide='ignore', over='ignore'):
-        side *= (radii / length)[:, None]
+        side_unit = side / length[:, None]
+        # Facing direction: the view direction's part across the strand.
+        facing = np.cross(side_unit, tangent)
+        facing /= np.sqrt(np.einsum('ij,ij->i', facing, facing))[:, None]
+        side = side_unit * radii[:, None]
     side[~np.isfinite(side).all(axis=1)] = 0.0
+
+    lean = np.radians(ROUND_EDGE_DEGREES)
+    normals = np.empty((2 * n, 3), dtype=np.float32)
+    normals[0::2] = np.cos(lean) * facing - np.sin(lean) * side_unit
+    normals[1::2] = np.cos(lean) * facing + np.sin(lean) * side_unit
+    # Where a strand has no width or direction the geometric normal is used (zero normal).
+    normals[~np.isfinite(normals).all(axis=1)] = 0.0
 
     positions = np.empty((2 * n, 3), dtype=np.float32)
     np.subtract(points, side, out=positions[0::2])  # left edge of the ribbon
@@ -107,7 +127,8 @@ def ribbons(points, radii, counts, view):
         keep = np.isfinite(area2) & (area2 > 1e-12 * scale) & (area2 > 0.0)
     finite = np.isfinite(positions).all(axis=1)
     keep &= finite[triangles[:, 0]] & finite[triangles[:, 1]] & finite[triangles[:, 2]]
-    return positions, triangles[keep]
+    triangles = triangles[keep]
+    return positions, triangles, normals[triangles].reshape(-1, 3)
 
 
 def _hair_modifiers(obj, render_mode):
@@ -182,10 +203,11 @@ def particle_hair(native_scene, obj, render_mode, view, slots, reporter):
         strands = _particle_strands(obj, psys, settings, render_mode, reporter)
         if strands is None:
             continue
-        positions, triangles = ribbons(*strands, view)
+        positions, triangles, normals = ribbons(*strands, view)
         if len(triangles) == 0:
             continue
-        info = native_scene.add_mesh(f"{obj.name} hair {psys.name}", positions, triangles)
+        info = native_scene.add_mesh(f"{obj.name} hair {psys.name}", positions, triangles,
+                                     corner_normals=normals)
         if info["triangles"] == 0:
             continue
         slot = min(max(int(settings.material) - 1, 0), len(slots) - 1)
@@ -220,10 +242,11 @@ def curves_hair(native_scene, obj, matrix, view, slots, reporter):
     # Radii live in object space: scale them by the transform's mean axis scale.
     scale = float(np.cbrt(abs(np.linalg.det(matrix[:3, :3]))))
     radii = np.maximum(np.nan_to_num(radii.astype(np.float64) * scale), 0.0)
-    ribbon_positions, triangles = ribbons(points, radii, counts, view)
+    ribbon_positions, triangles, normals = ribbons(points, radii, counts, view)
     if len(triangles) == 0:
         return None
-    info = native_scene.add_mesh(f"{obj.name} curves", ribbon_positions, triangles)
+    info = native_scene.add_mesh(f"{obj.name} curves", ribbon_positions, triangles,
+                                 corner_normals=normals)
     if info["triangles"] == 0:
         return None
     return info["index"], info["triangles"], [slots[0]]

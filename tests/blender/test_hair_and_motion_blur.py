@@ -106,7 +106,7 @@ def test_ribbons_face_the_camera_with_the_strand_width(sync_hair, view):
     points = np.array([[0, 0, 0], [0, 0, 0.5], [0, 0, 1.0],
                        [1, 0, 0], [1, 0, 0.5], [1, 0, 1.0]], dtype=np.float32)
     radii = np.array([0.1, 0.05, 0.0, 0.1, 0.05, 0.0], dtype=np.float32)
-    positions, triangles = sync_hair.ribbons(points, radii, [3, 0, 3], view)
+    positions, triangles, normals = sync_hair.ribbons(points, radii, [3, 0, 3], view)
     # Two full quads per strand minus the tip sliver of each: 3 triangles a strand.
     assert triangles.shape == (6, 3)
     widths = np.linalg.norm(positions[1::2] - positions[0::2], axis=1)
@@ -115,23 +115,32 @@ def test_ribbons_face_the_camera_with_the_strand_width(sync_hair, view):
     assert np.abs(positions[1::2, 1] - positions[0::2, 1]).max() < 0.05
     # Each triangle faces the camera as far as a ribbon along z can: its normal is the
     # direction to the camera with the strand's (z) component removed.
+    def across_view(at):
+        to_view = view.position - at if view.forward is None else np.broadcast_to(
+            -view.forward, at.shape).copy()
+        to_view[:, 2] = 0.0
+        return to_view / np.linalg.norm(to_view, axis=1)[:, None]
+
     corners = positions[triangles]
-    normals = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
-    normals /= np.linalg.norm(normals, axis=1)[:, None]
-    if view.forward is None:
-        to_view = view.position - corners.mean(axis=1)
-    else:
-        to_view = np.broadcast_to(-view.forward, normals.shape).copy()
-    to_view[:, 2] = 0.0
-    to_view /= np.linalg.norm(to_view, axis=1)[:, None]
-    assert np.abs((normals * to_view).sum(axis=1)).min() > 0.999
+    faces = np.cross(corners[:, 1] - corners[:, 0], corners[:, 2] - corners[:, 0])
+    faces /= np.linalg.norm(faces, axis=1)[:, None]
+    assert np.abs((faces * across_view(corners.mean(axis=1))).sum(axis=1)).min() > 0.999
+    # Shading normals: unit, across the strand, leaning 60 degrees from the facing direction
+    # towards the ribbon's edge (a tube's normals, squeezed onto a flat ribbon).
+    assert normals.shape == (3 * len(triangles), 3)
+    np.testing.assert_allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-5)
+    assert np.abs(normals[:, 2]).max() < 1e-5
+    # (The view direction is taken at the strand's centre line, up to 0.1 m from the corner
+    # seen from 5 m: within 0.03 of cos 60 degrees.)
+    facing = (normals * across_view(corners.reshape(-1, 3))).sum(axis=1)
+    np.testing.assert_allclose(facing, 0.5, atol=0.03)
     # Triangles stay within their strand.
     assert set(np.unique(triangles // 6).tolist()) == {0, 1}
 
 
 def test_ribbons_drop_non_finite_strands(sync_hair):
     points = np.array([[0, 0, 0], [0, 0, 1], [np.nan, 0, 0], [1, 0, 1]], dtype=np.float32)
-    positions, triangles = sync_hair.ribbons(points, np.full(4, 0.1), [2, 2],
+    positions, triangles, normals = sync_hair.ribbons(points, np.full(4, 0.1), [2, 2],
                                              _View(position=(0, -5, 0.5)))
     assert len(triangles) == 2
     assert np.isfinite(positions[triangles]).all()
