@@ -51,6 +51,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     unsupported = {}       # object type -> object names
     hair = []              # (mesh index, slot list, visibility) of hair ribbons (world space)
     hair_view = None       # the camera the ribbons face, read once the first hair shows up
+    hair_strands = {}      # (object, particle system) -> strands, shared by its instances
     render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
 
     for inst in depsgraph.object_instances:
@@ -61,7 +62,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             if sync_lights.export_light(native, native_scene, obj, inst.matrix_world, reporter):
                 stats.lights += 1
             continue
-        hair_here = obj_type == 'CURVES' or (not inst.is_instance and inst.show_particles
+        hair_here = obj_type == 'CURVES' or (inst.show_particles
                                              and sync_hair.has_hair(obj, render_mode))
         if hair_here:
             hair_view = hair_view or sync_hair.HairView(scene, depsgraph)
@@ -70,8 +71,11 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
                 made = [sync_hair.curves_hair(native_scene, obj, inst.matrix_world, hair_view,
                                               slots, reporter)]
             else:
-                made = sync_hair.particle_hair(native_scene, obj, render_mode, hair_view,
-                                               slots, reporter)
+                relocate = (sync_hair.relocation(inst.matrix_world, obj.matrix_world)
+                            if inst.is_instance else None)
+                made = [] if relocate is False else sync_hair.particle_hair(
+                    native_scene, obj, render_mode, hair_view, slots, reporter, relocate,
+                    hair_strands)
             visibility = sync_lights.visibility_bits(native, obj)
             for index, triangles, hair_slots in filter(None, made):
                 stats.meshes += 1

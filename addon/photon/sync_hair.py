@@ -193,17 +193,50 @@ def _particle_strands(obj, psys, settings, render_mode, reporter):
     return points.reshape(-1, 3), np.tile(radius, len(chosen)), counts
 
 
-def particle_hair(native_scene, obj, render_mode, view, slots, reporter):
+def _transformed(points, radii, matrix):
+    """Points and radii moved by a 4x4 matrix (radii by its mean axis scale)."""
+    matrix = np.asarray(matrix, dtype=np.float64)
+    points = np.asarray(points, dtype=np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
+    scale = float(np.cbrt(abs(np.linalg.det(matrix[:3, :3]))))
+    radii = np.maximum(np.nan_to_num(np.asarray(radii, dtype=np.float64) * scale), 0.0)
+    return points, radii
+
+
+def relocation(instance_matrix, object_matrix):
+    """The matrix taking the object's hair (where co_hair puts it: at the object) to one of its
+    instances, or False when the object's transform cannot be inverted (a zero scale, NaN)."""
+    object_matrix = np.asarray(object_matrix, dtype=np.float64)
+    instance_matrix = np.asarray(instance_matrix, dtype=np.float64)
+    if not (np.isfinite(object_matrix).all() and np.isfinite(instance_matrix).all()
+            and abs(np.linalg.det(object_matrix[:3, :3])) > 1e-30):
+        return False
+    return instance_matrix @ np.linalg.inv(object_matrix)
+
+
+def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocate=None,
+                  cache=None):
     """Adds one ribbon mesh per hair system of `obj`: [(mesh index, triangles, slot list)].
 
     `slots` are the object's native material indices; each system renders with the slot its
-    settings name (Particle Settings > Render > Material)."""
+    settings name (Particle Settings > Render > Material). co_hair gives the strands where the
+    object itself stands; for an instance of the object (a collection instance, say),
+    `relocate` is the 4x4 matrix from there to the instance. `cache` (a dict) keeps the
+    strands read for an object, so each of its instances reads them once."""
     out = []
     for psys, settings in _hair_modifiers(obj, render_mode):
-        strands = _particle_strands(obj, psys, settings, render_mode, reporter)
+        key = (obj.name, psys.name)
+        if cache is not None and key in cache:
+            strands = cache[key]
+        else:
+            strands = _particle_strands(obj, psys, settings, render_mode, reporter)
+            if cache is not None:
+                cache[key] = strands
         if strands is None:
             continue
-        positions, triangles, normals = ribbons(*strands, view)
+        points, radii, counts = strands
+        if relocate is not None:
+            points, radii = _transformed(points, radii, relocate)
+        positions, triangles, normals = ribbons(points, radii, counts, view)
         if len(triangles) == 0:
             continue
         info = native_scene.add_mesh(f"{obj.name} hair {psys.name}", positions, triangles,
@@ -237,11 +270,8 @@ def curves_hair(native_scene, obj, matrix, view, slots, reporter):
         radius_attribute.data.foreach_get("value", radii)
     else:
         radii = np.full(point_count, DEFAULT_CURVES_RADIUS, dtype=np.float32)
-    matrix = np.asarray(matrix, dtype=np.float64)
-    points = positions.reshape(-1, 3).astype(np.float64) @ matrix[:3, :3].T + matrix[:3, 3]
-    # Radii live in object space: scale them by the transform's mean axis scale.
-    scale = float(np.cbrt(abs(np.linalg.det(matrix[:3, :3]))))
-    radii = np.maximum(np.nan_to_num(radii.astype(np.float64) * scale), 0.0)
+    # Radii live in object space: scaled by the transform's mean axis scale.
+    points, radii = _transformed(positions.reshape(-1, 3), radii, matrix)
     ribbon_positions, triangles, normals = ribbons(points, radii, counts, view)
     if len(triangles) == 0:
         return None

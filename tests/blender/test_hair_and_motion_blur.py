@@ -56,6 +56,18 @@ def test_hair_is_rendered_with_its_material(blender, tmp_path, bald, case):
     assert "not supported" not in proc.stdout, proc.log
 
 
+def test_hair_of_an_instanced_object_follows_the_instance(blender, tmp_path, bald):
+    own, _ = render(blender, tmp_path, "particle_hair")
+    instanced, proc = render(blender, tmp_path, "instanced_hair")
+    own_mask = hair_pixels(own, bald)
+    moved_mask = hair_pixels(instanced, bald)
+    assert moved_mask.sum() >= 100, (moved_mask.sum(), proc.log)
+    # 0.7 m to the left, 3.55 m in front of a 50 mm camera (36 mm sensor) 64 px wide:
+    # 0.7 / (3.55 * 36 / 50) * 64 = 17.5 px (measured 18.6: the hair is not a flat disc).
+    shift = np.nonzero(own_mask)[1].mean() - np.nonzero(moved_mask)[1].mean()
+    assert 14.0 < shift < 21.0, shift
+
+
 def test_hair_thickness_follows_the_particle_settings(blender, tmp_path, bald):
     thin, _ = render(blender, tmp_path, "sparse_hair")
     thick, _ = render(blender, tmp_path, "sparse_hair_thick")

@@ -2,7 +2,9 @@
 Args: CASE BLEND_PATH
 
 CASE: "bald" (the ball alone), "particle_hair" (a hair particle system with children, its
-strands in the ball's second material slot, red emission), "sparse_hair" (60 strands, no children) and
+strands in the ball's second material slot, red emission), "instanced_hair" (the particle_hair ball
+shown only through a collection instance 0.7 m to the left), "sparse_hair" (60 strands, no
+children) and
 "sparse_hair_thick" (the same strands twice as thick), "curves" (a Curves object of random
 strands with a red emission material) or "motion_blur" (the bald scene with motion blur on and the ball
 moving through the frame).
@@ -63,6 +65,16 @@ def main(case, blend_path):
     scene, ball = base()
     if case == "particle_hair":
         particle_hair(ball)
+    elif case == "instanced_hair":
+        # The furry ball only through a collection instance, 0.7 m to the left and turned.
+        particle_hair(ball)
+        collection = bpy.data.collections.new("Fur")
+        collection.objects.link(ball)
+        scene.collection.objects.unlink(ball)
+        empty = builders.link(bpy.data.objects.new("FurInstance", None))
+        empty.instance_type = 'COLLECTION'
+        empty.instance_collection = collection
+        empty.location = (-0.7, 0.0, 0.0)
     elif case in ("sparse_hair", "sparse_hair_thick"):
         # Few strands, rarely overlapping: their covered area follows their width.
         particle_hair(ball, radius_scale=0.04 if case == "sparse_hair_thick" else 0.02,
