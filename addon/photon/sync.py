@@ -52,6 +52,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     hair = []              # (mesh index, slot list, visibility) of hair ribbons (world space)
     hair_view = None       # the camera the ribbons face, read once the first hair shows up
     hair_strands = {}      # (object, particle system) -> strands, shared by its instances
+    has_hair = {}          # object name -> whether it has hair systems to render
     render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
 
     for inst in depsgraph.object_instances:
@@ -62,8 +63,13 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             if sync_lights.export_light(native, native_scene, obj, inst.matrix_world, reporter):
                 stats.lights += 1
             continue
-        hair_here = obj_type == 'CURVES' or (inst.show_particles
-                                             and sync_hair.has_hair(obj, render_mode))
+        hair_here = obj_type == 'CURVES'
+        if not hair_here and inst.show_particles and obj_type == 'MESH':
+            # Once per object: a scene of many instances of one mesh asks many times.
+            name = obj.name
+            if name not in has_hair:
+                has_hair[name] = sync_hair.has_hair(obj, render_mode)
+            hair_here = has_hair[name]
         if hair_here:
             hair_view = hair_view or sync_hair.HairView(scene, depsgraph)
             slots = materials.slot_indices(obj)
