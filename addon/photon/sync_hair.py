@@ -45,6 +45,7 @@ class HairView:
 def _shape_radius(shape, root, tip, t):
     """Cycles' shaperadius(): radius along the strand at fraction t in [0, 1]."""
     radius = 1.0 - t
+    shape = min(max(shape, -1.0), 1.0 - 1e-6)  # at 1 Cycles divides by zero (radius 0 but root)
     if shape < 0.0:
         radius = np.power(radius, 1.0 + shape)
     elif shape > 0.0:

@@ -158,6 +158,20 @@ def test_ribbons_drop_non_finite_strands(sync_hair):
     assert np.isfinite(positions[triangles]).all()
 
 
+def test_strand_radius_follows_cycles_hair_shape(sync_hair):
+    # Cycles 3.4 shaperadius(): (1 - t)^(1 + shape) for shape < 0, (1 - t)^(1 / (1 - shape))
+    # for shape > 0, then scaled from root to tip.
+    t = np.linspace(0.0, 1.0, 5)
+    np.testing.assert_allclose(sync_hair._shape_radius(0.0, 2.0, 1.0, t),
+                               [2.0, 1.75, 1.5, 1.25, 1.0])
+    np.testing.assert_allclose(sync_hair._shape_radius(0.5, 1.0, 0.0, t),
+                               (1.0 - t) ** 2.0)
+    np.testing.assert_allclose(sync_hair._shape_radius(-0.5, 1.0, 0.0, t),
+                               (1.0 - t) ** 0.5)
+    # Shape 1 (the slider's end) divides by zero in Cycles' formula: here the root alone.
+    np.testing.assert_allclose(sync_hair._shape_radius(1.0, 1.0, 0.0, t), [1, 0, 0, 0, 0])
+
+
 def test_motion_blur_is_reported(blender, tmp_path):
     _, proc = render(blender, tmp_path, "motion_blur")
     assert proc.stdout.count(MOTION_BLUR_WARNING) == 1, proc.log

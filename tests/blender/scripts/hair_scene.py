@@ -1,13 +1,12 @@
 """Builds a Cornell box with a ball and, by CASE, hair on it, and saves it as a .blend.
 Args: CASE BLEND_PATH
 
-CASE: "bald" (the ball alone), "particle_hair" (a hair particle system with children, its
-strands in the ball's second material slot, red emission), "instanced_hair" (the particle_hair ball
-shown only through a collection instance 0.7 m to the left), "sparse_hair" (60 strands, no
-children) and
-"sparse_hair_thick" (the same strands twice as thick), "curves" (a Curves object of random
-strands with a red emission material) or "motion_blur" (the bald scene with motion blur on and the ball
-moving through the frame).
+CASE: "bald" (the ball alone); "particle_hair" (a hair particle system with children, its
+strands in the ball's second material slot, a red emission); "instanced_hair" (that furry ball
+shown only through a collection instance 0.7 m to the left); "sparse_hair" (60 strands, no
+children) and "sparse_hair_thick" (the same strands twice as thick); "curves" (a Curves object
+of random strands in a red emission material); "motion_blur" (the bald scene with motion blur
+on and the ball moving through the frame).
 """
 
 import bpy
