@@ -105,6 +105,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             self.add_pass(name, 3, "RGB", layer=self._layer)
         views = self._views(scene)
 
+        if scene.render.use_motion_blur:
+            # Photon samples one instant per frame: say so rather than ignore the setting.
+            reporter.warning("motion blur is not rendered by Photon (Render Properties > "
+                             "Motion Blur is on); the frame is rendered without blur at its "
+                             "current time")
         self.update_stats("", "Photon | Syncing scene")
         native_scene, sync_stats = sync.sync_scene(native, depsgraph, reporter)
         try:

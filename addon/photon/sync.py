@@ -4,7 +4,7 @@ import time
 
 import numpy as np
 
-from . import sync_camera, sync_layers, sync_lights, sync_materials, sync_mesh
+from . import sync_camera, sync_hair, sync_layers, sync_lights, sync_materials, sync_mesh
 
 
 class SyncStats:
@@ -51,6 +51,11 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     unsupported = {}       # object type -> object names
     layer_visibility = sync_layers.LayerVisibility(native, depsgraph, reporter)
     override = sync_layers.material_override(depsgraph)
+    hair = []              # (mesh index, slot list, visibility) of hair ribbons (world space)
+    hair_view = None       # the camera the ribbons face, read once the first hair shows up
+    hair_strands = {}      # (object, particle system) -> strands, shared by its instances
+    has_hair = {}          # object name -> whether it has hair systems to render
+    render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
 
     for inst in depsgraph.object_instances:
         # Instance items die when iteration moves on: use them only inside this body.
@@ -60,6 +65,35 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             if sync_lights.export_light(native, native_scene, obj, inst.matrix_world, reporter):
                 stats.lights += 1
             continue
+        hair_here = obj_type == 'CURVES'
+        if not hair_here and inst.show_particles and obj_type == 'MESH':
+            # Once per object: a scene of many instances of one mesh asks many times.
+            name = obj.name
+            if name not in has_hair:
+                has_hair[name] = sync_hair.has_hair(obj, render_mode)
+            hair_here = has_hair[name]
+        if hair_here:
+            hair_view = hair_view or sync_hair.HairView(scene, depsgraph)
+            slots = materials.slot_indices(obj)
+            if obj_type == 'CURVES':
+                made = [sync_hair.curves_hair(native_scene, obj, inst.matrix_world, hair_view,
+                                              slots, reporter)]
+            else:
+                relocate = (sync_hair.relocation(inst.matrix_world, obj.matrix_world)
+                            if inst.is_instance else None)
+                made = [] if relocate is False else sync_hair.particle_hair(
+                    native_scene, obj, render_mode, hair_view, slots, reporter, relocate,
+                    hair_strands)
+            visibility = layer_visibility.apply(inst, obj,
+                                                sync_lights.visibility_bits(native, obj))
+            for index, triangles, hair_slots in filter(None, made):
+                stats.meshes += 1
+                stats.triangles += triangles
+                if override is not None:
+                    hair_slots = [materials.index(override)] * len(hair_slots)
+                hair.append((index, hair_slots, visibility))
+            if obj_type == 'CURVES':
+                continue
         if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
             unsupported.setdefault(obj_type, set()).add(obj.name)
             continue
@@ -96,6 +130,10 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             for offset, (_, owner) in enumerate(entries):
                 if owner is not None:
                     object_instances.setdefault(owner, []).append(first + offset)
+
+    identity = np.identity(4, dtype=np.float32)[None]
+    for index, slots, visibility in hair:
+        stats.instances += native_scene.add_instances(index, identity, slots, visibility)
 
     for obj_type, names in sorted(unsupported.items()):
         shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")

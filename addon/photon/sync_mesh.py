@@ -10,8 +10,9 @@ def is_geometry(obj):
     return isinstance(obj.data, bpy.types.Mesh)
 
 
-# Types that carry geometry Photon cannot render yet: reported, not silently dropped.
-UNSUPPORTED_GEOMETRY_TYPES = {'VOLUME', 'POINTCLOUD', 'CURVES', 'GPENCIL'}
+# Types that carry geometry Photon cannot render yet: reported, not silently dropped (Curves
+# objects, the new hair type, are rendered as ribbons by sync_hair).
+UNSUPPORTED_GEOMETRY_TYPES = {'VOLUME', 'POINTCLOUD', 'GPENCIL'}
 
 
 def _get(collection, attribute, dtype, count, components=1):
