@@ -280,11 +280,17 @@ Vec3 PhotonMap::radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float 
 
 bool photon_on_surface(const Photon& photon, const Vec3& p, const Vec3& n, float distance) {
   if (dot(photon.direction(), n) >= 0.0f) return false;
-  if (dot(photon.normal(), n) < kSurfaceMinCos) return false;
-  // A small absolute allowance keeps photons on the plane itself when they are within float
+  return on_same_surface(p, n, photon.pos(), photon.normal(), distance);
+}
+
+bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq, float distance) {
+  const float c = dot(nq, n);
+  if (!(c >= kSurfaceMinCos)) return false;
+  const float sin_half = std::sqrt(std::max(0.0f, 0.5f * (1.0f - c)));
+  // A small absolute allowance keeps points on the plane itself when they are within float
   // round-off of p.
-  const float height = std::abs(dot(photon.pos() - p, n));
-  return height <= kSurfaceSlope * distance +
+  const float height = std::abs(dot(q - p, n));
+  return height <= (sin_half + kSurfaceSlope) * distance +
                        1e-6f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
 }
 

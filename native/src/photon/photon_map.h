@@ -90,15 +90,21 @@ class PhotonMap {
 // photons of other surfaces within the search sphere bias the estimate; behind a wall they
 // leak light through it). It must
 //  - have arrived from the side n faces (dot(direction, n) < 0): not the far side of a thin wall;
-//  - lie on a surface facing the same way (dot(normal, n) >= kSurfaceMinCos): not the inner
-//    face of an adjacent wall at a corner or edge of a closed object;
-//  - lie near the tangent plane of p, within a flat double cone of slope kSurfaceSlope around it
-//    (Jensen's sphere compressed into a disc along n): not a parallel surface across a gap, such
-//    as the inside of a box's bottom over the floor. Curved surfaces pass while the photon is
-//    within 2 kSurfaceSlope of their radius of curvature.
-constexpr float kSurfaceMinCos = 0.5f;
-constexpr float kSurfaceSlope = 0.25f;
+//  - lie on the same surface as p (on_same_surface).
 bool photon_on_surface(const Photon& photon, const Vec3& p, const Vec3& n, float distance);
+
+// Whether a point q with normal nq, `distance` from p, can lie on the same smooth surface as p
+// with normal n:
+//  - the normals agree, dot(nq, n) >= kSurfaceMinCos: not the inner face of an adjacent wall
+//    at a corner or edge of a closed object;
+//  - q is no farther off p's tangent plane than a surface bending from n to nq puts it (Jensen's
+//    search sphere compressed into a disc along n): between p and q at distance d on a sphere
+//    whose normals differ by theta, |(q - p) . n| = d sin(theta / 2), allowed up to
+//    d (sin(theta / 2) + kSurfaceSlope). Not a parallel surface across a gap, such as the
+//    inside of a box's bottom over the floor (theta = 0, height = the gap).
+constexpr float kSurfaceMinCos = 0.25f;
+constexpr float kSurfaceSlope = 0.1f;
+bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq, float distance);
 
 // Sum of the photons' power (used by tests and statistics).
 Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask = kPhotonAny);

@@ -108,10 +108,9 @@ const RadianceRecord* RadianceCache::nearest(const Vec3& p, const Vec3& n, float
       const Vec3 offset = r.p - p;
       const float d2 = length_squared(offset);
       // A record of a parallel surface across a gap (the inside of a closed box's bottom, the
-      // floor under it) faces the same way but saw other light: keep to records near the
-      // tangent plane of p, as the photons of an estimate (photon_map.h, photon_on_surface).
-      const float height = dot(offset, n);
-      if (height * height > kSurfaceSlope * kSurfaceSlope * d2 + 1e-12f) continue;
+      // floor under it) faces the same way but saw other light: keep to records that can lie
+      // on p's surface, as the photons of an estimate (photon_map.h).
+      if (!on_same_surface(p, n, r.p, r.n, std::sqrt(d2))) continue;
       if (d2 < best) {
         best = d2;
         found = &r;

@@ -35,8 +35,8 @@ class RadianceCache {
   size_t memory_bytes() const;
 
   // Radiance of the nearest record to `p` in p's cell (or, if none fits, its 26 neighbours)
-  // with dot(normal, n) >= min_cos that lies near p's tangent plane (within the slope
-  // kSurfaceSlope of photon_map.h). Null if there is none.
+  // with dot(normal, n) >= min_cos that can lie on p's surface (on_same_surface of
+  // photon_map.h). Null if there is none.
   const RadianceRecord* nearest(const Vec3& p, const Vec3& n, float min_cos) const;
 
  private:
