@@ -5,8 +5,8 @@ cube's outside black; a camera sealed in the cube with the light outside must se
 estimates once gathered photons and radiance records of the cube's inner faces at its outer
 faces' edges, of the floor at the cube's inner bottom face and the reverse, lighting the floor
 round the cube (floor mean 0.019, max 0.16 at 64 x 48) and the cube's inside (mean 0.047, max
-0.28); with final_gather_rays = 0 the floor had mean 0.021 and the cube's edges glowed (max 4.3).
-"""
+0.28); with final_gather_rays = 0 the floor had mean 0.021 and the cube's edges glowed (max 4.3),
+and the cube's inside had mean 0.024 (max 0.11). Each case renders in about 15 s."""
 
 import json
 import re
