@@ -33,7 +33,7 @@ std::vector<Photon> box_photons(size_t n) {
     Vec3 p = face < 2 ? Vec3(a, b, face ? 1.0f : -1.0f)
              : face < 4 ? Vec3(a, face == 3 ? 1.0f : -1.0f, b)
                         : Vec3(face == 5 ? 1.0f : -1.0f, a, b);
-    photons[i] = Photon::make(p, -p, Vec3(1e-6f), kPhotonIndirect);
+    photons[i] = Photon::make(p, -p, Vec3(1e-6f), kPhotonIndirect, p);
   }
   return photons;
 }

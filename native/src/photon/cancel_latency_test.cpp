@@ -130,7 +130,7 @@ std::vector<Photon> random_photons(size_t n) {
     const uint64_t h = mix64(i + 1);
     const Vec3 p((h & 0xFFFFF) / 1048576.0f, ((h >> 20) & 0xFFFFF) / 1048576.0f,
                  ((h >> 40) & 0xFFFFF) / 1048576.0f);
-    photons[i] = Photon::make(p, Vec3(0, 0, -1), Vec3(1.0f), kPhotonIndirect);
+    photons[i] = Photon::make(p, Vec3(0, 0, -1), Vec3(1.0f), kPhotonIndirect, Vec3(0, 0, 1));
   }
   return photons;
 }

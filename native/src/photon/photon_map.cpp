@@ -36,6 +36,39 @@ uint8_t quantise(float x, float scale) {
 
 constexpr float kConeFilterC = 1.1f;  // Jensen's cone filter constant, c >= 1
 
+// Octahedral normal map (Meyer et al. 2010, "On Floating-Point Normal Vectors"): the unit sphere
+// folded onto the square [-1, 1]^2, quantised to 64 x 32 cells.
+constexpr int kNormalUBits = 6, kNormalVBits = 5;
+constexpr int kNormalULevels = (1 << kNormalUBits) - 1, kNormalVLevels = (1 << kNormalVBits) - 1;
+
+Vec2 octahedral_encode(const Vec3& n) {
+  const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+  if (!(l1 > 0.0f) || !std::isfinite(l1)) return {0.0f, 0.0f};  // +z: unknown normal
+  float u = n.x / l1, v = n.y / l1;
+  if (n.z < 0.0f) {
+    const float fu = (1.0f - std::abs(v)) * std::copysign(1.0f, u);
+    const float fv = (1.0f - std::abs(u)) * std::copysign(1.0f, v);
+    u = fu;
+    v = fv;
+  }
+  return {u, v};
+}
+
+Vec3 octahedral_decode(float u, float v) {
+  const float z = 1.0f - std::abs(u) - std::abs(v);
+  if (z < 0.0f) {
+    const float fu = (1.0f - std::abs(v)) * std::copysign(1.0f, u);
+    const float fv = (1.0f - std::abs(u)) * std::copysign(1.0f, v);
+    u = fu;
+    v = fv;
+  }
+  return normalize(Vec3(u, v, z));
+}
+
+int quantise_signed(float x, int levels) {
+  return std::clamp(static_cast<int>(std::lround((x * 0.5f + 0.5f) * levels)), 0, levels);
+}
+
 }  // namespace
 
 void encode_rgbe(const Vec3& c, uint8_t out[4]) {
@@ -53,7 +86,8 @@ void encode_rgbe(const Vec3& c, uint8_t out[4]) {
     scale *= 0.5f;
   }
   auto channel = [&](float v) {
-    return static_cast<uint8_t>(std::clamp(static_cast<int>(std::max(v, 0.0f) * scale + 0.5f), 0, 255));
+    return static_cast<uint8_t>(
+        std::clamp(static_cast<int>(std::max(v, 0.0f) * scale + 0.5f), 0, 255));
   };
   out[0] = channel(c.x);
   out[1] = channel(c.y);
@@ -67,7 +101,9 @@ Vec3 decode_rgbe(const uint8_t in[4]) {
   return {in[0] * f, in[1] * f, in[2] * f};
 }
 
-Vec3 Photon::power() const { return decode_rgbe(power_rgbe); }
+Vec3 Photon::power() const {
+  return decode_rgbe(power_rgbe);
+}
 
 Vec3 Photon::direction() const {
   const DirectionTable& t = direction_table();
@@ -75,7 +111,14 @@ Vec3 Photon::direction() const {
           t.cos_theta[theta]};
 }
 
-Photon Photon::make(const Vec3& p, const Vec3& direction, const Vec3& power, uint8_t flags) {
+Vec3 Photon::normal() const {
+  const float u = (axis >> 2) * (2.0f / kNormalULevels) - 1.0f;
+  const float v = (flags >> 3) * (2.0f / kNormalVLevels) - 1.0f;
+  return octahedral_decode(u, v);
+}
+
+Photon Photon::make(const Vec3& p, const Vec3& direction, const Vec3& power, uint8_t flags,
+                    const Vec3& normal) {
   Photon ph{};
   ph.position[0] = p.x;
   ph.position[1] = p.y;
@@ -86,8 +129,10 @@ Photon Photon::make(const Vec3& p, const Vec3& direction, const Vec3& power, uin
   if (phi < 0.0f) phi += 2.0f * kPi;
   ph.theta = quantise(theta, 256.0f / kPi);
   ph.phi = quantise(phi, 256.0f / (2.0f * kPi));
-  ph.flags = flags;
-  ph.axis = 0;
+  const Vec2 uv = octahedral_encode(normal);
+  ph.flags =
+      static_cast<uint8_t>((flags & kPhotonAny) | quantise_signed(uv.y, kNormalVLevels) << 3);
+  ph.axis = static_cast<uint8_t>(quantise_signed(uv.x, kNormalULevels) << 2);
   return ph;
 }
 
@@ -117,7 +162,7 @@ PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cance
 // depends only on the input order.
 void PhotonMap::build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel) {
   if (hi - lo <= 1) {
-    if (hi > lo) photons_[lo].axis = 0;
+    if (hi > lo) photons_[lo].axis &= ~3u;
     return;
   }
   CancelPoll poll(cancel);
@@ -138,7 +183,7 @@ void PhotonMap::build(size_t lo, size_t hi, int depth, const std::atomic<bool>* 
                      poll();
                      return a.position[axis] < b.position[axis];
                    });
-  photons_[mid].axis = static_cast<uint8_t>(axis);
+  photons_[mid].axis = static_cast<uint8_t>((photons_[mid].axis & ~3u) | axis);
   // Cancelled thrown in either half reaches the constructor (TBB rethrows it here).
   if (hi - lo > 65536 && depth < 12) {
     tbb::parallel_invoke([&] { build(lo, mid, depth + 1, cancel); },
@@ -174,7 +219,8 @@ void PhotonMap::k_nearest(const Vec3& p, size_t k, float max_radius, uint8_t fla
     while (r.hi > r.lo) {
       const uint32_t mid = (r.lo + r.hi) / 2;
       const Photon& ph = photons_[mid];
-      const float delta = q[ph.axis] - ph.position[ph.axis];
+      const int axis = ph.split_axis();
+      const float delta = q[axis] - ph.position[axis];
       // Visit the near side now, queue the far side if the splitting plane is within reach.
       const float d2_plane = delta * delta;
       const Range near_side = delta < 0.0f ? Range{r.lo, mid, 0.0f} : Range{mid + 1, r.hi, 0.0f};
@@ -216,18 +262,36 @@ Vec3 PhotonMap::radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float 
   if (scratch->empty()) return Vec3(0.0f);
   // With fewer than k photons inside max_radius the disc is the whole search disc; otherwise it
   // is the disc through the farthest of the k (Jensen's expanding sphere).
-  const float r2 = scratch->size() < k ? max_radius * max_radius : scratch->front().distance_squared;
+  const float r2 =
+      scratch->size() < k ? max_radius * max_radius : scratch->front().distance_squared;
   if (!(r2 > 0.0f)) return Vec3(0.0f);
   const float r = std::sqrt(r2);
   Vec3 sum(0.0f);
   for (const PhotonNeighbor& nb : *scratch) {
     const Photon& ph = photons_[nb.index];
-    if (dot(ph.direction(), n) >= 0.0f) continue;  // arrived from the other side
-    const float w = 1.0f - std::sqrt(nb.distance_squared) / (kConeFilterC * r);
+    const float d = std::sqrt(nb.distance_squared);
+    if (!photon_on_surface(ph, p, n, d)) continue;
+    const float w = 1.0f - d / (kConeFilterC * r);
     sum += ph.power() * w;
   }
   const float norm = 1.0f - 2.0f / (3.0f * kConeFilterC);
   return sum * (kInvPi / (norm * kPi * r2));
+}
+
+bool photon_on_surface(const Photon& photon, const Vec3& p, const Vec3& n, float distance) {
+  if (dot(photon.direction(), n) >= 0.0f) return false;
+  return on_same_surface(p, n, photon.pos(), photon.normal(), distance);
+}
+
+bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq, float distance) {
+  const float c = dot(nq, n);
+  if (!(c >= kSurfaceMinCos)) return false;
+  const float sin_half = std::sqrt(std::max(0.0f, 0.5f * (1.0f - c)));
+  // A small absolute allowance keeps points on the plane itself when they are within float
+  // round-off of p.
+  const float height = std::abs(dot(q - p, n));
+  return height <= (sin_half + kSurfaceSlope) * distance +
+                       1e-6f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
 }
 
 Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask) {

@@ -22,18 +22,26 @@ enum PhotonFlags : uint8_t {
 };
 
 // 20 bytes, as Jensen's: position 12, power as Ward's shared-exponent RGBE 4, incoming direction
-// quantised to (theta, phi) 2, path flags 1, kd-tree split axis 1.
+// quantised to (theta, phi) 2, path flags 1, kd-tree split axis 1. The flags and the split axis
+// use 5 bits between them; the other 11 hold the normal of the surface the photon lies on
+// (octahedral map, 6 + 5 bits, within 6 degrees), so an estimate can leave out photons of
+// another surface (Jensen 2001, sec. 7.1) at no cost in memory.
 struct Photon {
   float position[3];
   uint8_t power_rgbe[4];
   uint8_t theta, phi;
-  uint8_t flags;
-  uint8_t axis;
+  uint8_t flags;  // low 3 bits: PhotonFlags; high 5 bits: normal, octahedral v
+  uint8_t axis;   // low 2 bits: kd-tree split axis; high 6 bits: normal, octahedral u
 
   Vec3 pos() const { return {position[0], position[1], position[2]}; }
   Vec3 power() const;
   Vec3 direction() const;  // direction of travel, unit length
-  static Photon make(const Vec3& p, const Vec3& direction, const Vec3& power, uint8_t flags);
+  Vec3 normal() const;     // unit normal of the surface on the side the photon arrived from
+  uint8_t path_flags() const { return flags & kPhotonAny; }
+  int split_axis() const { return axis & 3; }
+  // `normal`: the surface's geometric normal on the side the photon arrived from.
+  static Photon make(const Vec3& p, const Vec3& direction, const Vec3& power, uint8_t flags,
+                     const Vec3& normal);
 };
 static_assert(sizeof(Photon) == 20, "the photon record is 20 bytes");
 
@@ -68,8 +76,8 @@ class PhotonMap {
   // Reflected radiance of a Lambertian surface of albedo 1 at `p` with normal `n` (multiply by
   // the albedo): seed 000 eq. 2.7 with f_r = 1/pi, the k nearest photons in a disc of area
   // pi r^2, weighted by the cone filter w = 1 - d / (c r), normalised by 1 - 2 / (3c) (Jensen
-  // 1996, c = 1.1). Photons arriving from behind the surface (dot(dir, n) >= 0) are skipped, so
-  // light does not leak through thin walls. `scratch` avoids allocation per query.
+  // 1996, c = 1.1). Only photons that lie on the queried surface count, so light does not leak
+  // through walls (photon_on_surface). `scratch` avoids allocation per query.
   Vec3 radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
                          uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const;
 
@@ -77,6 +85,26 @@ class PhotonMap {
   void build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel);
   std::vector<Photon> photons_;
 };
+
+// Whether a photon can belong to the surface through p with normal n (Jensen 2001, sec. 7.1:
+// photons of other surfaces within the search sphere bias the estimate; behind a wall they
+// leak light through it). It must
+//  - have arrived from the side n faces (dot(direction, n) < 0): not the far side of a thin wall;
+//  - lie on the same surface as p (on_same_surface).
+bool photon_on_surface(const Photon& photon, const Vec3& p, const Vec3& n, float distance);
+
+// Whether a point q with normal nq, `distance` from p, can lie on the same smooth surface as p
+// with normal n:
+//  - the normals agree, dot(nq, n) >= kSurfaceMinCos: not the inner face of an adjacent wall
+//    at a corner or edge of a closed object;
+//  - q is no farther off p's tangent plane than a surface bending from n to nq puts it (Jensen's
+//    search sphere compressed into a disc along n): between p and q at distance d on a sphere
+//    whose normals differ by theta, |(q - p) . n| = d sin(theta / 2), allowed up to
+//    d (sin(theta / 2) + kSurfaceSlope). Not a parallel surface across a gap, such as the
+//    inside of a box's bottom over the floor (theta = 0, height = the gap).
+constexpr float kSurfaceMinCos = 0.25f;
+constexpr float kSurfaceSlope = 0.1f;
+bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq, float distance);
 
 // Sum of the photons' power (used by tests and statistics).
 Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask = kPhotonAny);

@@ -15,14 +15,14 @@ std::vector<Photon> random_photons(size_t n, uint64_t seed) {
     const uint64_t h = mix64(seed * 1000003 + i);
     const Vec3 p(to_unit_float(h), to_unit_float(h << 20), to_unit_float(mix64(h)));
     const uint8_t flags = static_cast<uint8_t>(1u << (mix64(h + 1) % 3));
-    photons.push_back(Photon::make(p, Vec3(0, 0, -1), Vec3(1.0f), flags));
+    photons.push_back(Photon::make(p, Vec3(0, 0, -1), Vec3(1.0f), flags, Vec3(0, 0, 1)));
   }
   return photons;
 }
 
 TEST(Rgbe, RoundTripsWithinHalfAStepOfTheLargestChannel) {
-  for (const Vec3 c : {Vec3(1.0f, 0.5f, 0.25f), Vec3(3e-7f, 1e-7f, 2e-7f), Vec3(1234.5f, 0.0f, 7.0f),
-                       Vec3(0.999f, 0.999f, 0.999f)}) {
+  for (const Vec3 c : {Vec3(1.0f, 0.5f, 0.25f), Vec3(3e-7f, 1e-7f, 2e-7f),
+                       Vec3(1234.5f, 0.0f, 7.0f), Vec3(0.999f, 0.999f, 0.999f)}) {
     uint8_t e[4];
     encode_rgbe(c, e);
     const Vec3 d = decode_rgbe(e);
@@ -56,7 +56,7 @@ TEST(Photon, DirectionIsQuantisedToAboutOneDegree) {
     const uint64_t h = mix64(i);
     const Vec3 d = normalize(Vec3(to_unit_float(h) - 0.5f, to_unit_float(h << 20) - 0.5f,
                                   to_unit_float(mix64(h)) - 0.5f));
-    const Photon ph = Photon::make(Vec3(0.0f), d, Vec3(1.0f), kPhotonDirect);
+    const Photon ph = Photon::make(Vec3(0.0f), d, Vec3(1.0f), kPhotonDirect, -d);
     EXPECT_GT(dot(ph.direction(), d), std::cos(0.03f)) << i;
   }
 }
@@ -113,10 +113,10 @@ TEST(PhotonMap, RadianceEstimateOfUniformPhotonsIsIrradianceOverPi) {
     const uint64_t h = mix64(i);
     const Vec3 p(to_unit_float(h), to_unit_float(h << 24), 0.0f);
     photons.push_back(Photon::make(p, normalize(Vec3(0.3f, 0.1f, -1.0f)), Vec3(flux_per_photon),
-                                   kPhotonIndirect));
+                                   kPhotonIndirect, Vec3(0, 0, 1)));
     // The same again arriving from below: light on the other side of the wall.
-    photons.push_back(Photon::make(p, Vec3(0, 0, 1), Vec3(5.0f * flux_per_photon),
-                                   kPhotonIndirect));
+    photons.push_back(Photon::make(p, Vec3(0, 0, 1), Vec3(5.0f * flux_per_photon), kPhotonIndirect,
+                                   Vec3(0, 0, -1)));
   }
   const PhotonMap map(std::move(photons));
   std::vector<PhotonNeighbor> scratch;

@@ -72,11 +72,12 @@ void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emi
         const uint8_t flags = kind == PathKind::kDirect    ? kPhotonDirect
                               : kind == PathKind::kCaustic ? kPhotonCaustic
                                                            : kPhotonIndirect;
-        out->photons.push_back(Photon::make(si.p, ray.direction, power, flags));
+        out->photons.push_back(Photon::make(si.p, ray.direction, power, flags, bsdf.ng()));
         if (hash_combine(index, static_cast<uint64_t>(bounce)) % setup.settings->gather_point_stride == 0)
           out->gather_points.push_back({si.p, bsdf.ng()});
       } else if (kind == PathKind::kCaustic) {
-        out->photons.push_back(Photon::make(si.p, ray.direction, power, kPhotonCaustic));
+        out->photons.push_back(
+            Photon::make(si.p, ray.direction, power, kPhotonCaustic, bsdf.ng()));
       }
     }
     BsdfSample s;

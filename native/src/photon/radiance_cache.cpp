@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "photon/cancel_poll.h"
+#include "photon/photon_map.h"
 #include "photon/rng.h"
 
 namespace photon {
@@ -104,7 +105,12 @@ const RadianceRecord* RadianceCache::nearest(const Vec3& p, const Vec3& n, float
     for (uint32_t i = slot->begin; i < slot->begin + slot->count; ++i) {
       const RadianceRecord& r = records_[i];
       if (dot(r.n, n) < min_cos) continue;
-      const float d2 = length_squared(r.p - p);
+      const Vec3 offset = r.p - p;
+      const float d2 = length_squared(offset);
+      // A record of a parallel surface across a gap (the inside of a closed box's bottom, the
+      // floor under it) faces the same way but saw other light: keep to records that can lie
+      // on p's surface, as the photons of an estimate (photon_map.h).
+      if (!on_same_surface(p, n, r.p, r.n, std::sqrt(d2))) continue;
       if (d2 < best) {
         best = d2;
         found = &r;

@@ -16,8 +16,8 @@ namespace photon {
 
 struct RadianceRecord {
   Vec3 p;
-  Vec3 n;         // unit surface normal on the lit side
-  Vec3 radiance;  // reflected radiance for albedo 1 (multiply by the surface's albedo)
+  Vec3 n;                // unit surface normal on the lit side
+  Vec3 radiance;         // reflected radiance for albedo 1 (multiply by the surface's albedo)
   GuideHistogram guide;  // where indirect light arrives from, for guided final gathering
 };
 
@@ -35,7 +35,8 @@ class RadianceCache {
   size_t memory_bytes() const;
 
   // Radiance of the nearest record to `p` in p's cell (or, if none fits, its 26 neighbours)
-  // with dot(normal, n) >= min_cos. False if there is none.
+  // with dot(normal, n) >= min_cos that can lie on p's surface (on_same_surface of
+  // photon_map.h). Null if there is none.
   const RadianceRecord* nearest(const Vec3& p, const Vec3& n, float min_cos) const;
 
  private:
