@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "photon/accel.h"
+#include "photon/lights.h"
 #include "photon/test_scenes.h"
 
 namespace photon {
@@ -130,6 +131,32 @@ TEST(RayOffset, WarnsWhenTheSceneLiesBeyondFloatPrecision) {
   Scene near = sandwich(1.0f, 0.02f, Vec3(100.0f, 0.0f, 0.0f));
   Accel near_accel(near, &warnings);
   EXPECT_TRUE(warnings.empty());
+}
+
+// A 1 m square area light scaled by 1e-7 (area 1e-14 m^2) is still a light with the same power:
+// an absolute 1e-12 m^2 area floor dropped it as "zero size".
+TEST(RayOffset, TinyAreaLightOfATinySceneIsKept) {
+  for (float scale : {1.0f, 1e-5f, 1e-7f}) {
+    Light l;
+    l.name = "tiny";
+    l.type = LightType::kArea;
+    l.light_to_world = Transform::translation(Vec3(0.0f, 0.0f, 2.0f * scale));
+    l.size_x = l.size_y = scale;
+    l.power = 10.0f;
+    std::vector<std::string> warnings;
+    LightSet set({l}, &warnings);
+    ASSERT_EQ(set.size(), 1u) << "scale " << scale;
+    EXPECT_TRUE(warnings.empty()) << warnings.front();
+  }
+  Light zero;
+  zero.name = "flat";
+  zero.type = LightType::kArea;
+  zero.size_x = 0.0f;
+  zero.size_y = 1.0f;
+  zero.power = 10.0f;
+  std::vector<std::string> warnings;
+  EXPECT_EQ(LightSet({zero}, &warnings).size(), 0u);
+  ASSERT_EQ(warnings.size(), 1u);
 }
 
 }  // namespace
