@@ -1,7 +1,7 @@
 """One small sun-lit scene (floor, red back wall, a box casting a shadow that only indirect light
 fills) built at any scale and distance from the origin, rendered with PHOTON_MAP.
 
-Arguments: out_dir tag scale offset. Every length (geometry, camera position, clip range) is
+Arguments: out_dir tag scale offset [near_camera: 1 = camera 6.7 units away]. Every length (geometry, camera position, clip range) is
 multiplied by `scale`; every object is then moved by (offset, offset, 0). The sun is scale
 invariant, so the image should not change with `scale`. Object locations are exactly `offset`
 and the camera's coordinates are whole numbers at scale 1, so a 1e7 offset is exactly
@@ -34,7 +34,7 @@ def scaled_box(name, lo, hi, material, scale, offset):
     return obj
 
 
-def build(scale, offset):
+def build(scale, offset, near_camera=False):
     scene = builders.reset_scene(width=RES, height=RES)
     white = builders.diffuse_material("White", (0.8, 0.8, 0.8))
     red = builders.diffuse_material("Red", (0.8, 0.1, 0.1))
@@ -48,6 +48,10 @@ def build(scale, offset):
     # 1e-7 is 10 scene units, so the scene must lie farther than that from the camera.
     cam = builders.camera(location=(offset, offset - 18.0 * scale, 9.0 * scale),
                           rotation=(math.radians(65.5), 0.0, 0.0), lens=100.0)
+    if near_camera:  # a usual framing: 6.7 units away, inside Blender's clip floor at 1e-7
+        cam.location = (offset, offset - 6.0 * scale, 3.0 * scale)
+        cam.rotation_euler = (math.radians(70), 0.0, 0.0)
+        cam.data.lens = 35.0
     cam.data.clip_start = 0.01 * scale
     cam.data.clip_end = 100.0 * scale
     scene.photon.integrator = 'PHOTON_MAP'
@@ -59,9 +63,9 @@ def build(scale, offset):
     return scene
 
 
-def main(out_dir, tag, scale, offset):
+def main(out_dir, tag, scale, offset, near_camera="0"):
     os.makedirs(out_dir, exist_ok=True)
-    scene = build(float(scale), float(offset))
+    scene = build(float(scale), float(offset), near_camera == "1")
     path = os.path.join(out_dir, f"scale_scene_{tag}.exr")
     scene.render.filepath = path
     scene.render.use_file_extension = False
