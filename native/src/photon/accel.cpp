@@ -1,7 +1,9 @@
 #include "photon/accel.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
+#include <limits>
 
 namespace photon {
 namespace {
@@ -167,6 +169,19 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
     rtcGetSceneBounds(top_, &b);
     bounds_min_ = Vec3(b.lower_x, b.lower_y, b.lower_z);
     bounds_max_ = Vec3(b.upper_x, b.upper_y, b.upper_z);
+    length_scale_ = scene_length_scale(bounds_min_, bounds_max_);
+    if (warnings_ && scene_beyond_float_precision(bounds_min_, bounds_max_)) {
+      const double extent = length(bounds_max_ - bounds_min_);
+      const double distance =
+          std::max(max_abs_component(bounds_min_), max_abs_component(bounds_max_));
+      char text[320];
+      std::snprintf(text, sizeof text,
+                    "The scene spans %.3g m but lies %.3g m from the origin: 32-bit floats "
+                    "resolve only %.3g m there, so surfaces band and shadows and contact light "
+                    "go wrong; move the scene near the origin",
+                    extent, distance, distance * std::numeric_limits<float>::epsilon());
+      warnings_->push_back(text);
+    }
   }
 }
 

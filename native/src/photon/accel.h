@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "photon/math.h"
+#include "photon/ray_offset.h"
 #include "photon/scene.h"
 
 namespace photon {
@@ -77,6 +78,9 @@ class Accel {
   // Bounding box of all instanced geometry in world space (empty scene: min > max).
   Vec3 bounds_min() const { return bounds_min_; }
   Vec3 bounds_max() const { return bounds_max_; }
+  // scene_length_scale() of the bounds: the length ray offsets and other small distances scale
+  // with, so the renderer is invariant to the scene's scale.
+  float length_scale() const { return length_scale_; }
   RTCScene top_level() const { return top_; }
 
  private:
@@ -99,6 +103,7 @@ class Accel {
   size_t triangle_count_ = 0;
   Vec3 bounds_min_{INFINITY, INFINITY, INFINITY};
   Vec3 bounds_max_{-INFINITY, -INFINITY, -INFINITY};
+  float length_scale_ = 1.0f;
   std::vector<std::string>* warnings_;
   std::mutex warnings_mutex_;
   const std::atomic<bool>* cancel_ = nullptr;
@@ -113,21 +118,16 @@ class Accel {
   void clear_after_cancel();
 };
 
-// Offsets a ray origin off the surface along the geometric normal, on the side `w` leaves to, so
-// a spawned ray does not re-hit its own triangle.
-inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& w) {
-  const float eps = 1e-4f * (1.0f + max_abs_component(p));
-  return dot(ng, w) >= 0.0f ? p + ng * eps : p - ng * eps;
-}
-
 // A shadow ray between two surface points (p with normal ng, q with normal nq), both ends
 // offset off their surfaces towards each other and the direction taken between the offset ends
 // (pbrt-v4's SpawnRayTo for two interactions). Offsetting only the origin and keeping the
 // direction p -> q moves the segment towards q's surface by the offset, so at short or
 // grazing distances it ends inside q's own surface and the point occludes itself.
-inline Ray shadow_ray_between(const Vec3& p, const Vec3& ng, const Vec3& q, const Vec3& nq) {
-  const Vec3 from = offset_ray_origin(p, ng, q - p);
-  const Vec3 to = offset_ray_origin(q, nq, p - q);
+// `length_scale` is scene_length_scale() of the scene.
+inline Ray shadow_ray_between(const Vec3& p, const Vec3& ng, const Vec3& q, const Vec3& nq,
+                              float length_scale) {
+  const Vec3 from = offset_ray_origin(p, ng, q - p, length_scale);
+  const Vec3 to = offset_ray_origin(q, nq, p - q, length_scale);
   const Vec3 d = to - from;
   const float len = length(d);
   Ray ray;

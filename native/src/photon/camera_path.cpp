@@ -95,7 +95,7 @@ void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
     count_emission = s.is_delta();
     after_glossy = after_glossy || !s.is_delta();
     if (!transparent) mask = visibility_after(s.flags);  // through Transparent: same ray type
-    ray.origin = offset_ray_origin(si.p, si.ng, s.wi);
+    ray.origin = offset_ray_origin(si.p, si.ng, s.wi, context.accel->length_scale());
     ray.direction = s.wi;
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;

@@ -10,6 +10,7 @@ std::vector<BoundingSphere> specular_targets(const Scene& scene, const Accel& ac
                                              size_t max_targets) {
   std::vector<BoundingSphere> spheres;
   Vec3 all_lo(INFINITY), all_hi(-INFINITY);
+  const float margin = 1e-4f * accel.length_scale();  // 0.1 mm in a scene of a metre or more
   for (uint32_t id = 0; id < accel.instance_count(); ++id) {
     const Instance& inst = scene.instances[accel.scene_instance(id)];
     if (!(inst.visibility & (kVisibleGlossy | kVisibleTransmission | kVisibleDiffuse))) continue;
@@ -39,10 +40,10 @@ std::vector<BoundingSphere> specular_targets(const Scene& scene, const Accel& ac
     all_lo = min(all_lo, lo);
     all_hi = max(all_hi, hi);
     // A small margin keeps rays grazing the object inside the cone.
-    spheres.push_back({center, std::sqrt(r2) * 1.01f + 1e-4f});
+    spheres.push_back({center, std::sqrt(r2) * 1.01f + margin});
   }
   if (spheres.size() > max_targets)
-    spheres = {{(all_lo + all_hi) * 0.5f, 0.5f * length(all_hi - all_lo) * 1.01f + 1e-4f}};
+    spheres = {{(all_lo + all_hi) * 0.5f, 0.5f * length(all_hi - all_lo) * 1.01f + margin}};
   return spheres;
 }
 

@@ -23,7 +23,7 @@ inline float power_heuristic(float f, float g) {
 bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, const Vec3& wi,
                 float distance) {
   Ray shadow;
-  shadow.origin = offset_ray_origin(si.p, si.ng, wi);
+  shadow.origin = offset_ray_origin(si.p, si.ng, wi, context.accel->length_scale());
   shadow.direction = wi;
   shadow.tmax = std::isfinite(distance) ? distance * (1.0f - 1e-4f) : INFINITY;
   return !context.accel->occluded(shadow, kVisibleShadow);
@@ -35,7 +35,8 @@ bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, cons
 bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, const LightSample& ls) {
   if (!(length_squared(ls.surface_normal) > 0.0f) || !std::isfinite(ls.distance))
     return unoccluded(context, si, ls.wi, ls.distance);
-  const Ray shadow = shadow_ray_between(si.p, si.ng, si.p + ls.wi * ls.distance, ls.surface_normal);
+  const Ray shadow = shadow_ray_between(si.p, si.ng, si.p + ls.wi * ls.distance, ls.surface_normal,
+                                        context.accel->length_scale());
   return !context.accel->occluded(shadow, kVisibleShadow);
 }
 
@@ -93,7 +94,7 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) {
       Ray ray;
-      ray.origin = offset_ray_origin(si.p, si.ng, bs.wi);
+      ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
       ray.direction = bs.wi;
       Hit hit;
       if (context.accel->intersect(ray, kVisibleShadow, &hit)) {

@@ -5,7 +5,8 @@
 
 namespace photon {
 
-EmissiveMeshes::EmissiveMeshes(const Scene& scene, const Accel& accel, const TextureSet* textures) {
+EmissiveMeshes::EmissiveMeshes(const Scene& scene, const Accel& accel, const TextureSet* textures)
+    : length_scale_(accel.length_scale()) {
   std::vector<double> weights;
   double power[3] = {0, 0, 0};
   for (uint32_t id = 0; id < accel.instance_count(); ++id) {
@@ -92,7 +93,7 @@ void EmissiveMeshes::emit(float u_pick, Vec2 u_point, Vec2 u_dir, Ray* ray, Vec3
   const Vec3 q = t.p0 + t.e1 * b.x + t.e2 * b.y;
   const Vec3 n = u_side < 0.5f ? t.normal : -t.normal;
   const Vec3 d = Frame(n).to_world(sample_cosine_hemisphere(u_dir));
-  ray->origin = offset_ray_origin(q, n, d);
+  ray->origin = offset_ray_origin(q, n, d, length_scale_);
   ray->direction = d;
   ray->tmin = 0.0f;
   ray->tmax = INFINITY;

@@ -50,6 +50,7 @@ class EmissiveMeshes {
   std::vector<EmissiveTriangle> triangles_;
   Distribution1D distribution_;
   std::unordered_map<uint64_t, uint32_t> index_;  // (instance << 32 | primitive) -> triangle
+  float length_scale_ = 1.0f;                     // Accel::length_scale(), for ray offsets
   Vec3 power_{0.0f};
 };
 

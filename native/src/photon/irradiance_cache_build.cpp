@@ -89,7 +89,7 @@ void records_at_pixel(const RenderContext& context, const IrradianceCacheSetting
     if (!bsdf.sample(wo, u_lobe, u, kLobeSpecular, &bs) || is_black(bs.weight)) return;
     const bool transparent = !(bs.flags & kLobeReflection) && dot(bs.wi, ray.direction) > 0.9999f;
     if (!transparent) mask = visibility_after(bs.flags);
-    ray.origin = offset_ray_origin(si.p, si.ng, bs.wi);
+    ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
     ray.direction = bs.wi;
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;

@@ -60,7 +60,9 @@ IrradianceCache build_point_irradiance_cache(
   }
   Vec3 lo(INFINITY), hi(-INFINITY);
   for (uint32_t i : pool) lo = min(lo, positions[i]), hi = max(hi, positions[i]);
-  const float diagonal = std::max(length(hi - lo), 1e-6f);
+  // Only a floor for coincident points: a scene of any scale keeps its own diagonal.
+  float diagonal = length(hi - lo);
+  if (!(diagonal > 0.0f)) diagonal = 1e-6f;
   const float finest_cell = diagonal / static_cast<float>(std::max(settings.finest_divisions, 1));
   const float min_reach = settings.min_cells * finest_cell;
   const float max_reach = std::max(settings.max_fraction * diagonal, min_reach);

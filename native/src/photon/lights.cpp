@@ -62,7 +62,8 @@ LightSet::LightSet(const std::vector<Light>& lights, std::vector<std::string>* w
         p.half_v = l.light_to_world.column(1) * (0.5f * std::max(l.size_y, 0.0f));
         const float lu = length(p.half_u), lv = length(p.half_v);
         p.area = l.shape == AreaShape::kRectangle ? 4.0f * lu * lv : kPi * lu * lv;
-        if (!(p.area > 1e-12f)) {
+        // Zero or so small its radiance overflows; a tiny light of a tiny scene is still a light.
+        if (!(p.area > 0.0f) || !is_finite(flux_color * (0.25f / p.area))) {
           warn("Area light '" + l.name + "' has zero size; skipped");
           continue;
         }

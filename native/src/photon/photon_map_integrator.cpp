@@ -51,7 +51,7 @@ constexpr int kMinRecordRays = 256, kMaxRecordRays = 16384;
 // Grid cell for the radiance records: about two record spacings, from the photon density
 // measured at up to 256 gather points (median of k / (pi r_k^2), scaled by records / photons).
 float record_cell_size(const PhotonMap& map, const std::vector<GatherPoint>& points, size_t k,
-                       float max_radius) {
+                       float max_radius, float length_scale) {
   if (points.empty()) return max_radius;
   std::vector<float> spacing;
   std::vector<PhotonNeighbor> scratch;
@@ -64,7 +64,7 @@ float record_cell_size(const PhotonMap& map, const std::vector<GatherPoint>& poi
   }
   if (spacing.empty()) return max_radius;
   std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
-  return std::clamp(2.0f * spacing[spacing.size() / 2], 1e-6f, max_radius);
+  return std::clamp(2.0f * spacing[spacing.size() / 2], 1e-6f * length_scale, max_radius);
 }
 
 // A 48-bit stream id drawn from `sampler`, so the bake's inner samplers are a pure function of
@@ -207,8 +207,10 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
       }
     });
     if (control.cancelled()) return;
-    radiance_ = RadianceCache(std::move(records),
-                              record_cell_size(global_, points, k, global_radius_), control.cancel);
+    radiance_ = RadianceCache(
+        std::move(records),
+        record_cell_size(global_, points, k, global_radius_, context.accel->length_scale()),
+        control.cancel);
     if (control.cancelled()) return;
   }
   const double precompute_seconds = seconds_since(t0);
@@ -314,7 +316,7 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
     }
     after_glossy = after_glossy || !s.is_delta();
     mask = visibility_after(s.flags);
-    ray.origin = offset_ray_origin(y.p, y.ng, s.wi);
+    ray.origin = offset_ray_origin(y.p, y.ng, s.wi, context.accel->length_scale());
     ray.direction = s.wi;
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;
@@ -343,11 +345,11 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
     const Vec3 wi = frame.to_world(sample_cosine_hemisphere(u));
     if (dot(wi, bsdf.ng()) <= 0.0f) continue;
     Ray ray;
-    ray.origin = offset_ray_origin(x.p, x.ng, wi);
+    ray.origin = offset_ray_origin(x.p, x.ng, wi, context.accel->length_scale());
     ray.direction = wi;
     float t = INFINITY;
     sum += gather_ray(context, ray, sampler, &scratch, harmonic_distance ? &t : nullptr) / density;
-    inverse_distances += 1.0 / std::max(t, 1e-6f);
+    inverse_distances += 1.0 / std::max(t, 1e-6f * context.accel->length_scale());
     ++traced;
   }
   if (harmonic_distance)

@@ -13,7 +13,10 @@ PhotonSources::PhotonSources(const RenderContext& context) : context_(context) {
   const Accel& accel = *context.accel;
   if (accel.instance_count() > 0) {
     center_ = (accel.bounds_min() + accel.bounds_max()) * 0.5f;
-    radius_ = std::max(0.5f * length(accel.bounds_max() - accel.bounds_min()), 1e-3f);
+    // A floor relative to the scene: an absolute 1 mm spread a 0.1 mm scene's sun and world
+    // photons over a disc 100x its size, so almost none landed.
+    radius_ = std::max(0.5f * length(accel.bounds_max() - accel.bounds_min()),
+                       1e-3f * accel.length_scale());
   }
   if (!is_finite(center_) || !std::isfinite(radius_)) {
     center_ = Vec3(0.0f);
@@ -93,7 +96,7 @@ bool PhotonSources::emit_caustic(Sampler& sampler, EmittedPhoton* out) const {
     if (ConeMixture(q, targets_).sample(sampler.get_1d(), u_dir, &d, &pdf)) {
       const EmissiveTriangle& t = context_.emissive->triangle(tri);
       const float cos_n = std::fabs(dot(d, n));
-      out->ray.origin = offset_ray_origin(q, n, d);
+      out->ray.origin = offset_ray_origin(q, n, d, context_.accel->length_scale());
       out->ray.direction = d;
       out->ray.tmin = 0.0f;
       out->ray.tmax = INFINITY;

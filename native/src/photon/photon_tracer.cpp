@@ -88,7 +88,7 @@ void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emi
       kind = PathKind::kIndirect;
     }
     mask = visibility_after(s.flags);
-    ray.origin = offset_ray_origin(si.p, si.ng, s.wi);
+    ray.origin = offset_ray_origin(si.p, si.ng, s.wi, context.accel->length_scale());
     ray.direction = s.wi;
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;

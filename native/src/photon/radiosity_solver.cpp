@@ -118,7 +118,7 @@ void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, Ray ray,
     specular_only = specular_only && s.is_delta();
     arriving = next;
     mask = visibility_after(s.flags);
-    ray.origin = offset_ray_origin(si.p, si.ng, s.wi);
+    ray.origin = offset_ray_origin(si.p, si.ng, s.wi, context.accel->length_scale());
     ray.direction = s.wi;
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;
@@ -164,7 +164,7 @@ void shoot_chunk(const RenderContext& context, const RadiosityMesh& mesh,
     const Vec3 n = slot % 2 == 0 ? mesh.normal(element) : -mesh.normal(element);
     Ray ray;
     ray.direction = Frame(n).to_world(sample_cosine_hemisphere(sampler.get_2d()));
-    ray.origin = offset_ray_origin(origin, n, ray.direction);
+    ray.origin = offset_ray_origin(origin, n, ray.direction, context.accel->length_scale());
     trace_ray(context, mesh, ray, power, kVisibleDiffuse, false, sampler, out);
   }
 }

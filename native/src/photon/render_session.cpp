@@ -8,6 +8,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
+#include "photon/camera_clip_check.h"
 #include "photon/scene_resources.h"
 #include "photon/pixel_renderer.h"
 
@@ -212,6 +213,8 @@ void RenderSession::run_render() {
   const double texture_seconds = resources->textures().seconds();
   const double build_seconds = seconds_since(t0) - texture_seconds;
   if (cancel_) return;
+  const std::string clip_warning = camera_clip_warning(scene_->camera, resources->accel());
+  if (!clip_warning.empty()) warnings.push_back(clip_warning);
   const RenderContext& context = resources->context();
   std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
 
