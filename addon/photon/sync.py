@@ -4,7 +4,7 @@ import time
 
 import numpy as np
 
-from . import sync_camera, sync_lights, sync_materials, sync_mesh
+from . import sync_camera, sync_lights, sync_materials, sync_mattes, sync_mesh
 
 
 class SyncStats:
@@ -47,7 +47,9 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     stats._release.append(materials.release)
 
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
-    pending = {}           # (mesh index, slot tuple, visibility) -> [(4x4 matrix, owner or None)]
+    # (mesh index, slot tuple, visibility, mattes) -> [(4x4 matrix, owner or None)]
+    pending = {}
+    mattes = sync_mattes.MatteFlags(depsgraph)
     unsupported = {}       # object type -> object names
 
     for inst in depsgraph.object_instances:
@@ -80,13 +82,15 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
         slots = tuple(materials.slot_indices(obj))
         visibility = sync_lights.visibility_bits(native, obj)
         owner = None if inst.is_instance else obj.name
-        pending.setdefault((index, slots, visibility), []).append(
+        matte = mattes.of(obj, inst.parent if inst.is_instance else None)
+        pending.setdefault((index, slots, visibility, matte), []).append(
             (np.asarray(inst.matrix_world, dtype=np.float32), owner))
 
-    for (index, slots, visibility), entries in pending.items():
+    for (index, slots, visibility, (holdout, catcher)), entries in pending.items():
         first = native_scene.instance_count
         stats.instances += native_scene.add_instances(
-            index, np.stack([matrix for matrix, _ in entries]), list(slots), visibility)
+            index, np.stack([matrix for matrix, _ in entries]), list(slots), visibility,
+            holdout=holdout, shadow_catcher=catcher)
         if object_instances is not None:
             for offset, (_, owner) in enumerate(entries):
                 if owner is not None:
