@@ -46,8 +46,10 @@ Vec3 shadow_catcher_ratio(const RenderContext& context, const SurfaceInteraction
   Vec3 unshadowed;
   const Vec3 shadowed =
       direct_radiance_with_and_without_shadows(context, si, sp.bsdf, wo, sampler, &unshadowed);
+  // Unlit points show nothing of the catcher (1); inf / inf from absurd lamps does too.
   auto ratio = [](float with, float without) {
-    return without > 0.0f ? std::clamp(with / without, 0.0f, 1.0f) : 1.0f;
+    const float r = without > 0.0f ? with / without : 1.0f;
+    return r >= 0.0f ? std::min(r, 1.0f) : 1.0f;
   };
   return {ratio(shadowed.x, unshadowed.x), ratio(shadowed.y, unshadowed.y),
           ratio(shadowed.z, unshadowed.z)};

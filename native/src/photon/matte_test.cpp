@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cfloat>
 #include <memory>
 #include <vector>
 
@@ -185,6 +186,20 @@ TEST(Matte, ShadowCatcherSeenInAMirrorIsAnOrdinarySurface) {
     ASSERT_GT(image[i], 1.0f) << "pixel " << i / 4;
     ASSERT_EQ(image[i + 3], 1.0f);
   }
+}
+
+TEST(Matte, ShadowCatcherUnderAbsurdLampsStaysFinite) {
+  // Eight suns of the largest float power: their light (0.8 / pi of it each) sums to inf with
+  // and without shadows; the unshadowed catcher must still show the world, not drop every
+  // sample as inf / inf = NaN.
+  auto scene = floor_scene(Material::diffuse(Vec3(0.8f)));
+  scene->lights[0].power = FLT_MAX;
+  for (int i = 0; i < 7; ++i) scene->lights.push_back(scene->lights[0]);
+  scene->instances[0].shadow_catcher = true;
+  const Vec3 w(0.125f, 0.25f, 0.5f);
+  scene->world.color = w;
+  const float world[4] = {w.x, w.y, w.z, 1.0f};
+  expect_every_pixel(render(scene, IntegratorType::kRayTrace, false), world, 0.0f);
 }
 
 }  // namespace
