@@ -4,7 +4,8 @@ import time
 
 import numpy as np
 
-from . import sync_camera, sync_hair, sync_layers, sync_lights, sync_materials, sync_mesh
+from . import (sync_camera, sync_hair, sync_layers, sync_lights, sync_materials, sync_mattes,
+               sync_mesh)
 
 
 class SyncStats:
@@ -47,11 +48,13 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     stats._release.append(materials.release)
 
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
-    pending = {}           # (mesh index, slot tuple, visibility) -> [(4x4 matrix, owner or None)]
+    # (mesh index, slot tuple, visibility, mattes) -> [(4x4 matrix, owner or None)]
+    pending = {}
+    mattes = sync_mattes.MatteFlags(depsgraph)
     unsupported = {}       # object type -> object names
     layer_visibility = sync_layers.LayerVisibility(native, depsgraph, reporter)
     override = sync_layers.material_override(depsgraph)
-    hair = []              # (mesh index, slot list, visibility) of hair ribbons (world space)
+    hair = []              # (mesh index, slots, visibility, mattes) of hair ribbons (world space)
     hair_view = None       # the camera the ribbons face, read once the first hair shows up
     hair_strands = {}      # (object, particle system) -> strands, shared by its instances
     has_hair = {}          # object name -> whether it has hair systems to render
@@ -91,7 +94,8 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
                 stats.triangles += triangles
                 if override is not None:
                     hair_slots = [materials.index(override)] * len(hair_slots)
-                hair.append((index, hair_slots, visibility))
+                hair.append((index, hair_slots, visibility,
+                             mattes.of(obj, inst.parent if inst.is_instance else None)))
             if obj_type == 'CURVES':
                 continue
         if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
@@ -119,21 +123,24 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             slots = (materials.index(override),) * max(1, len(obj.material_slots))
         visibility = layer_visibility.apply(inst, obj, sync_lights.visibility_bits(native, obj))
         owner = None if inst.is_instance else obj.name
-        pending.setdefault((index, slots, visibility), []).append(
+        matte = mattes.of(obj, inst.parent if inst.is_instance else None)
+        pending.setdefault((index, slots, visibility, matte), []).append(
             (np.asarray(inst.matrix_world, dtype=np.float32), owner))
 
-    for (index, slots, visibility), entries in pending.items():
+    for (index, slots, visibility, (holdout, catcher)), entries in pending.items():
         first = native_scene.instance_count
         stats.instances += native_scene.add_instances(
-            index, np.stack([matrix for matrix, _ in entries]), list(slots), visibility)
+            index, np.stack([matrix for matrix, _ in entries]), list(slots), visibility,
+            holdout=holdout, shadow_catcher=catcher)
         if object_instances is not None:
             for offset, (_, owner) in enumerate(entries):
                 if owner is not None:
                     object_instances.setdefault(owner, []).append(first + offset)
 
     identity = np.identity(4, dtype=np.float32)[None]
-    for index, slots, visibility in hair:
-        stats.instances += native_scene.add_instances(index, identity, slots, visibility)
+    for index, slots, visibility, (holdout, catcher) in hair:
+        stats.instances += native_scene.add_instances(index, identity, slots, visibility,
+                                                      holdout=holdout, shadow_catcher=catcher)
 
     for obj_type, names in sorted(unsupported.items()):
         shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")

@@ -26,14 +26,12 @@ def _any_layer_flag(layer_collection):
 
 
 class LayerVisibility:
-    """Applies the view layer's holdout / indirect-only state of an object to its native ray
-    visibility, as Cycles' object sync does (indirect-only objects lose camera visibility;
-    holdout wins over indirect-only)."""
+    """Applies the view layer's indirect-only state of an object to its native ray visibility,
+    as Cycles' object sync does (indirect-only objects lose camera visibility; holdout wins over
+    indirect-only, and holdouts themselves are drawn by sync_mattes)."""
 
     def __init__(self, native, depsgraph, reporter):
         self._native = native
-        self._reporter = reporter
-        self._layer_name = depsgraph.view_layer.name
         self._view_layer = depsgraph.view_layer_eval
         # Most scenes set neither toggle on any collection: then nothing is looked up per object.
         self._collections = _any_layer_flag(depsgraph.view_layer.layer_collection)
@@ -51,10 +49,6 @@ class LayerVisibility:
             holdout = bool(obj.holdout_get(view_layer=self._view_layer))
             indirect = not holdout and bool(obj.indirect_only_get(view_layer=self._view_layer))
             flags = self._cache[obj.name] = (holdout, indirect)
-            if holdout:
-                self._reporter.warning(
-                    f"Object '{obj.name}' is a holdout in view layer '{self._layer_name}': "
-                    f"holdouts are not supported yet; it is rendered as a normal object")
         if flags[1]:
             visibility &= ~self._native.VISIBLE_CAMERA
         return visibility

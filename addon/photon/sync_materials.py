@@ -54,6 +54,8 @@ SIMPLE_NODES = {
     'BSDF_TRANSLUCENT': ("TRANSLUCENT", [(("Color",), COLOR)]),
     'EMISSION': ("EMISSION", [(("Color",), Param("color", 'color', 0.0, INF, [1.0, 1.0, 1.0])),
                               (("Strength",), Param("strength", 'scalar', 0.0, INF, 1.0))]),
+    # Cuts a hole in the image where camera rays meet it (native/src/photon/matte.h).
+    'HOLDOUT': ("HOLDOUT", []),
 }
 # Microfacet distributions rendered as GGX without comment; others warn.
 GGX_LIKE = {'GGX', 'MULTI_GGX'}
@@ -186,7 +188,7 @@ def convert_material(material, reporter, textures):
         unique = list(dict.fromkeys(ctx.ignored_principled))
         reporter.warning(f"Material '{name}': Principled BSDF inputs not supported yet are "
                          f"rendered at their defaults: {', '.join(unique)}")
-    scattering = sum(1 for c in closures if c["type"] != "EMISSION")
+    scattering = sum(1 for c in closures if c["type"] not in ("EMISSION", "HOLDOUT"))
     if scattering > MAX_BSDF_LOBES:
         reporter.warning(f"Material '{name}': {scattering} BSDF closures; Photon shades the "
                          f"{MAX_BSDF_LOBES} strongest lobes at each point and drops the rest")

@@ -170,8 +170,30 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
         layout.prop(props, "tile_size")
 
 
+class PHOTON_PT_object_mask(bpy.types.Panel):
+    """Object > Visibility > Mask: Blender's own panel shows Holdout; the shadow catcher flag is
+    drawn only by Cycles' panel, so Photon draws it here."""
+    bl_label = "Shadow Catcher"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "object"
+    bl_parent_id = "OBJECT_PT_visibility"
+    COMPAT_ENGINES = {ENGINE}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES and context.object is not None and \
+            hasattr(context.object, "is_shadow_catcher")
+
+    def draw_header(self, context):
+        self.layout.prop(context.object, "is_shadow_catcher", text="")
+
+    def draw(self, context):
+        self.layout.label(text="Renders only the shadows cast on it")
+
+
 classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_performance,
-           PHOTON_PT_passes, PHOTON_PT_layer_override)
+           PHOTON_PT_passes, PHOTON_PT_layer_override, PHOTON_PT_object_mask)
 
 
 def register():

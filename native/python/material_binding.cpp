@@ -53,6 +53,7 @@ constexpr TypeName kTypes[] = {
     {"GLOSSY", ClosureType::kGlossy},           {"GLASS", ClosureType::kGlass},
     {"REFRACTION", ClosureType::kRefraction},   {"TRANSPARENT", ClosureType::kTransparent},
     {"TRANSLUCENT", ClosureType::kTranslucent}, {"EMISSION", ClosureType::kEmission},
+    {"HOLDOUT", ClosureType::kHoldout},
 };
 
 [[noreturn]] void fail(const std::string& message) {

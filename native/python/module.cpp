@@ -183,7 +183,7 @@ PYBIND11_MODULE(_photon, m) {
           "add_instance",
           [](Scene& scene, uint32_t mesh, const FloatArray& matrix,
              const std::vector<int32_t>& slot_materials, uint32_t visibility,
-             const std::string& name) {
+             const std::string& name, bool holdout, bool shadow_catcher) {
             if (mesh >= scene.meshes.size()) throw std::out_of_range("mesh index");
             Instance inst;
             inst.name = name;
@@ -191,16 +191,19 @@ PYBIND11_MODULE(_photon, m) {
             inst.object_to_world = transform_from(matrix);
             inst.slot_materials = slot_materials;
             inst.visibility = visibility & kVisibleAll;
+            inst.holdout = holdout;
+            inst.shadow_catcher = shadow_catcher;
             scene.instances.push_back(std::move(inst));
             return scene.instances.size() - 1;
           },
           py::arg("mesh"), py::arg("matrix"), py::arg("slot_materials") = std::vector<int32_t>{},
-          py::arg("visibility") = static_cast<uint32_t>(kVisibleAll), py::arg("name") = "")
+          py::arg("visibility") = static_cast<uint32_t>(kVisibleAll), py::arg("name") = "",
+          py::arg("holdout") = false, py::arg("shadow_catcher") = false)
       .def(
           "add_instances",
           [](Scene& scene, uint32_t mesh, const FloatArray& matrices,
              const std::vector<int32_t>& slot_materials, uint32_t visibility,
-             const std::string& name) {
+             const std::string& name, bool holdout, bool shadow_catcher) {
             if (mesh >= scene.meshes.size()) throw std::out_of_range("mesh index");
             if (matrices.size() % 16) throw std::invalid_argument("matrices: N x 4 x 4 expected");
             const size_t n = matrices.size() / 16;
@@ -211,12 +214,15 @@ PYBIND11_MODULE(_photon, m) {
               inst.object_to_world = Transform::from_rows(matrices.data() + 16 * i);
               inst.slot_materials = slot_materials;
               inst.visibility = visibility & kVisibleAll;
+              inst.holdout = holdout;
+              inst.shadow_catcher = shadow_catcher;
               scene.instances.push_back(std::move(inst));
             }
             return n;
           },
           py::arg("mesh"), py::arg("matrices"), py::arg("slot_materials") = std::vector<int32_t>{},
           py::arg("visibility") = static_cast<uint32_t>(kVisibleAll), py::arg("name") = "",
+          py::arg("holdout") = false, py::arg("shadow_catcher") = false,
           "Adds many instances of one mesh from an (N, 4, 4) array of row-major matrices.")
       .def(
           "add_texture",

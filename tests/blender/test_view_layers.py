@@ -89,13 +89,17 @@ def test_indirect_only_collection_hides_from_camera_but_casts_shadow(blender, tm
     assert darker.sum() > 50, f"no shadow of the indirect-only sphere ({darker.sum()} pixels)"
 
 
-def test_holdout_collection_is_reported_as_unsupported(blender, tmp_path):
+def test_holdout_collection_cuts_its_objects_out_of_the_layer(blender, tmp_path):
+    render(blender, tmp_path / "plain_", "mono")
     proc = render(blender, tmp_path / "hold_", "mono", "holdout=LeftSet")
-    assert ("Photon: warning: Object 'LeftSphere' is a holdout in view layer 'ViewLayer': "
-            "holdouts are not supported yet" in proc.stdout), proc.log
-    # Only objects of the holdout collection are named.
-    assert "'RightCube' is a holdout" not in proc.stdout
-    assert "'Floor' is a holdout" not in proc.stdout
+    assert "holdout" not in proc.stdout.lower(), proc.log  # supported: no warning
+    plain = read_image(tmp_path / "plain_0001.exr")
+    held = read_image(tmp_path / "hold_0001.exr")
+    sphere = red_mask(plain)
+    assert sphere.sum() > 200
+    # The sphere's pixels are transparent black; the blue cube of the other collection stays.
+    assert held[sphere][:, 3].max() < 0.05 and held[sphere][:, :3].max() < 0.05
+    assert blue_mask(held).sum() == blue_mask(plain).sum() > 200
 
 
 def expected_disparity_px():

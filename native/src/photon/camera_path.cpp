@@ -1,6 +1,7 @@
 #include "photon/camera_path.h"
 
 #include "photon/direct_lighting.h"
+#include "photon/matte.h"
 
 namespace photon {
 namespace {
@@ -65,7 +66,27 @@ void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
 
     const SurfaceInteraction si = context.accel->interaction(hit);
     const Vec3 wo = -ray.direction;
-    const ShadingPoint sp = shade(context, si, wo);
+    // Holdouts and shadow catchers are mattes to camera rays only (matte.h).
+    const Matte matte = primary ? matte_at(context, hit) : Matte::kNone;
+    if (matte == Matte::kShadowCatcher) {
+      // A see-through filter of the shadow ratio: whatever lies behind (the world, or
+      // transparency with Film > Transparent) shows darkened by the shadows cast here.
+      throughput *= shadow_catcher_ratio(context, si, wo, sampler);
+      if (is_black(throughput) || depth >= max_depth) return;
+      ray.origin = offset_ray_origin(si.p, si.ng, ray.direction);
+      ray.tmin = 0.0f;
+      ray.tmax = INFINITY;
+      continue;
+    }
+    ShadingPoint sp = shade(context, si, wo);
+    if (primary && (matte == Matte::kHoldout || sp.holdout > 0.0f)) {
+      // Cycles' integrate_surface_holdout: the held-out share of the throughput leaves the
+      // pixel's colour and alpha; a surface held out entirely ends the path.
+      const Vec3 held = matte == Matte::kHoldout ? hold_out_object(&sp) : Vec3(sp.holdout);
+      result->holdout +=
+          (throughput.x * held.x + throughput.y * held.y + throughput.z * held.z) / 3.0f;
+      if (held.x >= 1.0f && held.y >= 1.0f && held.z >= 1.0f) return;
+    }
     if (count_emission) result->direct += throughput * sp.emission;
     const Bsdf& bsdf = sp.bsdf;
     if (bsdf.empty()) return;

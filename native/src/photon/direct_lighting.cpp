@@ -119,6 +119,45 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
   return is_finite(l) ? l : Vec3(0.0f);
 }
 
+Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
+                                              const SurfaceInteraction& si, const Bsdf& bsdf,
+                                              const Vec3& wo, Sampler& sampler, Vec3* unshadowed) {
+  constexpr uint8_t kLobes = kLobeDiffuse | kLobeGlossy;
+  Vec3 shadowed(0.0f), free(0.0f);
+  auto add = [&](const Vec3& contribution, bool visible) {
+    if (!is_finite(contribution)) return;
+    free += contribution;
+    if (visible) shadowed += contribution;
+  };
+  auto light_term = [&](const LightSample& ls) {
+    float pdf_bsdf;
+    const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, kLobes, &pdf_bsdf);
+    if (!is_black(f_cos)) add(f_cos * ls.weight, unoccluded(context, si, ls));
+  };
+  const LightSet& lights = *context.lights;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    LightSample ls;
+    if (lights.sample(i, si.p, sampler.get_2d(), &ls)) light_term(ls);
+  }
+  const EmissiveMeshes* emissive = context.emissive;
+  if (emissive && !emissive->empty()) {
+    LightSample ls;
+    const float u_pick = sampler.get_1d();
+    const Vec2 u_point = sampler.get_2d();
+    if (emissive->sample(si.p, u_pick, u_point, &ls)) light_term(ls);
+  }
+  const Vec3& world = context.scene->world.color;
+  if (!is_black(world)) {
+    BsdfSample bs;
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    if (bsdf.sample(wo, u_lobe, u, kLobes, &bs))
+      add(world * bs.weight, unoccluded(context, si, bs.wi, INFINITY));
+  }
+  *unshadowed = free;
+  return shadowed;
+}
+
 Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& si,
                        Sampler& sampler) {
   // A Lambertian BSDF of albedo pi has f = 1, so its reflected radiance is the irradiance.

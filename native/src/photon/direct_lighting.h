@@ -17,6 +17,14 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
                      const Bsdf& bsdf, const Vec3& wo, Sampler& sampler,
                      uint8_t lobes = kLobeDiffuse | kLobeGlossy);
 
+// Two estimates of direct_radiance from the same samples, one with shadow rays and one without
+// (`*unshadowed`); returns the shadowed one. Light sampling only (plus a BSDF sample of the
+// world), no MIS, so the estimates differ exactly by the occluders' share: their ratio is what a
+// shadow catcher shows (matte.h).
+Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
+                                              const SurfaceInteraction& si, const Bsdf& bsdf,
+                                              const Vec3& wo, Sampler& sampler, Vec3* unshadowed);
+
 // Irradiance E at `si` (as a Lambertian surface would receive it; `si.ng`/`si.ns` face the
 // side that is lit). Multiply by albedo / pi for the reflected radiance.
 Vec3 direct_irradiance(const RenderContext& context, const SurfaceInteraction& si,

@@ -72,6 +72,9 @@ struct RadianceSample {
   Vec3 caustic;        // light that reached a diffuse surface through specular paths only
   Vec3 photon_map;     // a view of the stored photons (not light; not part of Combined)
   float alpha = 0.0f;  // 1 when the camera ray hit something that is not background
+  // Share of the sample taken out by holdouts (the path's throughput into them): the pixel's
+  // alpha is reduced by it whether or not the film is transparent, as in Cycles.
+  float holdout = 0.0f;
   Vec3 radiance() const { return direct + indirect + caustic; }
 };
 

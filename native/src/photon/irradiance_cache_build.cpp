@@ -11,6 +11,7 @@
 
 #include "photon/camera.h"
 #include "photon/camera_path.h"
+#include "photon/matte.h"
 
 namespace photon {
 namespace {
@@ -61,7 +62,17 @@ void records_at_pixel(const RenderContext& context, const IrradianceCacheSetting
     path_length += hit.t;
     const SurfaceInteraction si = context.accel->interaction(hit);
     const Vec3 wo = -ray.direction;
-    const ShadingPoint sp = shade(context, si, wo);
+    // Mattes as the camera path sees them (matte.h): the render gathers behind a shadow
+    // catcher, and nothing at a held-out surface but what its transparency lets through.
+    const Matte matte = mask == kVisibleCamera ? matte_at(context, hit) : Matte::kNone;
+    if (matte == Matte::kShadowCatcher) {
+      ray.origin = offset_ray_origin(si.p, si.ng, ray.direction);
+      ray.tmin = 0.0f;
+      ray.tmax = INFINITY;
+      continue;
+    }
+    ShadingPoint sp = shade(context, si, wo);
+    if (matte == Matte::kHoldout) hold_out_object(&sp);
     const Bsdf& bsdf = sp.bsdf;
     if (bsdf.empty()) return;
     if ((bsdf.flags() & kLobeDiffuse) && !is_black(bsdf.diffuse_reflectance())) {

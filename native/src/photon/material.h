@@ -52,6 +52,9 @@ enum class ClosureType : uint8_t {
   kTransparent,  // Transparent BSDF
   kTranslucent,  // Translucent BSDF
   kEmission,     // Emission: colour x strength
+  // Holdout: camera rays that meet it lose their weight's share of the pixel, colour and alpha
+  // (Cycles' holdout closure); to every other ray it is black.
+  kHoldout,
 };
 
 // The inputs a closure reads, by role; each closure type uses a subset (the rest keep their

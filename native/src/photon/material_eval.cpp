@@ -152,6 +152,10 @@ void add_principled(const Closure& c, float w, const InputReader& reader, Shadin
 
 void add_closure(const Closure& c, float w, const InputReader& reader, ShadingPoint* out) {
   if (c.type == ClosureType::kPrincipled) return add_principled(c, w, reader, out);
+  if (c.type == ClosureType::kHoldout) {
+    out->holdout += w;
+    return;
+  }
   const ClosureReader in{reader, c};
   const Vec3 color = in.color(Param::kColor) * w;
   if (c.type == ClosureType::kEmission) {
@@ -243,6 +247,7 @@ ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const A
     if (w >= kWeightCutoff) add_closure(c, w, in, &out);
   }
   if (!is_finite(out.emission)) out.emission = Vec3(0.0f);
+  out.holdout = std::min(out.holdout, 1.0f);  // Add Shader sums may exceed 1
   return out;
 }
 

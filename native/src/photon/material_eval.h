@@ -12,6 +12,7 @@ namespace photon {
 struct ShadingPoint {
   Bsdf bsdf;
   Vec3 emission{0.0f};  // emitted radiance, both sides (as in Cycles)
+  float holdout = 0.0f;  // summed weight of Holdout closures, in [0, 1]
 };
 
 // The Blender socket name of a param, for warnings ("Base Color").

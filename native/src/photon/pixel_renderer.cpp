@@ -67,8 +67,10 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
           continue;
         }
         sums[i] += radiance;
-        // Without Film > Transparent the background is opaque too, as in Blender's engines.
-        alphas[i] += s.transparent_background ? r.alpha : 1.0f;
+        // Without Film > Transparent the background is opaque too, as in Blender's engines;
+        // holdouts make the pixel transparent either way (Cycles).
+        const float coverage = s.transparent_background ? r.alpha : 1.0f;
+        alphas[i] += r.holdout > 0.0f ? std::max(coverage - r.holdout, 0.0f) : coverage;
         if (passes) {
           Vec3* p = &pass_sums[i * kPassCount];
           p[0] += r.direct;

@@ -50,6 +50,10 @@ struct Instance {
   Transform object_to_world;
   std::vector<int32_t> slot_materials;  // material slot -> scene material index
   uint32_t visibility = kVisibleAll;
+  // Mattes for compositing, seen only by camera rays (and rays through Transparent BSDFs after
+  // them); every other ray meets the object as usual (camera_path.cpp, matte.h).
+  bool holdout = false;         // Blender's Object holdout: the pixel becomes transparent
+  bool shadow_catcher = false;  // only the shadows cast on it show, as alpha or over the world
 };
 
 enum class LightType : uint8_t { kPoint, kSpot, kSun, kArea };
