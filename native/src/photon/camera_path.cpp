@@ -35,9 +35,9 @@ uint32_t visibility_after(uint8_t flags) {
   return kVisibleGlossy;
 }
 
-void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
-                       const CameraHit& first, Sampler& sampler, const DiffuseShader& shade_diffuse,
-                       RadianceSample* result, uint8_t light_sampled) {
+void trace_camera_path(const RenderContext& context, const Ray& camera_ray, const CameraHit& first,
+                       Sampler& sampler, const DiffuseShader& shade_diffuse, RadianceSample* result,
+                       uint8_t light_sampled) {
   const int max_depth = context.settings->max_depth;
   Ray ray = camera_ray;
   uint32_t mask = kVisibleCamera;
@@ -50,16 +50,16 @@ void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
     const bool found = depth == 0 ? first.found : context.accel->intersect(ray, mask, &hit);
     if (depth == 0 && found) hit = first.hit;
     const bool primary = see_through && mask == kVisibleCamera;
-    if (add_escaped_or_lamp(context, ray, found, hit.t, mask, throughput, count_emission,
-                            primary, &result->direct)) {
+    if (add_escaped_or_lamp(context, ray, found, hit.t, mask, throughput, count_emission, primary,
+                            &result->direct)) {
       if (depth == 0) result->alpha = 1.0f;
       return;
     }
     if (!found) {
       // Alpha: what the camera sees of the background through transparent surfaces.
       if (primary && depth > 0)
-        result->alpha = std::clamp(1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f,
-                                   0.0f, 1.0f);
+        result->alpha =
+            std::clamp(1.0f - (throughput.x + throughput.y + throughput.z) / 3.0f, 0.0f, 1.0f);
       return;
     }
     if (depth == 0) result->alpha = 1.0f;
@@ -73,7 +73,7 @@ void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
       // transparency with Film > Transparent) shows darkened by the shadows cast here.
       throughput *= shadow_catcher_ratio(context, si, wo, sampler);
       if (is_black(throughput) || depth >= max_depth) return;
-      ray.origin = offset_ray_origin(si.p, si.ng, ray.direction);
+      ray.origin = offset_ray_origin(si.p, si.ng, ray.direction, context.accel->length_scale());
       ray.tmin = 0.0f;
       ray.tmax = INFINITY;
       continue;
@@ -110,8 +110,8 @@ void trace_camera_path(const RenderContext& context, const Ray& camera_ray,
       if (!(sampler.get_1d() < q)) return;
       throughput = throughput / q;
     }
-    const bool transparent = s.is_delta() && !(s.flags & kLobeReflection) &&
-                             dot(s.wi, ray.direction) > 0.9999f;
+    const bool transparent =
+        s.is_delta() && !(s.flags & kLobeReflection) && dot(s.wi, ray.direction) > 0.9999f;
     see_through = see_through && transparent;
     count_emission = s.is_delta();
     after_glossy = after_glossy || !s.is_delta();

@@ -66,7 +66,7 @@ void records_at_pixel(const RenderContext& context, const IrradianceCacheSetting
     // catcher, and nothing at a held-out surface but what its transparency lets through.
     const Matte matte = mask == kVisibleCamera ? matte_at(context, hit) : Matte::kNone;
     if (matte == Matte::kShadowCatcher) {
-      ray.origin = offset_ray_origin(si.p, si.ng, ray.direction);
+      ray.origin = offset_ray_origin(si.p, si.ng, ray.direction, context.accel->length_scale());
       ray.tmin = 0.0f;
       ray.tmax = INFINITY;
       continue;
@@ -137,7 +137,8 @@ IrradianceCache build_irradiance_cache(const RenderContext& context,
       for (size_t i = range.begin(); i != range.end(); ++i) {
         if (control.cancelled()) break;
         const int px = std::min(static_cast<int>(i % nx) * spacing + spacing / 2, s.full_width - 1);
-        const int py = std::min(static_cast<int>(i / nx) * spacing + spacing / 2, s.full_height - 1);
+        const int py =
+            std::min(static_cast<int>(i / nx) * spacing + spacing / 2, s.full_height - 1);
         records_at_pixel(context, settings, gather, cache, level, px, py, &found[i], &tested);
       }
       candidates += tested;
@@ -151,8 +152,7 @@ IrradianceCache build_irradiance_cache(const RenderContext& context,
   if (stats) {
     stats->candidates = candidates.load();
     stats->gather_rays = static_cast<uint64_t>(cache.size()) * settings.rays;
-    stats->seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   }
   return cache;
 }
