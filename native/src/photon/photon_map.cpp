@@ -230,6 +230,23 @@ Vec3 PhotonMap::radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float 
   return sum * (kInvPi / (norm * kPi * r2));
 }
 
+float PhotonMap::median_kth_distance(size_t k, uint8_t flag_mask, size_t samples) const {
+  if (photons_.empty() || k == 0 || samples == 0) return 0.0f;
+  // The tree is stored in order (each range's median is its node), so evenly spaced indices
+  // are spread over the photons' extent.
+  const size_t step = std::max<size_t>(1, photons_.size() / samples);
+  std::vector<float> distances;
+  std::vector<PhotonNeighbor> scratch;
+  for (size_t i = step / 2; i < photons_.size(); i += step) {
+    if (!(photons_[i].flags & flag_mask)) continue;
+    k_nearest(photons_[i].pos(), k, INFINITY, flag_mask, &scratch);
+    if (scratch.size() == k) distances.push_back(std::sqrt(scratch.front().distance_squared));
+  }
+  if (distances.empty()) return 0.0f;
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return distances[distances.size() / 2];
+}
+
 Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask) {
   double s[3] = {0, 0, 0};
   for (const Photon& ph : photons) {
