@@ -148,7 +148,8 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
                          f"{shown}")
 
     sync_camera.export_camera(native_scene, scene, depsgraph, reporter)
-    world = sync_materials.world_color(scene.world, reporter)
+    world = sync_materials.world_color(scene.world, reporter,
+                                       getattr(native, "MAX_EMISSION", None))
     native_scene.set_world(world)
 
     if stats.triangles == 0:

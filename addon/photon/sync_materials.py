@@ -10,6 +10,8 @@ which Scene.add_material parses. Unsupported nodes are reported once per materia
 fall back to their nearest meaning (a shader: diffuse of its colour), never to silent black.
 """
 
+import math
+
 from . import sync_graph, sync_nodes
 from .sync_inputs import (DEFAULT_COLOR, MaterialContext, Param, clamp_constant, read_input,
                           read_normal_map)
@@ -227,12 +229,39 @@ class MaterialTable:
         self.textures.release()
 
 
-def world_color(world, reporter):
-    """Background radiance (colour x strength) of the world."""
+def _checked_world(name, color, strength, reporter, max_emission):
+    """colour x strength with NaN read as 0, negatives clamped to 0 and the product to
+    `max_emission` (hue kept), each reported once."""
+    if math.isnan(strength):
+        reporter.warning(f"World '{name}': the Background strength is NaN; using 0 (a black "
+                         f"world)")
+        strength = 0.0
+    elif strength < 0.0:
+        reporter.warning(f"World '{name}': the Background strength {strength:g} is negative; "
+                         f"clamped to 0 (a black world)")
+        strength = 0.0
+    if not all(c >= 0.0 for c in color):  # NaN fails the test too
+        reporter.warning(f"World '{name}': the background colour has NaN or negative "
+                         f"components; they are read as 0")
+        color = [c if c >= 0.0 else 0.0 for c in color]
+    radiance = [c * strength if c > 0.0 else 0.0 for c in color]  # 0 x inf is not NaN here
+    brightest = max(radiance)
+    if max_emission is not None and brightest > max_emission:
+        scale = max_emission / brightest if math.isfinite(brightest) else 0.0
+        radiance = ([min(r * scale, max_emission) for r in radiance] if scale > 0.0 else
+                    [max_emission if math.isinf(r) else 0.0 for r in radiance])
+        reporter.warning(f"World '{name}': background colour x strength {brightest:.3g} is "
+                         f"more than Photon can render; clamped to {max_emission:.3g}")
+    return radiance
+
+
+def world_color(world, reporter, max_emission=None):
+    """Background radiance (colour x strength) of the world; at most `max_emission`."""
     if world is None:
         return [0.0, 0.0, 0.0]
     if not world.use_nodes or world.node_tree is None:
-        return [float(c) for c in world.color]
+        return _checked_world(world.name, [float(c) for c in world.color], 1.0, reporter,
+                              max_emission)
     output = sync_nodes.output_node(world.node_tree, 'OUTPUT_WORLD')
     src = sync_nodes.source(output.inputs.get("Surface")) if output else None
     node = src.node if src is not None else None
@@ -249,4 +278,4 @@ def world_color(world, reporter):
                          f"its colour value")
     color = [float(color_socket.default_value[i]) for i in range(3)]
     strength = float(node.inputs.get("Strength").default_value)
-    return [c * strength for c in color]
+    return _checked_world(world.name, color, strength, reporter, max_emission)

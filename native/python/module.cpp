@@ -317,8 +317,13 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "set_world",
           [](Scene& scene, const std::vector<float>& color) {
-            Vec3 c = max(vec3_from(color, "color"), Vec3(0.0f));
-            scene.world.color = is_finite(c) ? c : Vec3(0.0f);
+            const Vec3 c = vec3_from(color, "color");
+            const ParamRange r = emitter_range();
+            // Non-finite components read as 0 (the add-on reports them).
+            auto clamp = [&r](float v) {
+              return std::isfinite(v) ? std::clamp(v, r.lo, r.hi) : 0.0f;
+            };
+            scene.world.color = {clamp(c.x), clamp(c.y), clamp(c.z)};
           },
           py::arg("color"))
       .def_property_readonly("mesh_count", [](const Scene& s) { return s.meshes.size(); })
@@ -411,6 +416,8 @@ PYBIND11_MODULE(_photon, m) {
 
   photon_python::register_material_functions(m);
 
+  // Largest lamp power (W, a sun's W/m^2) and world radiance rendered; larger ones are clamped.
+  m.attr("MAX_EMISSION") = emitter_range().hi;
   m.attr("VISIBLE_CAMERA") = static_cast<uint32_t>(kVisibleCamera);
   m.attr("VISIBLE_DIFFUSE") = static_cast<uint32_t>(kVisibleDiffuse);
   m.attr("VISIBLE_GLOSSY") = static_cast<uint32_t>(kVisibleGlossy);

@@ -1,5 +1,7 @@
 #include "photon/lights.h"
 
+#include <cstdio>
+
 #include "photon/sampling.h"
 
 namespace photon {
@@ -27,8 +29,22 @@ LightSet::LightSet(const std::vector<Light>& lights, std::vector<std::string>* w
       warn("Light '" + l.name + "' has non-finite settings or transform; skipped");
       continue;
     }
-    const Vec3 flux_color = max(l.color, Vec3(0.0f)) * std::max(l.power, 0.0f);
-    if (is_black(flux_color)) continue;  // zero power: contributes nothing, costs nothing
+    // In double: colour x power can overflow a float before it is clamped.
+    const Vec3 color = max(l.color, Vec3(0.0f));
+    double power = std::max(l.power, 0.0f);
+    const double brightest = static_cast<double>(max_component(color)) * power;
+    if (!(brightest > 0.0)) continue;  // zero power: contributes nothing, costs nothing
+    if (brightest > emitter_range().hi) {
+      // Scaled, not clipped per channel, so the light keeps its colour.
+      power *= emitter_range().hi / brightest;
+      const char* unit = l.type == LightType::kSun ? "W/m^2" : "W";
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    " %.3g %s is more than Photon can render; clamped to %.3g %s", l.power, unit,
+                    power, unit);
+      warn("Light '" + l.name + "': " + (l.type == LightType::kSun ? "strength" : "power") + text);
+    }
+    const Vec3 flux_color = color * static_cast<float>(power);
 
     Prepared p{};
     p.type = l.type;
@@ -43,6 +59,11 @@ LightSet::LightSet(const std::vector<Light>& lights, std::vector<std::string>* w
         p.intensity = flux_color * kInv4Pi;
         p.area = kPi * p.radius * p.radius;
         p.radiance = p.area > 0.0f ? p.intensity / p.area : Vec3(0.0f);
+        if (!is_finite(p.radiance) || (p.radius > 0.0f && !(p.area > 0.0f))) {
+          // A radius whose disc area under- or overflows a float: a point for every ray.
+          p.radius = p.area = 0.0f;
+          p.radiance = Vec3(0.0f);
+        }
         // Cycles: cos_half_spot_angle = cos(spot_size / 2), smooth = (1 - cos) * blend.
         const float half = std::clamp(l.spot_size, 1e-4f, kPi) * 0.5f;
         p.cos_half_spot = std::cos(half);

@@ -54,6 +54,10 @@ ParamRange param_range(ClosureType type, Param p) {
   }
 }
 
+ParamRange emitter_range() {
+  return {0.0f, kHuge * kHuge};
+}
+
 void sanitize_material(Material* material, size_t texture_count) {
   static const auto kDefaults = Closure::default_params();
   for (Closure& c : material->closures) {

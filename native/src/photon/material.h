@@ -127,6 +127,14 @@ struct ParamRange {
 };
 ParamRange param_range(ClosureType type, Param p);
 
+// The range of a lamp's power (W; a sun's strength in W/m^2, both times its colour) and of the
+// world's radiance: up to the brightest emission a material may have (colour x strength, each
+// bounded by param_range). The bound keeps the sums a light enters finite: the largest factor a
+// lamp's size adds to its radiance is 0.25 / area <= 2.5e11 for the smallest area light kept
+// (1e-12 m^2) and 1 / (pi tan^2(half angle)) <= 3.2e11 for the narrowest sun, so lamp radiance
+// stays under 1e24 and a pixel's sum of 2^20 samples under 1e31 (FLT_MAX is 3.4e38).
+ParamRange emitter_range();
+
 // Makes a material safe to render, whoever built it (the add-on through the Python binding, the
 // CLI, tests): constants outside their Param's range are clamped and non-finite ones replaced by
 // Blender's default; texture indices outside [0, texture_count) become the default constant (a

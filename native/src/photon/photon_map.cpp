@@ -287,11 +287,28 @@ bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq
   const float c = dot(nq, n);
   if (!(c >= kSurfaceMinCos)) return false;
   const float sin_half = std::sqrt(std::max(0.0f, 0.5f * (1.0f - c)));
-  // A small absolute allowance keeps points on the plane itself when they are within float
-  // round-off of p.
+  // An allowance relative to |p| keeps points on the plane itself when they are within float
+  // round-off of p (relative, so that a scene a micrometre across is not one surface).
   const float height = std::abs(dot(q - p, n));
   return height <= (sin_half + kSurfaceSlope) * distance +
-                       1e-6f * (1.0f + std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)}));
+                       1e-6f * std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+}
+
+float PhotonMap::median_kth_distance(size_t k, uint8_t flag_mask, size_t samples) const {
+  if (photons_.empty() || k == 0 || samples == 0) return 0.0f;
+  // The tree is stored in order (each range's median is its node), so evenly spaced indices
+  // are spread over the photons' extent.
+  const size_t step = std::max<size_t>(1, photons_.size() / samples);
+  std::vector<float> distances;
+  std::vector<PhotonNeighbor> scratch;
+  for (size_t i = step / 2; i < photons_.size(); i += step) {
+    if (!(photons_[i].path_flags() & flag_mask)) continue;
+    k_nearest(photons_[i].pos(), k, INFINITY, flag_mask, &scratch);
+    if (scratch.size() == k) distances.push_back(std::sqrt(scratch.front().distance_squared));
+  }
+  if (distances.empty()) return 0.0f;
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return distances[distances.size() / 2];
 }
 
 Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask) {

@@ -81,6 +81,11 @@ class PhotonMap {
   Vec3 radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
                          uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const;
 
+  // Median distance from a stored photon to its k-th nearest photon (itself included), over up
+  // to `samples` photons spread through the map: the radius of the disc a k-nearest estimate
+  // covers at a typical photon. 0 when the map holds fewer than k photons of `flag_mask`.
+  float median_kth_distance(size_t k, uint8_t flag_mask, size_t samples = 256) const;
+
  private:
   void build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel);
   std::vector<Photon> photons_;
