@@ -85,8 +85,8 @@ TEST(LightLimits, MedianKthDistanceMatchesTheGridDensity) {
   std::vector<Photon> photons;
   for (int j = 0; j < 200; ++j)
     for (int i = 0; i < 200; ++i)
-      photons.push_back(
-          Photon::make(Vec3(i * h, j * h, 0.0f), Vec3(0, 0, -1), Vec3(1e-3f), kPhotonIndirect));
+      photons.push_back(Photon::make(Vec3(i * h, j * h, 0.0f), Vec3(0, 0, -1), Vec3(1e-3f),
+                                     kPhotonIndirect, Vec3(0, 0, 1)));
   const PhotonMap map(std::move(photons));
   for (size_t k : {10u, 100u}) {
     const float expected = h * std::sqrt(static_cast<float>(k) / 3.14159265f);
