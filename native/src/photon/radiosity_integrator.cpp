@@ -5,6 +5,7 @@
 #include "photon/camera_path.h"
 #include "photon/material_eval.h"
 #include "photon/radiosity_material.h"
+#include "photon/radiosity_refine.h"
 #include "photon/radiosity_solver.h"
 
 namespace photon {
@@ -27,15 +28,6 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
       std::isfinite(s.radiosity_patch_size) ? std::max(s.radiosity_patch_size, 0.0f) : 0.0f;
   // The automatic patch size keeps enough rays per patch (see RadiosityMeshSettings).
   mesh_settings.rays = std::clamp<uint64_t>(s.radiosity_rays, kMinRays, kMaxRays);
-  std::vector<std::string> warnings;
-  mesh_ =
-      RadiosityMesh(*context.scene, *context.accel, mesh_settings, is_radiosity_surface, &warnings);
-  if (control.warn)
-    for (const std::string& w : warnings) control.warn(w);
-  const double mesh_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (control.cancelled()) return;
-
   RadiositySolveSettings solve;
   solve.rays = std::clamp<uint64_t>(s.radiosity_rays, kMinRays, kMaxRays);
   solve.threshold = std::isfinite(s.radiosity_threshold)
@@ -43,9 +35,19 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
                         : 0.01f;
   solve.iterations = std::clamp(s.radiosity_iterations, 0, kMaxIterations);
   solve.seed = s.seed;
-  RadiositySolveStats solved;
-  std::vector<RadiosityPower> power = solve_radiosity(context, mesh_, solve, control, &solved);
+  // Meshing, a first solve, refinement where the light changes, and the final solve.
+  std::vector<std::string> warnings;
+  RadiosityRefined refined = solve_radiosity_refined(context, mesh_settings, solve,
+                                                     RadiosityRefineSettings{}, control, &warnings);
+  if (control.warn)
+    for (const std::string& w : warnings) control.warn(w);
   if (control.cancelled()) return;
+  mesh_ = std::move(refined.mesh);
+  const RadiositySolveStats& solved = refined.stats;
+  std::vector<RadiosityPower>& power = refined.power;
+  const double mesh_seconds =
+      std::max(0.0, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                        solved.seconds);
   if (solved.stopped_early && control.warn)
     control.warn("Radiosity was stopped early: rendering the solution of " +
                  std::to_string(solved.incremental_iterations) + " shooting and " +
@@ -59,6 +61,8 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
       {"radiosity_elements", static_cast<double>(mesh_.element_count())},
       {"radiosity_patches", static_cast<double>(mesh_.patch_count())},
       {"radiosity_clusters", static_cast<double>(mesh_.cluster_count())},
+      {"radiosity_split_patches", static_cast<double>(mesh_.split_count())},
+      {"radiosity_first_patches", static_cast<double>(refined.first_patches)},
       {"radiosity_vertices", static_cast<double>(mesh_.vertex_count())},
       {"radiosity_patch_size", mesh_.patch_size()},
       {"radiosity_area", mesh_.total_area()},

@@ -262,9 +262,35 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
     patch_size_ = size;
   }
 
+  // Local refinement: the split patches (indices of the unrefined mesh, whose numbering the loop
+  // below reproduces) and the instances that hold one of them.
+  std::vector<uint32_t> split;
+  if (settings.split_patches) {
+    split = *settings.split_patches;
+    std::sort(split.begin(), split.end());
+    split.erase(std::unique(split.begin(), split.end()), split.end());
+  }
+  std::vector<uint8_t> instance_refined(accel.instance_count(), 0);
+  if (!split.empty()) {
+    std::unordered_map<ClusterKey, uint32_t, ClusterKeyHash> clusters;
+    uint32_t base = 0;
+    for (const TriangleInput& in : input) {
+      if (!in.meshed) continue;
+      if (is_clustered(in, patch_size_, sizing)) {
+        if (clusters.try_emplace(cluster_key(in, patch_size_), base).second) ++base;
+        continue;
+      }
+      const uint32_t n = subdivisions(in.longest, patch_size_, max_sub);
+      const auto it = std::lower_bound(split.begin(), split.end(), base);
+      if (it != split.end() && *it < base + n * n) instance_refined[in.instance] = 1;
+      base += n * n;
+    }
+  }
+
   // Triangles and elements; every element of a subdivided triangle is a patch, clustered
   // triangles share their cluster's patch.
   triangles_.resize(input.size());
+  uint32_t base_patches = 0;  // patch numbering without refinement
   uint32_t lattice_total = 0;
   std::unordered_map<ClusterKey, uint32_t, ClusterKeyHash> cluster_patch;
   uint32_t patches = 0;
@@ -276,7 +302,10 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
     rt.e2 = in.world[2] - in.world[0];
     rt.normal = normalize(cross(rt.e1, rt.e2));
     if (!in.meshed) continue;
-    const uint32_t n = subdivisions(in.longest, patch_size_, max_sub);
+    const uint32_t coarse = subdivisions(in.longest, patch_size_, max_sub);
+    const bool clustered = is_clustered(in, patch_size_, sizing);
+    const bool fine = !clustered && instance_refined[in.instance];
+    const uint32_t n = fine ? 2 * coarse : coarse;
     rt.n = n;
     rt.element_area = in.area / static_cast<float>(n * n);
     rt.first_element = static_cast<uint32_t>(elements_.size());
@@ -292,13 +321,36 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
           elements_[rt.first_element + subdivision_element(n, i, j, false)] = {
               static_cast<uint32_t>(t), static_cast<uint16_t>(i), static_cast<uint16_t>(j), false};
       }
-    if (is_clustered(in, patch_size_, sizing)) {
+    if (clustered) {
       rt.clustered = true;
       const auto found = cluster_patch.try_emplace(cluster_key(in, patch_size_), patches);
-      if (found.second) ++patches;
+      if (found.second) ++patches, ++base_patches;
       element_patch_[rt.first_element] = found.first->second;
-    } else {
+    } else if (!fine) {
       for (uint32_t k = 0; k < n * n; ++k) element_patch_[rt.first_element + k] = patches++;
+      base_patches += n * n;
+    } else {
+      // Coarse element (i, j) in index order (upward ones, then downward) and its 4 elements on
+      // the finer lattice: the 3 at its corners and the middle one, turned the other way.
+      for (const bool up : {true, false})
+        for (uint32_t i = 0; i < coarse; ++i)
+          for (uint32_t j = 0; i + j + (up ? 0 : 1) < coarse; ++j) {
+            const uint32_t a = 2 * i, b = 2 * j;
+            const uint32_t fine_elements[4] = {up ? subdivision_element(n, a, b, true)
+                                                  : subdivision_element(n, a + 1, b + 1, false),
+                                               up ? subdivision_element(n, a + 1, b, true)
+                                                  : subdivision_element(n, a, b + 1, false),
+                                               up ? subdivision_element(n, a, b + 1, true)
+                                                  : subdivision_element(n, a + 1, b, false),
+                                               up ? subdivision_element(n, a, b, false)
+                                                  : subdivision_element(n, a + 1, b + 1, true)};
+            const bool split_here = std::binary_search(split.begin(), split.end(), base_patches++);
+            if (split_here) ++split_count_;
+            for (int k = 0; k < 4; ++k)
+              element_patch_[rt.first_element + fine_elements[k]] =
+                  split_here ? patches++ : patches;
+            if (!split_here) ++patches;
+          }
     }
   }
   cluster_count_ = cluster_patch.size();

@@ -66,6 +66,11 @@ struct RadiosityMeshSettings {
   size_t min_patches = 64;  // the ray cap never goes below this
   // Triangles whose longest edge is below this fraction of the patch size are clustered.
   float cluster_fraction = 0.5f;
+  // Local refinement (Cohen et al. 1986; Cohen & Wallace 1993, ch. 8): patches, by their index
+  // in the mesh these same settings build without it, to split into 2 x 2. The split patches'
+  // instances are meshed on the twice finer lattice (so mixed patch sizes share one conforming
+  // element mesh, without T-junctions), and every other patch there owns its 4 elements.
+  const std::vector<uint32_t>* split_patches = nullptr;
 };
 
 class RadiosityMesh {
@@ -80,6 +85,7 @@ class RadiosityMesh {
   size_t element_count() const { return elements_.size(); }
   size_t patch_count() const { return patch_area_.size(); }
   size_t cluster_count() const { return cluster_count_; }
+  size_t split_count() const { return split_count_; }  // patches split by local refinement
   size_t vertex_count() const { return vertex_count_; }
   size_t triangle_count() const { return triangles_.size(); }
   float patch_size() const { return patch_size_; }
@@ -132,6 +138,7 @@ class RadiosityMesh {
   std::vector<Vec3> patch_centroid_, patch_normal_;
   std::vector<uint32_t> patch_instance_;
   size_t cluster_count_ = 0;
+  size_t split_count_ = 0;
   size_t vertex_count_ = 0;
   float patch_size_ = 0.0f;
   double total_area_ = 0.0;

@@ -53,6 +53,7 @@ struct ChunkOutput {
 // The reflected power received by every element side in one step, plus where the rest went.
 struct StepResult {
   std::vector<DVec3> received[3];  // by Kind, per slot
+  std::vector<uint32_t> hits;      // deposits per slot
   DVec3 absorbed, absorbed_specular, escaped, shot;
   uint64_t rays = 0;
   bool complete = false;
@@ -176,6 +177,7 @@ StepResult shoot(const RenderContext& context, const RadiosityMesh& mesh,
   StepResult result;
   const size_t slots = 2 * mesh.patch_count();
   for (auto& r : result.received) r.assign(slots, DVec3());
+  result.hits.assign(slots, 0);
   const uint64_t total = plan.light_rays + plan.element_rays;
   const uint64_t chunks = (total + kChunkRays - 1) / kChunkRays;
   std::vector<ChunkOutput> outputs(kBatchChunks);
@@ -190,7 +192,10 @@ StepResult shoot(const RenderContext& context, const RadiosityMesh& mesh,
     });
     for (uint64_t c = 0; c < count; ++c) {
       const ChunkOutput& out = outputs[c];
-      for (const Deposit& d : out.deposits) result.received[d.kind][d.slot].add(d.power);
+      for (const Deposit& d : out.deposits) {
+        result.received[d.kind][d.slot].add(d.power);
+        ++result.hits[d.slot];
+      }
       result.absorbed.add(out.absorbed);
       result.absorbed_specular.add(out.absorbed_specular);
       result.escaped.add(out.escaped);
@@ -283,6 +288,10 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const 
 
   // ---- Phase 1: incremental shooting, first from the lights themselves. ----
   std::vector<Vec3> unshot(slots);
+  stats.hits.assign(slots, 0);
+  auto count_hits = [&](const StepResult& r) {
+    for (size_t s = 0; s < slots; ++s) stats.hits[s] += r.hits[s];
+  };
   double unshot_total = emitted;
   double rays_per_watt = 0.0;
   DVec3 last_shot;  // power shot by the last completed step, per channel
@@ -316,6 +325,7 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const 
     stats.rays += r.rays;
     ++stats.incremental_iterations;
     accumulate_balance(r);
+    count_hits(r);
     unshot_total = 0.0;
     for (size_t s = 0; s < slots; ++s) {
       const Vec3 d = r.received[kDirect][s].to_float(), c = r.received[kCaustic][s].to_float(),
@@ -349,6 +359,8 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const 
   std::vector<DVec3> average[3];
   for (auto& a : average) a.assign(slots, DVec3());
   int done = 0;
+  const std::vector<uint32_t> shooting_hits = stats.hits;
+  std::fill(stats.hits.begin(), stats.hits.end(), 0u);
   for (int it = 0; it < iterations; ++it) {
     StepPlan plan;
     plan.seed = step_seed(2, it);
@@ -371,6 +383,7 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const 
     rays_done += r.rays;
     stats.rays += r.rays;
     ++done;
+    count_hits(r);
     for (size_t s = 0; s < slots; ++s) {
       current[s] = Vec3(0.0f);
       for (int k = 0; k < 3; ++k) {
@@ -382,6 +395,7 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const 
   stats.regular_iterations = done;
   if (control.cancelled()) return finish({});
   stats.stopped_early = done < iterations;
+  if (done == 0) stats.hits = shooting_hits;
   if (done > 0) {
     const double inv = 1.0 / done;
     for (size_t s = 0; s < slots; ++s)
