@@ -2,6 +2,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <unordered_map>
@@ -97,6 +98,34 @@ RadiosityField::RadiosityField(const RadiosityMesh& mesh,
     vertex_[2 * v] = scaled(vertex_[2 * v], inv);
     vertex_[2 * v + 1] = scaled(vertex_[2 * v + 1], inv);
   }
+  // Local refinement leaves T-vertices: corners of small elements inside the edge of a larger
+  // neighbour. Each takes the value interpolated along that edge, so both sides of the edge
+  // interpolate the same line and the shading has no cracks (Cohen & Wallace 1993, ch. 8, on
+  // T-vertices); larger elements first, as their edges' ends may be T-vertices of larger ones.
+  std::vector<std::pair<uint32_t, uint32_t>> coarse;  // (levels below the lattice, element)
+  for (uint32_t e = 0; e < elements; ++e)
+    if (mesh.element_shift(e) > 0) coarse.push_back({mesh.element_shift(e), e});
+  std::sort(coarse.begin(), coarse.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  std::vector<uint32_t> edge;
+  std::vector<uint8_t> edge_flip;
+  for (const auto& c : coarse)
+    for (int k = 0; k < 3; ++k) {
+      mesh.edge_vertices(c.second, k, &edge, &edge_flip);
+      const size_t span = edge.size() - 1;
+      for (uint32_t side = 0; side < 2; ++side) {
+        const RadiosityPower a = vertex_[2 * edge[0] + (side ^ edge_flip[0])];
+        const RadiosityPower b = vertex_[2 * edge[span] + (side ^ edge_flip[span])];
+        for (size_t s = 1; s < span; ++s) {
+          const float t = static_cast<float>(s) / static_cast<float>(span);
+          RadiosityPower v = scaled(a, 1.0f - t);
+          add(&v, scaled(b, t));
+          vertex_[2 * edge[s] + (side ^ edge_flip[s])] = v;
+        }
+      }
+    }
+
   const float radius = kKernelRadius * mesh.patch_size();
   if (smooth_vertices.empty() || !(radius > 0.0f) || !std::isfinite(radius)) return;
 

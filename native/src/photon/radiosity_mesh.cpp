@@ -262,35 +262,27 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
     patch_size_ = size;
   }
 
-  // Local refinement: the split patches (indices of the unrefined mesh, whose numbering the loop
-  // below reproduces) and the instances that hold one of them.
-  std::vector<uint32_t> split;
-  if (settings.split_patches) {
-    split = *settings.split_patches;
+  // Local refinement: the split cells and the levels of each instance (as deep as its deepest
+  // split, so the instance's triangles share one lattice and their edges weld).
+  std::vector<RadiosityCell> split;
+  std::vector<uint8_t> instance_levels(accel.instance_count(), 0);
+  const uint32_t max_levels = std::min<uint32_t>(settings.max_levels, 5);
+  if (settings.split_cells) {
+    for (const RadiosityCell& c : *settings.split_cells) {
+      if (c.triangle >= input.size() || c.level >= max_levels) continue;
+      const TriangleInput& in = input[c.triangle];
+      if (!in.meshed || is_clustered(in, patch_size_, sizing)) continue;
+      split.push_back(c);
+      uint8_t& levels = instance_levels[in.instance];
+      levels = std::max<uint8_t>(levels, static_cast<uint8_t>(c.level + 1));
+    }
     std::sort(split.begin(), split.end());
     split.erase(std::unique(split.begin(), split.end()), split.end());
-  }
-  std::vector<uint8_t> instance_refined(accel.instance_count(), 0);
-  if (!split.empty()) {
-    std::unordered_map<ClusterKey, uint32_t, ClusterKeyHash> clusters;
-    uint32_t base = 0;
-    for (const TriangleInput& in : input) {
-      if (!in.meshed) continue;
-      if (is_clustered(in, patch_size_, sizing)) {
-        if (clusters.try_emplace(cluster_key(in, patch_size_), base).second) ++base;
-        continue;
-      }
-      const uint32_t n = subdivisions(in.longest, patch_size_, max_sub);
-      const auto it = std::lower_bound(split.begin(), split.end(), base);
-      if (it != split.end() && *it < base + n * n) instance_refined[in.instance] = 1;
-      base += n * n;
-    }
   }
 
   // Triangles and elements; every element of a subdivided triangle is a patch, clustered
   // triangles share their cluster's patch.
   triangles_.resize(input.size());
-  uint32_t base_patches = 0;  // patch numbering without refinement
   uint32_t lattice_total = 0;
   std::unordered_map<ClusterKey, uint32_t, ClusterKeyHash> cluster_patch;
   uint32_t patches = 0;
@@ -304,53 +296,97 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
     if (!in.meshed) continue;
     const uint32_t coarse = subdivisions(in.longest, patch_size_, max_sub);
     const bool clustered = is_clustered(in, patch_size_, sizing);
-    const bool fine = !clustered && instance_refined[in.instance];
-    const uint32_t n = fine ? 2 * coarse : coarse;
+    const uint32_t levels = clustered ? 0u : instance_levels[in.instance];
+    const uint32_t n = coarse << levels;
     rt.n = n;
+    rt.levels = static_cast<uint8_t>(levels);
     rt.element_area = in.area / static_cast<float>(n * n);
     rt.first_element = static_cast<uint32_t>(elements_.size());
     rt.first_lattice = lattice_total;
     lattice_total += (n + 1) * (n + 2) / 2;
+    if (levels > 0) {
+      // Leaf cells of the hierarchy under each coarse cell (in index order), depth first.
+      rt.first_cell = static_cast<uint32_t>(cell_element_.size());
+      cell_element_.resize(cell_element_.size() + static_cast<size_t>(n) * n);
+      std::vector<RadiosityCell> stack;
+      for (const bool up : {false, true})  // popped in reverse: upward cells first
+        for (uint32_t i = coarse; i-- > 0;)
+          for (uint32_t j = coarse; j-- > 0;)
+            if (i + j + (up ? 0u : 1u) < coarse)
+              stack.push_back({static_cast<uint32_t>(t), static_cast<uint16_t>(i),
+                               static_cast<uint16_t>(j), 0, up});
+      while (!stack.empty()) {
+        const RadiosityCell c = stack.back();
+        stack.pop_back();
+        const uint16_t a = static_cast<uint16_t>(2 * c.i), b = static_cast<uint16_t>(2 * c.j);
+        const uint8_t l = static_cast<uint8_t>(c.level + 1);
+        if (std::binary_search(split.begin(), split.end(), c)) {
+          ++split_count_;
+          // Children: the three at the corners and the middle one, turned the other way; pushed
+          // in reverse so they come out in this order.
+          const RadiosityCell children[4] = {
+              c.up ? RadiosityCell{c.triangle, a, b, l, true}
+                   : RadiosityCell{c.triangle, static_cast<uint16_t>(a + 1),
+                                   static_cast<uint16_t>(b + 1), l, false},
+              c.up ? RadiosityCell{c.triangle, static_cast<uint16_t>(a + 1), b, l, true}
+                   : RadiosityCell{c.triangle, a, static_cast<uint16_t>(b + 1), l, false},
+              c.up ? RadiosityCell{c.triangle, a, static_cast<uint16_t>(b + 1), l, true}
+                   : RadiosityCell{c.triangle, static_cast<uint16_t>(a + 1), b, l, false},
+              c.up ? RadiosityCell{c.triangle, a, b, l, false}
+                   : RadiosityCell{c.triangle, static_cast<uint16_t>(a + 1),
+                                   static_cast<uint16_t>(b + 1), l, true}};
+          for (int k = 3; k >= 0; --k) stack.push_back(children[k]);
+          continue;
+        }
+        const uint32_t e = static_cast<uint32_t>(elements_.size());
+        elements_.push_back({c.triangle, c.i, c.j, c.level, c.up});
+        element_patch_.push_back(patches++);
+        // The lattice cells it covers: its cell refined down to the lattice.
+        std::vector<RadiosityCell> cover = {c};
+        while (!cover.empty()) {
+          const RadiosityCell d = cover.back();
+          cover.pop_back();
+          if (d.level == levels) {
+            cell_element_[rt.first_cell + subdivision_element(n, d.i, d.j, d.up)] = e;
+            continue;
+          }
+          const uint16_t da = static_cast<uint16_t>(2 * d.i), db = static_cast<uint16_t>(2 * d.j);
+          const uint8_t dl = static_cast<uint8_t>(d.level + 1);
+          if (d.up) {
+            cover.push_back({d.triangle, da, db, dl, true});
+            cover.push_back({d.triangle, static_cast<uint16_t>(da + 1), db, dl, true});
+            cover.push_back({d.triangle, da, static_cast<uint16_t>(db + 1), dl, true});
+            cover.push_back({d.triangle, da, db, dl, false});
+          } else {
+            cover.push_back({d.triangle, static_cast<uint16_t>(da + 1),
+                             static_cast<uint16_t>(db + 1), dl, false});
+            cover.push_back({d.triangle, da, static_cast<uint16_t>(db + 1), dl, false});
+            cover.push_back({d.triangle, static_cast<uint16_t>(da + 1), db, dl, false});
+            cover.push_back({d.triangle, static_cast<uint16_t>(da + 1),
+                             static_cast<uint16_t>(db + 1), dl, true});
+          }
+        }
+      }
+      continue;
+    }
     elements_.resize(elements_.size() + static_cast<size_t>(n) * n);
     element_patch_.resize(elements_.size());
     for (uint32_t i = 0; i < n; ++i)
       for (uint32_t j = 0; i + j < n; ++j) {
         elements_[rt.first_element + subdivision_element(n, i, j, true)] = {
-            static_cast<uint32_t>(t), static_cast<uint16_t>(i), static_cast<uint16_t>(j), true};
+            static_cast<uint32_t>(t), static_cast<uint16_t>(i), static_cast<uint16_t>(j), 0, true};
         if (i + j + 1 < n)
           elements_[rt.first_element + subdivision_element(n, i, j, false)] = {
-              static_cast<uint32_t>(t), static_cast<uint16_t>(i), static_cast<uint16_t>(j), false};
+              static_cast<uint32_t>(t), static_cast<uint16_t>(i), static_cast<uint16_t>(j), 0,
+              false};
       }
     if (clustered) {
       rt.clustered = true;
       const auto found = cluster_patch.try_emplace(cluster_key(in, patch_size_), patches);
-      if (found.second) ++patches, ++base_patches;
+      if (found.second) ++patches;
       element_patch_[rt.first_element] = found.first->second;
-    } else if (!fine) {
-      for (uint32_t k = 0; k < n * n; ++k) element_patch_[rt.first_element + k] = patches++;
-      base_patches += n * n;
     } else {
-      // Coarse element (i, j) in index order (upward ones, then downward) and its 4 elements on
-      // the finer lattice: the 3 at its corners and the middle one, turned the other way.
-      for (const bool up : {true, false})
-        for (uint32_t i = 0; i < coarse; ++i)
-          for (uint32_t j = 0; i + j + (up ? 0 : 1) < coarse; ++j) {
-            const uint32_t a = 2 * i, b = 2 * j;
-            const uint32_t fine_elements[4] = {up ? subdivision_element(n, a, b, true)
-                                                  : subdivision_element(n, a + 1, b + 1, false),
-                                               up ? subdivision_element(n, a + 1, b, true)
-                                                  : subdivision_element(n, a, b + 1, false),
-                                               up ? subdivision_element(n, a, b + 1, true)
-                                                  : subdivision_element(n, a + 1, b, false),
-                                               up ? subdivision_element(n, a, b, false)
-                                                  : subdivision_element(n, a + 1, b + 1, true)};
-            const bool split_here = std::binary_search(split.begin(), split.end(), base_patches++);
-            if (split_here) ++split_count_;
-            for (int k = 0; k < 4; ++k)
-              element_patch_[rt.first_element + fine_elements[k]] =
-                  split_here ? patches++ : patches;
-            if (!split_here) ++patches;
-          }
+      for (uint32_t k = 0; k < n * n; ++k) element_patch_[rt.first_element + k] = patches++;
     }
   }
   cluster_count_ = cluster_patch.size();
@@ -374,7 +410,7 @@ RadiosityMesh::RadiosityMesh(const Scene& scene, const Accel& accel,
     Vec3 centroid(0.0f), normal(0.0f);
     for (uint32_t k = patch_first_[p]; k < patch_first_[p + 1]; ++k) {
       const uint32_t e = patch_elements_[k];
-      const float a = triangle_of(e).element_area;
+      const float a = this->area(e);
       area += a;
       patch_cdf_[k] = static_cast<float>(area);
       centroid += (corner(e, 0) + corner(e, 1) + corner(e, 2)) * (a / 3.0f);
@@ -448,7 +484,7 @@ Vec3 RadiosityMesh::corner(uint32_t e, int k) const {
   static constexpr int kUp[3][2] = {{0, 0}, {1, 0}, {0, 1}};
   static constexpr int kDown[3][2] = {{1, 1}, {0, 1}, {1, 0}};
   const int* d = el.up ? kUp[k] : kDown[k];
-  const float inv_n = 1.0f / static_cast<float>(t.n);
+  const float inv_n = 1.0f / static_cast<float>(t.n >> (t.levels - el.level));
   return t.p0 + t.e1 * (static_cast<float>(el.i + d[0]) * inv_n) +
          t.e2 * (static_cast<float>(el.j + d[1]) * inv_n);
 }
@@ -491,18 +527,44 @@ uint32_t RadiosityMesh::lattice_vertex(const RadiosityTriangle& t, uint32_t a, u
   return packed >> 1;
 }
 
+namespace {
+// Lattice coordinates of corner k of element (i, j, up), on its own grid.
+void element_corner(const RadiosityElement& el, int k, uint32_t* a, uint32_t* b) {
+  static constexpr uint32_t kUp[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+  static constexpr uint32_t kDown[3][2] = {{1, 1}, {0, 1}, {1, 0}};
+  const uint32_t* d = el.up ? kUp[k] : kDown[k];
+  *a = el.i + d[0];
+  *b = el.j + d[1];
+}
+}  // namespace
+
 void RadiosityMesh::element_vertices(uint32_t e, uint32_t vertex[3], bool flip[3]) const {
   const RadiosityElement& el = elements_[e];
   const RadiosityTriangle& t = triangles_[el.triangle];
-  const uint32_t i = el.i, j = el.j;
-  if (el.up) {
-    vertex[0] = lattice_vertex(t, i, j, &flip[0]);
-    vertex[1] = lattice_vertex(t, i + 1, j, &flip[1]);
-    vertex[2] = lattice_vertex(t, i, j + 1, &flip[2]);
-  } else {
-    vertex[0] = lattice_vertex(t, i + 1, j + 1, &flip[0]);
-    vertex[1] = lattice_vertex(t, i, j + 1, &flip[1]);
-    vertex[2] = lattice_vertex(t, i + 1, j, &flip[2]);
+  const uint32_t shift = t.levels - el.level;
+  for (int k = 0; k < 3; ++k) {
+    uint32_t a, b;
+    element_corner(el, k, &a, &b);
+    vertex[k] = lattice_vertex(t, a << shift, b << shift, &flip[k]);
+  }
+}
+
+void RadiosityMesh::edge_vertices(uint32_t e, int k, std::vector<uint32_t>* vertex,
+                                  std::vector<uint8_t>* flip) const {
+  const RadiosityElement& el = elements_[e];
+  const RadiosityTriangle& t = triangles_[el.triangle];
+  const uint32_t shift = t.levels - el.level, span = 1u << shift;
+  uint32_t a0, b0, a1, b1;
+  element_corner(el, k, &a0, &b0);
+  element_corner(el, (k + 1) % 3, &a1, &b1);
+  vertex->clear();
+  flip->clear();
+  for (uint32_t s = 0; s <= span; ++s) {
+    // (a0 + (a1 - a0) s / span) << shift, in integers (the ends differ by at most 1 per axis).
+    const uint32_t a = (a0 << shift) + s * a1 - s * a0, b = (b0 << shift) + s * b1 - s * b0;
+    bool f;
+    vertex->push_back(lattice_vertex(t, a, b, &f));
+    flip->push_back(f ? 1 : 0);
   }
 }
 
@@ -512,14 +574,25 @@ bool RadiosityMesh::locate(uint32_t instance, uint32_t primitive, float u, float
   if (index == UINT32_MAX) return false;
   const RadiosityTriangle& t = triangles_[index];
   if (t.n == 0) return false;
-  const uint32_t n = t.n;
-  const float fu = std::clamp(u, 0.0f, 1.0f) * n, fv = std::clamp(v, 0.0f, 1.0f) * n;
+  uint32_t n = t.n;
+  float fu = std::clamp(u, 0.0f, 1.0f) * n, fv = std::clamp(v, 0.0f, 1.0f) * n;
   uint32_t i = std::min(static_cast<uint32_t>(fu), n - 1);
   uint32_t j = std::min(static_cast<uint32_t>(fv), n - 1);
   if (i + j > n - 1) j = n - 1 - i;  // on the hypotenuse, after rounding
-  const float ru = fu - static_cast<float>(i), rv = fv - static_cast<float>(j);
-  const bool up = ru + rv <= 1.0f || i + j == n - 1;
-  out->element = t.first_element + subdivision_element(n, i, j, up);
+  float ru = fu - static_cast<float>(i), rv = fv - static_cast<float>(j);
+  bool up = ru + rv <= 1.0f || i + j == n - 1;
+  const uint32_t cell = subdivision_element(n, i, j, up);
+  if (t.first_cell == UINT32_MAX) {
+    out->element = t.first_element + cell;
+  } else {
+    // Locally refined: the element covering the lattice cell, and the point's place in it.
+    out->element = cell_element_[t.first_cell + cell];
+    const RadiosityElement& el = elements_[out->element];
+    n = t.n >> (t.levels - el.level);
+    fu = std::clamp(u, 0.0f, 1.0f) * n, fv = std::clamp(v, 0.0f, 1.0f) * n;
+    ru = fu - static_cast<float>(el.i), rv = fv - static_cast<float>(el.j);
+    up = el.up;
+  }
   float w[3];
   if (up) {
     w[0] = 1.0f - ru - rv, w[1] = ru, w[2] = rv;

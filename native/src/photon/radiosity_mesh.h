@@ -28,19 +28,44 @@ namespace photon {
 struct RadiosityTriangle {
   Vec3 p0, e1, e2;            // world space: p = p0 + b1 e1 + b2 e2 (Embree's u = b1, v = b2)
   Vec3 normal;                // unit, as wound
-  float element_area = 0.0f;  // area / n^2
-  uint32_t n = 0;             // subdivisions per edge; 0 = not meshed (not diffuse)
+  float element_area = 0.0f;  // area / n^2, the finest element's
+  // Lattice subdivisions per edge (the patch-size subdivision times 2^levels); 0 = not meshed
+  // (not diffuse).
+  uint32_t n = 0;
   uint32_t first_element = 0;
-  uint32_t first_lattice = 0;  // (n + 1)(n + 2) / 2 lattice points
-  bool clustered = false;      // n = 1 and its element is part of a cluster patch
+  uint32_t first_lattice = 0;        // (n + 1)(n + 2) / 2 lattice points
+  uint32_t first_cell = UINT32_MAX;  // refined: element of each of the n^2 lattice cells
+  uint8_t levels = 0;                // local refinement levels of its instance
+  bool clustered = false;            // n = 1 and its element is part of a cluster patch
 };
 
-// An element's place in its triangle: cell (i, j) of the subdivision, upward (corners
-// (i,j), (i+1,j), (i,j+1)) or downward (corners (i+1,j+1), (i,j+1), (i+1,j)).
+// An element's place in its triangle: cell (i, j) of the subdivision at its level (n >> (levels
+// - level) per edge), upward (corners (i,j), (i+1,j), (i,j+1)) or downward (corners
+// (i+1,j+1), (i,j+1), (i+1,j)).
 struct RadiosityElement {
   uint32_t triangle = 0;
   uint16_t i = 0, j = 0;
+  uint8_t level = 0;
   bool up = true;
+};
+
+// A cell of a triangle's refinement hierarchy: (i, j, up) on the patch-size subdivision refined
+// `level` times (2^level times as many cells per edge).
+struct RadiosityCell {
+  uint32_t triangle = 0;
+  uint16_t i = 0, j = 0;
+  uint8_t level = 0;
+  bool up = true;
+  bool operator<(const RadiosityCell& o) const {
+    if (triangle != o.triangle) return triangle < o.triangle;
+    if (level != o.level) return level < o.level;
+    if (i != o.i) return i < o.i;
+    if (j != o.j) return j < o.j;
+    return up < o.up;
+  }
+  bool operator==(const RadiosityCell& o) const {
+    return triangle == o.triangle && level == o.level && i == o.i && j == o.j && up == o.up;
+  }
 };
 
 // Where a surface point lies: its element, the element's three welded vertices with the side
@@ -66,11 +91,12 @@ struct RadiosityMeshSettings {
   size_t min_patches = 64;  // the ray cap never goes below this
   // Triangles whose longest edge is below this fraction of the patch size are clustered.
   float cluster_fraction = 0.5f;
-  // Local refinement (Cohen et al. 1986; Cohen & Wallace 1993, ch. 8): patches, by their index
-  // in the mesh these same settings build without it, to split into 2 x 2. The split patches'
-  // instances are meshed on the twice finer lattice (so mixed patch sizes share one conforming
-  // element mesh, without T-junctions), and every other patch there owns its 4 elements.
-  const std::vector<uint32_t>* split_patches = nullptr;
+  // Local refinement (Cohen et al. 1986; Cohen & Wallace 1993, ch. 8): cells of subdivided
+  // triangles to split into 2 x 2 (a split cell's children may be split in turn). Each element
+  // is a leaf cell and a patch; the lattice of a refined instance is that of its finest level,
+  // so the corners of all elements are welded lattice points (T-vertices included).
+  const std::vector<RadiosityCell>* split_cells = nullptr;
+  uint32_t max_levels = 4;
 };
 
 class RadiosityMesh {
@@ -85,7 +111,7 @@ class RadiosityMesh {
   size_t element_count() const { return elements_.size(); }
   size_t patch_count() const { return patch_area_.size(); }
   size_t cluster_count() const { return cluster_count_; }
-  size_t split_count() const { return split_count_; }  // patches split by local refinement
+  size_t split_count() const { return split_count_; }  // cells split by local refinement
   size_t vertex_count() const { return vertex_count_; }
   size_t triangle_count() const { return triangles_.size(); }
   float patch_size() const { return patch_size_; }
@@ -95,7 +121,16 @@ class RadiosityMesh {
   const RadiosityTriangle& triangle_of(uint32_t e) const {
     return triangles_[elements_[e].triangle];
   }
-  float area(uint32_t e) const { return triangle_of(e).element_area; }
+  // Doublings from element e's grid to its triangle's lattice (0 unless locally refined).
+  uint32_t element_shift(uint32_t e) const { return triangle_of(e).levels - elements_[e].level; }
+  float area(uint32_t e) const {
+    return triangle_of(e).element_area * static_cast<float>(1u << (2 * element_shift(e)));
+  }
+  // The cell of a patch that is one element of a subdivided triangle (see patch_clustered).
+  RadiosityCell patch_cell(uint32_t p) const {
+    const RadiosityElement& el = elements_[patch_elements_[patch_first_[p]]];
+    return {el.triangle, el.i, el.j, el.level, el.up};
+  }
   Vec3 normal(uint32_t e) const { return triangle_of(e).normal; }
   // World-space corner k (0..2) of element e, and a uniform point on it.
   Vec3 corner(uint32_t e, int k) const;
@@ -121,6 +156,11 @@ class RadiosityMesh {
               RadiosityLocation* out) const;
   // The three welded vertices of element e (and their side flips).
   void element_vertices(uint32_t e, uint32_t vertex[3], bool flip[3]) const;
+  // The welded lattice vertices along edge k of element e (corner k to corner k + 1), ends
+  // included: 2^element_shift(e) + 1 of them; the inner ones are T-vertices where smaller
+  // elements meet the edge. `flip` as in element_vertices.
+  void edge_vertices(uint32_t e, int k, std::vector<uint32_t>* vertex,
+                     std::vector<uint8_t>* flip) const;
 
  private:
   uint32_t triangle_index(uint32_t instance, uint32_t primitive) const;
@@ -129,7 +169,8 @@ class RadiosityMesh {
   std::vector<RadiosityTriangle> triangles_;
   std::vector<uint32_t> instance_first_triangle_;  // by Embree instance id
   std::vector<RadiosityElement> elements_;
-  std::vector<uint32_t> lattice_;  // welded vertex << 1 | flip, per lattice point
+  std::vector<uint32_t> lattice_;       // welded vertex << 1 | flip, per lattice point
+  std::vector<uint32_t> cell_element_;  // refined triangles: element of each lattice cell
   std::vector<uint32_t> element_patch_;
   std::vector<uint32_t> patch_first_;     // patch p owns patch_elements_[first[p], first[p+1])
   std::vector<uint32_t> patch_elements_;  // in element order within each patch

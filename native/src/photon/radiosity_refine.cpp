@@ -39,13 +39,13 @@ std::vector<uint32_t> refinement_candidates(const RadiosityMesh& mesh,
                                             const std::vector<RadiosityPower>& power,
                                             const std::vector<uint32_t>& hits,
                                             const RadiosityRefineSettings& settings,
-                                            size_t max_splits) {
+                                            size_t max_splits, double final_hits_scale) {
   const size_t patches = mesh.patch_count();
   if (max_splits == 0 || power.size() != 2 * patches || hits.size() != 2 * patches) return {};
   const double contrast =
       std::isfinite(settings.contrast) ? std::max(settings.contrast, 0.0f) : 0.2;
   const double sigmas =
-      std::isfinite(settings.noise_sigmas) ? std::max(settings.noise_sigmas, 0.0f) : 3.0;
+      std::isfinite(settings.noise_sigmas) ? std::max(settings.noise_sigmas, 0.0f) : 2.0;
 
   // Element edges, sorted by their welded vertex pair: runs of equal keys are shared edges.
   std::vector<EdgeSide> edges;
@@ -64,8 +64,13 @@ std::vector<uint32_t> refinement_candidates(const RadiosityMesh& mesh,
   }
   std::sort(edges.begin(), edges.end());
 
+  const uint32_t max_levels = std::max<uint32_t>(settings.levels, 1);
+  const double min_hits =
+      std::isfinite(settings.min_child_hits) ? std::max(settings.min_child_hits, 0.0f) : 12.0;
+  const double scale = std::isfinite(final_hits_scale) ? std::max(final_hits_scale, 0.0) : 1.0;
   auto splittable = [&](uint32_t p) {
-    return !mesh.patch_clustered(p) && mesh.patch_element_count(p) == 1;
+    return !mesh.patch_clustered(p) && mesh.patch_element_count(p) == 1 &&
+           mesh.patch_cell(p).level < max_levels;
   };
   std::vector<double> score(patches, 0.0);
   auto radiosity = [&](uint32_t p, uint32_t side, double* b, double* sigma) {
@@ -88,6 +93,11 @@ std::vector<uint32_t> refinement_candidates(const RadiosityMesh& mesh,
               std::max(contrast * std::max(bp, bq), sigmas * std::sqrt(sp * sp + sq * sq));
           const double d = std::fabs(bp - bq);
           if (!(threshold > 0.0) || !(d > threshold)) continue;
+          // The brighter side's quarters must be lit well enough in the final solve (the
+          // darker side's absolute noise is smaller).
+          const uint32_t bright_hits =
+              bp >= bq ? hits[2 * p.patch + side] : hits[2 * q.patch + (side ^ (p.flip != q.flip))];
+          if (0.25 * scale * bright_hits < min_hits) continue;
           const double s = d / threshold;
           for (uint32_t patch : {p.patch, q.patch})
             if (splittable(patch)) score[patch] = std::max(score[patch], s);
@@ -125,7 +135,7 @@ RadiosityRefined solve_radiosity_refined(const RenderContext& context,
     out.power = solve_radiosity(context, out.mesh, solve, control, &out.stats);
     return out;
   }
-  const uint64_t final_rays = solve.rays - first_rays;
+  const uint64_t final_rays = solve.rays;  // the passes come on top (see the settings)
 
   // The first mesh: the automatic size aims at (1 - reserve) of the final patch budget.
   const bool automatic =
@@ -135,7 +145,7 @@ RadiosityRefined solve_radiosity_refined(const RenderContext& context,
   const uint64_t budget_rays = mesh_settings.rays > 0 ? final_rays : 0;
   size_t budget = patch_cap(budget_rays, mesh_settings);
   RadiosityMeshSettings first = mesh_settings;
-  first.split_patches = nullptr;
+  first.split_cells = nullptr;
   first.rays = budget_rays;
   if (automatic) {
     budget = std::min(budget, mesh_settings.auto_elements);
@@ -144,44 +154,54 @@ RadiosityRefined solve_radiosity_refined(const RenderContext& context,
         1, static_cast<size_t>(static_cast<double>(mesh_settings.auto_elements) * keep));
   }
   budget = std::min(budget, mesh_settings.max_elements);
-  RadiosityMesh coarse(*context.scene, *context.accel, first, is_radiosity_surface, warnings);
-  out.first_patches = coarse.patch_count();
+  out.mesh = RadiosityMesh(*context.scene, *context.accel, first, is_radiosity_surface, warnings);
+  out.first_patches = out.mesh.patch_count();
   if (control.cancelled()) return out;
 
-  RadiositySolveSettings first_solve = solve;
-  first_solve.rays = first_rays;
-  first_solve.seed = hash_combine(solve.seed, 0x726566696e65ull);  // independent of the final
-  RadiositySolveStats first_stats;
-  std::vector<RadiosityPower> first_power =
-      solve_radiosity(context, coarse, first_solve, control, &first_stats);
-  if (control.cancelled()) return out;
-  out.first_rays = first_stats.rays;
-  if (control.should_stop()) {  // stopped: show the first solution
-    out.mesh = std::move(coarse);
-    out.power = std::move(first_power);
-    out.stats = first_stats;
-    return out;
-  }
-
-  // Each split adds 3 patches.
-  const size_t max_splits = budget > coarse.patch_count() ? (budget - coarse.patch_count()) / 3 : 0;
-  const std::vector<uint32_t> split =
-      refinement_candidates(coarse, first_power, first_stats.hits, refine, max_splits);
-  if (split.empty()) {
-    out.mesh = std::move(coarse);
-  } else {
-    RadiosityMeshSettings refined = mesh_settings;
-    refined.patch_size = coarse.patch_size();  // the first mesh's sizing, reproduced exactly
-    refined.rays = 0;                          // its warnings were given already
-    refined.split_patches = &split;
+  // Refinement passes, one level each: solve, mark, split. Later meshes keep the first's size.
+  const uint32_t levels = std::clamp<uint32_t>(refine.levels, 1, 5);
+  RadiosityMeshSettings refined = mesh_settings;
+  refined.patch_size = out.mesh.patch_size();
+  refined.rays = 0;  // the first mesh gave its warnings
+  refined.max_levels = levels;
+  std::vector<RadiosityCell> split;
+  RadiositySolveStats pass_stats;
+  for (uint32_t pass = 0; pass < levels; ++pass) {
+    RadiositySolveSettings pass_solve = solve;
+    pass_solve.rays = first_rays;
+    pass_solve.seed = hash_combine(solve.seed, 0x726566696e65ull + pass);  // independent
+    RadiositySolveStats stats;
+    std::vector<RadiosityPower> power =
+        solve_radiosity(context, out.mesh, pass_solve, control, &stats);
+    if (control.cancelled()) return out;
+    out.first_rays += stats.rays;
+    pass_stats.rays += stats.rays;
+    pass_stats.seconds += stats.seconds;
+    if (control.should_stop()) {  // stopped: show this solution
+      out.power = std::move(power);
+      out.stats = stats;
+      out.stats.rays = pass_stats.rays;
+      out.stats.seconds = pass_stats.seconds;
+      return out;
+    }
+    // Each split adds 3 patches.
+    const size_t count = out.mesh.patch_count();
+    const size_t max_splits = budget > count ? (budget - count) / 3 : 0;
+    const std::vector<uint32_t> marked =
+        refinement_candidates(out.mesh, power, stats.hits, refine, max_splits,
+                              static_cast<double>(final_rays) / std::max<uint64_t>(stats.rays, 1));
+    if (marked.empty()) break;
+    for (uint32_t p : marked) split.push_back(out.mesh.patch_cell(p));
+    std::sort(split.begin(), split.end());
+    refined.split_cells = &split;
     out.mesh =
         RadiosityMesh(*context.scene, *context.accel, refined, is_radiosity_surface, nullptr);
   }
   RadiositySolveSettings final_solve = solve;
   final_solve.rays = final_rays;
   out.power = solve_radiosity(context, out.mesh, final_solve, control, &out.stats);
-  out.stats.rays += first_stats.rays;
-  out.stats.seconds += first_stats.seconds;
+  out.stats.rays += pass_stats.rays;
+  out.stats.seconds += pass_stats.seconds;
   return out;
 }
 

@@ -4,9 +4,10 @@
 // meshing): a first solve on the area-sized mesh (radiosity_mesh.h) with part of the rays, then
 // every subdivided patch whose radiosity differs from an edge neighbour's by more than a relative
 // threshold, and by more than the Monte Carlo noise of the two estimates, is split into 2 x 2,
-// within the patch budget of the ray count; the refined mesh is solved again with the remaining
-// rays. Part of the automatic patch budget is held back for the refinement, so patches move from
-// uniformly lit areas to shadow boundaries and other gradients.
+// within the patch budget of the ray count; the refined mesh is solved again. This repeats for a
+// few levels (each pass splitting the split patches again where the difference persists). Part of
+// the automatic patch budget is held back for the refinement, so patches move from uniformly lit
+// areas to shadow boundaries and other gradients.
 #pragma once
 
 #include <string>
@@ -19,28 +20,37 @@ namespace photon {
 
 struct RadiosityRefineSettings {
   bool enabled = true;
-  float first_pass_rays = 0.25f;  // share of the rays spent on the first (coarse) solve
-  float reserve = 0.5f;           // share of the automatic patch budget kept for splits
+  // Each refinement pass solves with this share of the rays, on top of the final solve (which
+  // has all of them): a pass's marking needs a few tens of rays per patch to see through the
+  // noise, so the passes cost about levels * first_pass_rays more time.
+  float first_pass_rays = 0.25f;
+  uint32_t levels = 2;   // refinement passes (each splits once more: 4x finer edges at most)
+  float reserve = 0.5f;  // share of the automatic patch budget kept for splits
   // An edge is refined when |B_p - B_q| exceeds both contrast * max(B_p, B_q) and noise_sigmas
   // standard deviations of the difference (relative noise 1 / sqrt(deposits) per patch side).
   float contrast = 0.2f;
-  float noise_sigmas = 3.0f;
+  float noise_sigmas = 2.0f;
+  // A patch is split only if each quarter can expect this many ray deposits in the final solve
+  // (its deposits in the pass, scaled by the rays, over 4): finer patches than the rays can
+  // light show as blotches (relative noise about 1 / sqrt(deposits)).
+  float min_child_hits = 12.0f;
 };
 
-// Subdivided single-element patches of `mesh` to split, best first (largest difference over its
-// threshold), at most `max_splits`. `power` and `hits`: 2 per patch, as solve_radiosity gives.
+// Subdivided patches of `mesh` (below `levels` of refinement) to split, best first (largest
+// difference over its threshold), at most `max_splits`. `power` and `hits`: 2 per patch, as
+// solve_radiosity gives.
 std::vector<uint32_t> refinement_candidates(const RadiosityMesh& mesh,
                                             const std::vector<RadiosityPower>& power,
                                             const std::vector<uint32_t>& hits,
                                             const RadiosityRefineSettings& settings,
-                                            size_t max_splits);
+                                            size_t max_splits, double final_hits_scale = 1.0);
 
 struct RadiosityRefined {
   RadiosityMesh mesh;
   std::vector<RadiosityPower> power;  // empty when cancelled
   RadiositySolveStats stats;          // of the final solve (rays: both solves)
   size_t first_patches = 0;           // patches of the first solve's mesh
-  uint64_t first_rays = 0;
+  uint64_t first_rays = 0;            // rays of the refinement passes
 };
 
 // Meshes and solves the scene of `context`, with local refinement unless disabled (then the

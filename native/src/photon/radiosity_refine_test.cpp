@@ -94,9 +94,11 @@ TEST(RadiosityRefine, ShadowOutlineGetsSmallerPatchesWithinTheBudget) {
       EXPECT_LT(r.first_patches, r.mesh.patch_count());
       // Within the ray budget of the final solve (and the automatic patch target).
       const RadiosityMeshSettings ms;
-      EXPECT_LE(r.mesh.patch_count(), (kRays - r.first_rays) / ms.min_rays_per_patch);
+      EXPECT_LE(r.mesh.patch_count(), kRays / ms.min_rays_per_patch);
       EXPECT_LE(r.mesh.patch_count(), ms.auto_elements);
-      EXPECT_LE(r.stats.rays, kRays + kRays / 50);
+      // The final solve has all the rays, each refinement pass a share more.
+      const RadiosityRefineSettings rs;
+      EXPECT_LE(r.stats.rays, kRays * (1.0 + rs.levels * rs.first_pass_rays) + kRays / 50);
     }
   }
   // The area sizing alone gives the floor patches one size.
@@ -135,19 +137,24 @@ TEST(RadiosityRefine, RefinedMeshIsConsistent) {
     ASSERT_TRUE(mesh.locate(instance, primitive, u, v, &where));
     EXPECT_EQ(where.element, e);
   }
-  // Sizes in use on the floor: the first mesh's and a quarter of it.
-  std::vector<float> sizes;
+  // Sizes in use on the floor: the first mesh's divided by 4 per level.
+  size_t by_level[4] = {0, 0, 0, 0};
+  float largest = 0.0f;
   for (uint32_t p = 0; p < mesh.patch_count(); ++p)
-    if (mesh.patch_instance(p) == 0) sizes.push_back(mesh.patch_area(p));
-  const float largest = *std::max_element(sizes.begin(), sizes.end());
-  for (float a : sizes) {
-    const bool quarter = std::fabs(a - 0.25f * largest) < 1e-3f * largest;
-    const bool whole = std::fabs(a - largest) < 1e-3f * largest;
-    EXPECT_TRUE(quarter || whole) << a << " vs " << largest;
+    if (mesh.patch_instance(p) == 0) largest = std::max(largest, mesh.patch_area(p));
+  for (uint32_t p = 0; p < mesh.patch_count(); ++p) {
+    if (mesh.patch_instance(p) != 0) continue;
+    const uint32_t level = mesh.patch_cell(p).level;
+    ASSERT_LE(level, RadiosityRefineSettings{}.levels);
+    ++by_level[level];
+    const float expected = largest / static_cast<float>(1u << (2 * level));
+    EXPECT_NEAR(mesh.patch_area(p), expected, 1e-3f * expected);
   }
+  EXPECT_GT(by_level[2], 0u);  // refined again where the first split did not resolve the edge
 }
 
-// The refined solve (two solves, marking, meshing) ignores the thread count.
+// The refined solve (passes of solve, marking and meshing, then the final solve) ignores the thread
+// count.
 TEST(RadiosityRefine, BitIdenticalWithOneAndTwoThreads) {
   RadiosityFixture f(shadowed_floor());
   std::vector<float> display[2];
