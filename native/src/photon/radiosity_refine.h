@@ -1,11 +1,11 @@
 // Adaptive refinement of the radiosity mesh where the light changes (Cohen, Greenberg, Immel,
 // Brock, "An efficient radiosity approach for realistic image synthesis", IEEE CG&A 1986;
 // Cohen & Wallace, "Radiosity and Realistic Image Synthesis" 1993, ch. 8, "a posteriori"
-// meshing): a first solve on the area-sized mesh (radiosity_mesh.h) with part of the rays, then
-// every subdivided patch whose radiosity differs from an edge neighbour's by more than a relative
-// threshold, and by more than the Monte Carlo noise of the two estimates, is split into 2 x 2,
-// within the patch budget of the ray count; the refined mesh is solved again. This repeats for a
-// few levels (each pass splitting the split patches again where the difference persists). Part of
+// meshing): a first solve on the area-sized mesh (radiosity_mesh.h) with a share of the rays,
+// then every subdivided patch whose radiosity differs from an edge neighbour's by more than a
+// relative threshold, and by more than the Monte Carlo noise of the two estimates, is split into 2
+// x 2, within the patch budget of the ray count; the refined mesh is solved again. This repeats for
+// a few levels (each pass splitting the split patches again where the difference persists). Part of
 // the automatic patch budget is held back for the refinement, so patches move from uniformly lit
 // areas to shadow boundaries and other gradients.
 #pragma once
@@ -30,9 +30,9 @@ struct RadiosityRefineSettings {
   // standard deviations of the difference (relative noise 1 / sqrt(deposits) per patch side).
   float contrast = 0.2f;
   float noise_sigmas = 2.0f;
-  // A patch is split only if each quarter can expect this many ray deposits in the final solve
-  // (its deposits in the pass, scaled by the rays, over 4): finer patches than the rays can
-  // light show as blotches (relative noise about 1 / sqrt(deposits)).
+  // An edge is refined only if the quarters of its brighter patch can each expect this many ray
+  // deposits in the final solve (its deposits in the pass, scaled by the rays, over 4): finer
+  // patches than the rays can light show as blotches (relative noise about 1 / sqrt(deposits)).
   float min_child_hits = 12.0f;
 };
 
