@@ -166,7 +166,8 @@ RadiosityRefined solve_radiosity_refined(const RenderContext& context,
   refined.max_levels = levels;
   std::vector<RadiosityCell> split;
   RadiositySolveStats pass_stats;
-  for (uint32_t pass = 0; pass < levels; ++pass) {
+  const uint32_t passes = out.mesh.patch_count() <= refine.max_patches ? levels : 0;
+  for (uint32_t pass = 0; pass < passes; ++pass) {
     RadiositySolveSettings pass_solve = solve;
     pass_solve.rays = first_rays;
     pass_solve.seed = hash_combine(solve.seed, 0x726566696e65ull + pass);  // independent

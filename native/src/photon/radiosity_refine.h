@@ -34,6 +34,9 @@ struct RadiosityRefineSettings {
   // deposits in the final solve (its deposits in the pass, scaled by the rays, over 4): finer
   // patches than the rays can light show as blotches (relative noise about 1 / sqrt(deposits)).
   float min_child_hits = 12.0f;
+  // Meshes with more patches are not refined: a refined instance's lattice has 4^levels times
+  // the points, too much memory for millions of patches (only a manual patch size gets there).
+  size_t max_patches = 250000;
 };
 
 // Subdivided patches of `mesh` (below `levels` of refinement) to split, best first (largest
