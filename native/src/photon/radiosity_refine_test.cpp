@@ -153,6 +153,60 @@ TEST(RadiosityRefine, RefinedMeshIsConsistent) {
   EXPECT_GT(by_level[2], 0u);  // refined again where the first split did not resolve the edge
 }
 
+// Where a large element meets smaller ones (T-vertices on its edge), the display is continuous:
+// points just either side of the edge show the same radiosity.
+TEST(RadiosityRefine, DisplayHasNoCracksAtTVertices) {
+  RadiosityFixture f(shadowed_floor());
+  const RadiosityRefined r = solve(f, 1000000, true);
+  const RadiosityMesh& mesh = r.mesh;
+  const RadiosityField field(mesh, r.power);
+  ASSERT_FALSE(field.empty());
+  uint32_t floor_element[2] = {UINT32_MAX, UINT32_MAX};  // one element of each floor triangle
+  for (uint32_t e = 0; e < mesh.element_count(); ++e)
+    if (mesh.element(e).triangle < 2) floor_element[mesh.element(e).triangle] = e;
+  // The radiosity shown at floor point p (front side), and the element there.
+  auto shown = [&](const Vec3& p, uint32_t* element) {
+    for (uint32_t tri = 0; tri < 2; ++tri) {
+      const RadiosityTriangle& t = mesh.triangle_of(floor_element[tri]);
+      const Vec3 d = p - t.p0;
+      const float d11 = dot(t.e1, t.e1), d12 = dot(t.e1, t.e2), d22 = dot(t.e2, t.e2);
+      const float d1 = dot(d, t.e1), d2 = dot(d, t.e2), den = d11 * d22 - d12 * d12;
+      const float u = (d22 * d1 - d12 * d2) / den, v = (d11 * d2 - d12 * d1) / den;
+      if (u < 0.0f || v < 0.0f || u + v > 1.0f) continue;
+      RadiosityLocation where;
+      if (!mesh.locate(0, tri, u, v, &where)) break;
+      *element = where.element;
+      return field.radiosity_at(where, 0).total().x;
+    }
+    *element = UINT32_MAX;
+    return -1.0f;
+  };
+  size_t t_edges = 0;
+  double worst = 0.0, largest = 0.0;
+  for (uint32_t e = 0; e < mesh.element_count(); ++e) {
+    if (mesh.element(e).triangle >= 2 || mesh.element_shift(e) == 0) continue;
+    const Vec3 centre = (mesh.corner(e, 0) + mesh.corner(e, 1) + mesh.corner(e, 2)) / 3.0f;
+    for (int k = 0; k < 3; ++k) {
+      const Vec3 a = mesh.corner(e, k), b = mesh.corner(e, (k + 1) % 3);
+      for (float t : {0.3f, 0.5f, 0.7f}) {
+        const Vec3 p = a + (b - a) * t;
+        const Vec3 out = p + (p - centre) * 2e-3f, in = p - (p - centre) * 2e-3f;
+        uint32_t e_in, e_out;
+        const float v_in = shown(in, &e_in), v_out = shown(out, &e_out);
+        if (e_in != e || e_out == UINT32_MAX || mesh.element_shift(e_out) >= mesh.element_shift(e))
+          continue;  // outside the floor, or the neighbour is not smaller
+        ++t_edges;
+        worst = std::max(worst, static_cast<double>(std::fabs(v_in - v_out)));
+        largest = std::max(largest, static_cast<double>(std::max(v_in, v_out)));
+      }
+    }
+  }
+  ASSERT_GT(t_edges, 10u);
+  ASSERT_GT(largest, 0.0);
+  // Within what the 0.2% step off the edge changes (the shading ramps across a patch or two).
+  EXPECT_LT(worst, 0.02 * largest);
+}
+
 // The refined solve (passes of solve, marking and meshing, then the final solve) ignores the thread
 // count.
 TEST(RadiosityRefine, BitIdenticalWithOneAndTwoThreads) {
