@@ -4,19 +4,17 @@
 #include <string>
 #include <vector>
 
+#include "photon/scene_resources.h"
 #include "photon/integrator.h"
 #include "photon/radiosity_material.h"
 #include "photon/radiosity_mesh.h"
-#include "photon/scene_resources.h"
 
 namespace photon {
 
 struct RadiosityFixture {
   explicit RadiosityFixture(Scene s)
-      : scene(std::move(s)),
-        resources(scene, settings, &warnings),
-        context(resources.context()),
-        accel(resources.accel()) {}
+      : scene(std::move(s)), resources(scene, settings, &warnings),
+        context(resources.context()), accel(resources.accel()) {}
   RadiosityMesh mesh(float patch_size) {
     RadiosityMeshSettings ms;
     ms.patch_size = patch_size;
