@@ -149,6 +149,9 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     for key, matrices in stacked.items():
         bounds.add_instances(*mesh_bounds[key[0]], matrices)
     origin = stats.origin = bounds.origin()
+    if origin.any():
+        reporter.info(f"world space rebased by ({origin[0]:.9g}, {origin[1]:.9g}, "
+                      f"{origin[2]:.9g}) m to keep 32-bit float precision")
 
     for arguments in lights:
         arguments["matrix"] = sync_origin.rebased_matrix(arguments["matrix"], origin)
