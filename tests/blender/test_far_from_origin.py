@@ -23,9 +23,9 @@ PIXEL_MEAN_TOLERANCE = 0.01
 PIXEL_MAX_TOLERANCE = 0.1
 
 
-def render(blender, tag, offset):
+def render(blender, tag, offset, mode="render"):
     result, proc = blender.run_script("far_from_origin.py", blender.out_dir / "far", tag,
-                                      offset, timeout=300)
+                                      offset, mode, timeout=300)
     assert "exception" not in result, result.get("exception")
     assert result["finite"]
     assert "Photon" in proc.stdout  # Photon rendered it, not a built-in engine
@@ -58,3 +58,22 @@ def test_scene_far_from_origin_renders_like_at_the_origin(blender, at_origin, of
     assert rel < MEAN_TOLERANCE, (result["mean"], at_origin["mean"], result["path"])
     assert pixel_mean < PIXEL_MEAN_TOLERANCE, (pixel_mean, result["path"])
     assert pixel_max < PIXEL_MAX_TOLERANCE, (pixel_max, result["path"])
+
+
+def test_bake_far_from_origin_matches_the_bake_at_the_origin(blender):
+    """The lighting bake syncs the same rebased scene; its lightmap texel corners, computed in
+    the add-on, are rebased the same way, so the baked colour attributes and lightmaps agree."""
+    near, _ = render(blender, "origin", 0.0, "bake")
+    far, proc = render(blender, "offset_1e7", 1e7, "bake")
+    assert not [line for line in proc.stdout.splitlines()
+                if line.startswith("Photon: warning:") and "from the origin" in line]
+    near_arrays, far_arrays = np.load(near["path"]), np.load(far["path"])
+    assert sorted(near_arrays.files) == sorted(far_arrays.files)
+    for name in sorted(near_arrays.files):
+        a, b = near_arrays[name], far_arrays[name]
+        scale = max(float(np.abs(a).max()), 1e-6)
+        worst = float(np.abs(a - b).max()) / scale
+        print(f"bake {name}: mean {b.mean():.5f} vs {a.mean():.5f}, worst {worst:.3%}")
+        assert a.mean() > 0.0, name
+        assert abs(float(b.mean()) - float(a.mean())) <= MEAN_TOLERANCE * float(a.mean()), name
+        assert worst < PIXEL_MAX_TOLERANCE, name

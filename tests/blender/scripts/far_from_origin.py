@@ -2,16 +2,18 @@
 emission material, a sun and a point light with a radius) built `offset` metres from the origin
 along x and y, with the camera 6.7 m from it, rendered with PHOTON_MAP.
 
-Arguments: out_dir tag offset. Every object's location is `offset` plus whole metres (geometry
+Arguments: out_dir tag offset [mode: "render" (default) or "bake"]. Every object's location is `offset` plus whole metres (geometry
 lives in the meshes), so at 1e7, where a float32 step is 1 m, Blender's own 32-bit matrices hold
 the scene exactly and only the renderer's precision is tested. Reports the image's mean and the
-path of the EXR.
+path of the EXR; in "bake" mode it bakes the lighting into colour attributes and 32 x 32
+lightmaps instead and saves them (per object, in name order) to an .npz file.
 """
 
 import math
 import os
 
 import bpy
+import numpy as np
 
 import builders
 import harness
@@ -51,9 +53,32 @@ def build(offset):
     return scene
 
 
-def main(out_dir, tag, offset):
+def bake(scene, out_dir, tag):
+    scene.photon.bake_source = 'PHOTON_MAP'
+    scene.photon.bake_target = 'BOTH'
+    scene.photon.bake_samples = 8
+    scene.photon.lightmap_size = 32
+    assert bpy.ops.photon.bake_lighting() == {'FINISHED'}
+    arrays = {}
+    for obj in sorted((o for o in scene.objects if o.type == 'MESH'), key=lambda o: o.name):
+        attribute = obj.data.color_attributes["PhotonLighting"]
+        values = np.empty(len(attribute.data) * 4, np.float32)
+        attribute.data.foreach_get("color", values)
+        arrays[f"{obj.name}_corners"] = values
+        image = bpy.data.images[obj["photon_lightmap"]]
+        pixels = np.empty(len(image.pixels), np.float32)
+        image.pixels.foreach_get(pixels)
+        arrays[f"{obj.name}_lightmap"] = pixels
+    path = os.path.join(out_dir, f"far_from_origin_bake_{tag}.npz")
+    np.savez(path, **arrays)
+    return {"path": path, "finite": all(bool(np.isfinite(a).all()) for a in arrays.values())}
+
+
+def main(out_dir, tag, offset, mode="render"):
     os.makedirs(out_dir, exist_ok=True)
     scene = build(float(offset))
+    if mode == "bake":
+        return bake(scene, out_dir, tag)
     path = os.path.join(out_dir, f"far_from_origin_{tag}.exr")
     scene.render.filepath = path
     scene.render.use_file_extension = False
