@@ -77,3 +77,44 @@ def test_bake_far_from_origin_matches_the_bake_at_the_origin(blender):
         assert a.mean() > 0.0, name
         assert abs(float(b.mean()) - float(a.mean())) <= MEAN_TOLERANCE * float(a.mean()), name
         assert worst < PIXEL_MAX_TOLERANCE, name
+
+
+@pytest.fixture(scope="module")
+def sync_origin(blender):
+    """The staged add-on's sync_origin module (numpy only, no bpy), loaded outside Blender."""
+    import importlib.util
+    path = blender.stage / "addons" / "photon" / "sync_origin.py"
+    spec = importlib.util.spec_from_file_location("photon_sync_origin", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_origin_is_zero_near_the_origin_and_exact_far_from_it(sync_origin):
+    zero = np.zeros(3)
+    # Near the origin (centre within 8 extents) and without geometry: exactly zero.
+    for lo, hi in [((-3, -3, 0), (3, 3, 3)), ((40, 40, 0), (46, 46, 3)), ((1e-7, 0, 0),
+                                                                          (3e-7, 1e-7, 1e-7))]:
+        assert np.array_equal(sync_origin.choose_origin(np.array(lo, float), np.array(hi, float)),
+                              zero)
+    assert np.array_equal(sync_origin.choose_origin(None, None), zero)
+    assert np.array_equal(sync_origin.choose_origin(np.array([np.nan] * 3), np.ones(3)), zero)
+    # 1e7 m out, a 9 m scene: a multiple of a power of two >= the extent, within half of it of
+    # the centre, so float32 coordinates of the scene minus it are exact in float32.
+    lo, hi = np.array([1e7 - 3.3, 1e7 - 3, 0.0]), np.array([1e7 + 3, 1e7 + 3, 3.0])
+    origin = sync_origin.choose_origin(lo, hi)
+    grid = 16.0
+    assert np.array_equal(origin, np.round(origin / grid) * grid) and origin[2] == 0.0
+    assert np.abs(0.5 * (lo + hi) - origin).max() <= grid / 2
+    points = np.random.default_rng(0).uniform(lo, hi, (1000, 3)).astype(np.float32)
+    rebased = points.astype(np.float64) - origin
+    assert np.array_equal(rebased.astype(np.float32).astype(np.float64), rebased)
+    # Matrices: translation moved, rotation untouched; origin 0 gives the float32 cast.
+    matrix = np.identity(4)
+    matrix[:3, :3] = [[0, -1, 0], [1, 0, 0], [0, 0, 1]]
+    matrix[:3, 3] = [1e7 + 1, 1e7 - 2, 1.5]
+    moved = sync_origin.rebased_matrix(matrix, origin)
+    assert moved.dtype == np.float32
+    assert np.array_equal(moved[:3, :3], matrix[:3, :3].astype(np.float32))
+    assert np.array_equal(moved[:3, 3].astype(np.float64), matrix[:3, 3] - origin)
+    assert np.array_equal(sync_origin.rebased_matrix(matrix, zero), matrix.astype(np.float32))
