@@ -59,8 +59,8 @@ def ribbons(points, radii, counts, view, anchor=None):
     points: (N, 3) world positions, strands stored one after another; radii: (N,); counts:
     points per strand. `anchor` (float64 (3,), optional) is subtracted from the points and the
     view in double precision before they become float32: the ribbons are then placed by an
-    instance translated by the anchor, so hair far from the origin keeps its detail. Returns (positions (2N, 3) float32, triangles (T, 3) int32, corner
-    normals (3T, 3) float32) with degenerate and non-finite triangles already removed (a zero
+    instance translated by the anchor, so hair far from the origin keeps its detail. Returns
+    (positions (2N, 3) float32, triangles (T, 3) int32, corner normals (3T, 3) float32) with degenerate and non-finite triangles already removed (a zero
     tip radius makes one triangle of the last quad a sliver), so the native mesh cleanup has
     nothing to report.
 

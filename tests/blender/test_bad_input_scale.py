@@ -4,8 +4,8 @@ offsets and emission radius became relative to the scene, a 1e-5 scene stored 20
 12,682 and lost its indirect light and shadows), and the scene moved 1e7 m from the origin,
 where 32-bit floats resolve only 1 m, renders like the scene at the origin without a warning
 (the add-on rebases it, sync_origin.py); a scene whose own extent is 1e7 m, with metre-sized
-objects at its edge, which no rebasing helps, still warns. A camera whose clip start is at Blender's minimum (1e-6 m) and still hides the
-scene warns too."""
+objects at its edge, which no rebasing helps, still warns. A camera whose clip start is at
+Blender's minimum (1e-6 m) and still hides the scene warns too."""
 
 import numpy as np
 import pytest

@@ -2,8 +2,8 @@
 emission material, a sun and a point light with a radius) built `offset` metres from the origin
 along x and y, with the camera 6.7 m from it, rendered with PHOTON_MAP.
 
-Arguments: out_dir tag offset [mode: "render" (default) or "bake"]. Every object's location is `offset` plus whole metres (geometry
-lives in the meshes), so at 1e7, where a float32 step is 1 m, Blender's own 32-bit matrices hold
+Arguments: out_dir tag offset [mode: "render" (default) or "bake"]. Every object's location is
+`offset` plus whole metres (geometry lives in the meshes), so at 1e7, where a float32 step is 1 m, Blender's own 32-bit matrices hold
 the scene exactly and only the renderer's precision is tested. Reports the image's mean and the
 path of the EXR; in "bake" mode it bakes the lighting into colour attributes and 32 x 32
 lightmaps instead and saves them (per object, in name order) to an .npz file.
