@@ -39,7 +39,7 @@ def choose_origin(lo, hi):
     # scene of zero size): centre / grid rounds to an integer, exact times the grid in double.
     size = max(extent, distance * 2.0 ** -24)
     grid = 2.0 ** math.ceil(math.log2(size))
-    return np.round(centre / grid) * grid
+    return np.round(centre / grid) * grid + 0.0  # + 0.0: no -0 in the info line
 
 
 class SceneBounds:
