@@ -56,7 +56,7 @@ class BakeJob:
             native, depsgraph, self.reporter, object_instances)
         self.targets = bake_targets.collect(
             context, depsgraph, object_instances, props, self.want_attribute,
-            self.want_lightmap, self.reporter)
+            self.want_lightmap, self.reporter, origin=self.sync_stats.origin)
         if not self.targets:
             raise BakeError("no mesh object with faces to bake into")
 

@@ -188,8 +188,10 @@ def lightmap_points(native, mesh, layer_name, corner_loops, world_corners, size,
 
 
 def collect(context, depsgraph, object_instances, props, want_attribute, want_lightmap,
-            reporter):
-    """Targets for every visible mesh object with faces; warns about the others."""
+            reporter, origin=None):
+    """Targets for every visible mesh object with faces; warns about the others. `origin` is
+    the world origin offset of the synced native scene (SyncStats.origin): lightmap corners are
+    placed in its coordinates, as the positions the native bake returns are."""
     import bpy
     from .engine import native_module
 
@@ -250,7 +252,12 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
         if want_lightmap and ensure_lightmap_uv(context, obj, props.lightmap_uv_name, size,
                                                 reporter) is not None:
             matrix = np.array(obj.matrix_world, np.float32)
-            world = np.nan_to_num(positions) @ matrix[:3, :3].T + matrix[:3, 3]
+            # The translation rebased in double (exact for a zero origin), then float32.
+            translation = np.array(obj.matrix_world, np.float64)[:3, 3]
+            if origin is not None:
+                translation = translation - origin
+            world = (np.nan_to_num(positions) @ matrix[:3, :3].T
+                     + translation.astype(np.float32))
             target.lightmap = lightmap_points(native, mesh, props.lightmap_uv_name,
                                               corner_loops, world[loop_vertex[corner_loops]],
                                               size, name, reporter)

@@ -117,7 +117,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 if view:
                     # Each multiview view (a stereo eye) from its own camera, as Cycles does.
                     camera = sync_camera.view_camera(self, scene, depsgraph, view)
-                    sync_camera.export_camera(native_scene, scene, depsgraph, reporter, camera)
+                    sync_camera.export_camera(native_scene, scene, depsgraph, reporter, camera,
+                                              origin=sync_stats.origin)
                 if not self._render_scene(native, depsgraph, reporter, native_scene, sync_stats,
                                           t_start, view):
                     break

@@ -5,7 +5,7 @@ import time
 import numpy as np
 
 from . import (sync_camera, sync_hair, sync_layers, sync_lights, sync_materials, sync_mattes,
-               sync_mesh)
+               sync_mesh, sync_origin)
 
 
 class SyncStats:
@@ -15,6 +15,9 @@ class SyncStats:
         self.triangles = 0
         self.lights = 0
         self.seconds = 0.0
+        # World origin offset (float64) the native scene is built around (sync_origin): world
+        # positions of the native scene plus this are Blender's.
+        self.origin = np.zeros(3, dtype=np.float64)
         self._release = []
 
     def release(self):
@@ -48,6 +51,9 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     stats._release.append(materials.release)
 
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
+    mesh_bounds = {}       # native mesh index -> object-space (lo, hi), float64
+    bounds = sync_origin.SceneBounds()  # world bounds of the geometry, for the origin offset
+    lights = []            # add_light arguments, world matrices in float64 until rebased
     # (mesh index, slot tuple, visibility, mattes) -> [(4x4 matrix, owner or None)]
     pending = {}
     mattes = sync_mattes.MatteFlags(depsgraph)
@@ -60,12 +66,21 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
     has_hair = {}          # object name -> whether it has hair systems to render
     render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
 
+    def place_hair(points):
+        """Anchor of hair ribbons with these world points (zero near the origin)."""
+        hair_bounds = sync_origin.SceneBounds()
+        hair_bounds.add_points(points)
+        bounds.add(hair_bounds.lo, hair_bounds.hi)
+        return hair_bounds.origin()
+
     for inst in depsgraph.object_instances:
         # Instance items die when iteration moves on: use them only inside this body.
         obj = inst.object
         obj_type = obj.type
         if obj_type == 'LIGHT':
-            if sync_lights.export_light(native, native_scene, obj, inst.matrix_world, reporter):
+            arguments = sync_lights.light_arguments(native, obj, inst.matrix_world, reporter)
+            if arguments is not None:
+                lights.append(arguments)
                 stats.lights += 1
             continue
         hair_here = obj_type == 'CURVES'
@@ -80,22 +95,22 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
             slots = materials.slot_indices(obj)
             if obj_type == 'CURVES':
                 made = [sync_hair.curves_hair(native_scene, obj, inst.matrix_world, hair_view,
-                                              slots, reporter)]
+                                              slots, reporter, place_hair)]
             else:
                 relocate = (sync_hair.relocation(inst.matrix_world, obj.matrix_world)
                             if inst.is_instance else None)
                 made = [] if relocate is False else sync_hair.particle_hair(
                     native_scene, obj, render_mode, hair_view, slots, reporter, relocate,
-                    hair_strands)
+                    hair_strands, place_hair)
             visibility = layer_visibility.apply(inst, obj,
                                                 sync_lights.visibility_bits(native, obj))
-            for index, triangles, hair_slots in filter(None, made):
+            for index, triangles, hair_slots, anchor in filter(None, made):
                 stats.meshes += 1
                 stats.triangles += triangles
                 if override is not None:
                     hair_slots = [materials.index(override)] * len(hair_slots)
                 hair.append((index, hair_slots, visibility,
-                             mattes.of(obj, inst.parent if inst.is_instance else None)))
+                             mattes.of(obj, inst.parent if inst.is_instance else None), anchor))
             if obj_type == 'CURVES':
                 continue
         if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
@@ -109,9 +124,10 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
         # (particles, geometry nodes, linked duplicates) maps to one native mesh and one BVH.
         key = obj.data.as_pointer()
         if key not in mesh_index:
-            index, triangles = sync_mesh.export_object_mesh(native_scene, obj, reporter)
+            index, triangles, local = sync_mesh.export_object_mesh(native_scene, obj, reporter)
             mesh_index[key] = index
             if index is not None:
+                mesh_bounds[index] = local
                 stats.meshes += 1
                 stats.triangles += triangles
         index = mesh_index[key]
@@ -125,29 +141,47 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
         owner = None if inst.is_instance else obj.name
         matte = mattes.of(obj, inst.parent if inst.is_instance else None)
         pending.setdefault((index, slots, visibility, matte), []).append(
-            (np.asarray(inst.matrix_world, dtype=np.float32), owner))
+            (np.array(inst.matrix_world, dtype=np.float64), owner))
 
-    for (index, slots, visibility, (holdout, catcher)), entries in pending.items():
+    # The world origin offset, once every world-space quantity is known in double precision.
+    stacked = {key: np.stack([matrix for matrix, _ in entries])
+               for key, entries in pending.items()}
+    for key, matrices in stacked.items():
+        bounds.add_instances(*mesh_bounds[key[0]], matrices)
+    origin = stats.origin = bounds.origin()
+    if origin.any():
+        reporter.info(f"world space rebased by ({origin[0]:.9g}, {origin[1]:.9g}, "
+                      f"{origin[2]:.9g}) m to keep 32-bit float precision")
+
+    for arguments in lights:
+        arguments["matrix"] = sync_origin.rebased_matrix(arguments["matrix"], origin)
+        native_scene.add_light(**arguments)
+
+    for key, entries in pending.items():
+        index, slots, visibility, (holdout, catcher) = key
         first = native_scene.instance_count
         stats.instances += native_scene.add_instances(
-            index, np.stack([matrix for matrix, _ in entries]), list(slots), visibility,
+            index, sync_origin.rebased_matrices(stacked[key], origin), list(slots), visibility,
             holdout=holdout, shadow_catcher=catcher)
         if object_instances is not None:
             for offset, (_, owner) in enumerate(entries):
                 if owner is not None:
                     object_instances.setdefault(owner, []).append(first + offset)
 
-    identity = np.identity(4, dtype=np.float32)[None]
-    for index, slots, visibility, (holdout, catcher) in hair:
-        stats.instances += native_scene.add_instances(index, identity, slots, visibility,
-                                                      holdout=holdout, shadow_catcher=catcher)
+    for index, slots, visibility, (holdout, catcher), anchor in hair:
+        # Ribbons are stored relative to their anchor: placed back at anchor - origin.
+        placement = np.identity(4, dtype=np.float64)
+        placement[:3, 3] = anchor
+        stats.instances += native_scene.add_instances(
+            index, sync_origin.rebased_matrix(placement, origin)[None], slots, visibility,
+            holdout=holdout, shadow_catcher=catcher)
 
     for obj_type, names in sorted(unsupported.items()):
         shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")
         reporter.warning(f"{obj_type.title()} objects are not supported yet and were skipped: "
                          f"{shown}")
 
-    sync_camera.export_camera(native_scene, scene, depsgraph, reporter)
+    sync_camera.export_camera(native_scene, scene, depsgraph, reporter, origin=origin)
     world = sync_materials.world_color(scene.world, reporter,
                                        getattr(native, "MAX_EMISSION", None))
     native_scene.set_world(world)

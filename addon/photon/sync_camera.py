@@ -5,6 +5,7 @@ import math
 import numpy as np
 
 from .report import SceneError
+from .sync_origin import rebased_matrix
 
 
 def render_size(render):
@@ -78,13 +79,16 @@ def _horizontal_fit(cam, window):
     return cam.sensor_fit == 'HORIZONTAL'
 
 
-def export_camera(native_scene, scene, depsgraph, reporter, view=None):
+def export_camera(native_scene, scene, depsgraph, reporter, view=None, origin=None):
     """Sets the native camera from the scene camera, or from `view` (a ViewCamera) for one
-    view of a multiview render."""
+    view of a multiview render. `origin` is the world origin offset the native scene is built
+    around (sync_origin; SyncStats.origin), subtracted from the camera's position."""
+    if origin is None:
+        origin = np.zeros(3, dtype=np.float64)
     cam_obj = scene.camera if view is None else view.camera
     if cam_obj is None:
         reporter.warning("The scene has no camera; rendering from the default view")
-        native_scene.set_camera("PERSP", np.identity(4, dtype=np.float32),
+        native_scene.set_camera("PERSP", rebased_matrix(np.identity(4), origin),
                                 [-0.5, 0.5, -0.5, 0.5], 0.1, 1000.0)
         return
     cam_obj = cam_obj.evaluated_get(depsgraph)
@@ -93,7 +97,7 @@ def export_camera(native_scene, scene, depsgraph, reporter, view=None):
         reporter.warning(f"Active camera '{cam_obj.name}' is not a camera object; "
                          f"using its transform with a 50 mm lens")
         matrix = cam_obj.matrix_world.normalized()
-        native_scene.set_camera("PERSP", np.asarray(matrix, dtype=np.float32),
+        native_scene.set_camera("PERSP", rebased_matrix(matrix, origin),
                                 [-0.36, 0.36, -0.36, 0.36], 0.1, 1000.0)
         return
     cam = cam_obj.data
@@ -141,6 +145,6 @@ def export_camera(native_scene, scene, depsgraph, reporter, view=None):
 
     # Cycles removes the camera object's scale; so do we (camera_model_matrix has none).
     matrix = placement.normalized()
-    native_scene.set_camera(projection, np.asarray(matrix, dtype=np.float32), window,
+    native_scene.set_camera(projection, rebased_matrix(matrix, origin), window,
                             float(cam.clip_start), float(cam.clip_end),
                             float(aperture_radius), float(focus_distance))

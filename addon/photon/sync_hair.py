@@ -53,12 +53,14 @@ def _shape_radius(shape, root, tip, t):
     return radius * (root - tip) + tip
 
 
-def ribbons(points, radii, counts, view):
+def ribbons(points, radii, counts, view, anchor=None):
     """Triangles of camera-facing ribbons along strands.
 
     points: (N, 3) world positions, strands stored one after another; radii: (N,); counts:
-    points per strand. Returns (positions (2N, 3) float32, triangles (T, 3) int32, corner
-    normals (3T, 3) float32) with degenerate and non-finite triangles already removed (a zero
+    points per strand. `anchor` (float64 (3,), optional) is subtracted from the points and the
+    view in double precision before they become float32: the ribbons are then placed by an
+    instance translated by the anchor, so hair far from the origin keeps its detail. Returns
+    (positions (2N, 3) float32, triangles (T, 3) int32, corner normals (3T, 3) float32) with degenerate and non-finite triangles already removed (a zero
     tip radius makes one triangle of the last quad a sliver), so the native mesh cleanup has
     nothing to report.
 
@@ -67,6 +69,10 @@ def ribbons(points, radii, counts, view):
     across the ribbon they sweep between the two, so a strand is lit like a tube, brighter on
     its side towards the light.
     """
+    view_position = view.position
+    if anchor is not None:
+        points = np.asarray(points, dtype=np.float64) - anchor
+        view_position = view_position - anchor
     points = np.asarray(points, dtype=np.float32)
     radii = np.asarray(radii, dtype=np.float32)
     counts = np.asarray(counts, dtype=np.int64)
@@ -85,7 +91,7 @@ def ribbons(points, radii, counts, view):
     if view.forward is not None:
         to_view = -view.forward.astype(np.float32)
     else:
-        to_view = view.position.astype(np.float32) - points
+        to_view = view_position.astype(np.float32) - points
     side = np.cross(tangent, to_view)
     length = np.sqrt(np.einsum('ij,ij->i', side, side))
     # A strand pointing straight at the camera has no facing side: any perpendicular will do.
@@ -203,6 +209,10 @@ def _transformed(points, radii, matrix):
     return points, radii
 
 
+def _anchor(place, points):
+    return np.zeros(3, dtype=np.float64) if place is None else place(points)
+
+
 def relocation(instance_matrix, object_matrix):
     """The matrix taking the object's hair (where co_hair puts it: at the object) to one of its
     instances, or False when the object's transform cannot be inverted (a zero scale, NaN)."""
@@ -215,8 +225,11 @@ def relocation(instance_matrix, object_matrix):
 
 
 def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocate=None,
-                  cache=None):
-    """Adds one ribbon mesh per hair system of `obj`: [(mesh index, triangles, slot list)].
+                  cache=None, place=None):
+    """Adds one ribbon mesh per hair system of `obj`: [(mesh index, triangles, slot list,
+    anchor)]: each mesh holds its ribbons relative to its anchor (float64 (3,)), which the
+    instance placing it adds back. `place(points)` gives the anchor of world points (zero
+    without it).
 
     `slots` are the object's native material indices; each system renders with the slot its
     settings name (Particle Settings > Render > Material). co_hair gives the strands where the
@@ -237,7 +250,8 @@ def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocat
         points, radii, counts = strands
         if relocate is not None:
             points, radii = _transformed(points, radii, relocate)
-        positions, triangles, normals = ribbons(points, radii, counts, view)
+        anchor = _anchor(place, points)
+        positions, triangles, normals = ribbons(points, radii, counts, view, anchor)
         if len(triangles) == 0:
             continue
         info = native_scene.add_mesh(f"{obj.name} hair {psys.name}", positions, triangles,
@@ -245,12 +259,13 @@ def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocat
         if info["triangles"] == 0:
             continue
         slot = min(max(int(settings.material) - 1, 0), len(slots) - 1)
-        out.append((info["index"], info["triangles"], [slots[slot]]))
+        out.append((info["index"], info["triangles"], [slots[slot]], anchor))
     return out
 
 
-def curves_hair(native_scene, obj, matrix, view, slots, reporter):
-    """Adds a Curves object's strands as ribbons: (mesh index, triangles, slot list) or None."""
+def curves_hair(native_scene, obj, matrix, view, slots, reporter, place=None):
+    """Adds a Curves object's strands as ribbons: (mesh index, triangles, slot list, anchor)
+    or None; the anchor is as particle_hair's."""
     curves = obj.data
     point_count = len(curves.points)
     curve_count = len(curves.curves)
@@ -273,11 +288,12 @@ def curves_hair(native_scene, obj, matrix, view, slots, reporter):
         radii = np.full(point_count, DEFAULT_CURVES_RADIUS, dtype=np.float32)
     # Radii live in object space: scaled by the transform's mean axis scale.
     points, radii = _transformed(positions.reshape(-1, 3), radii, matrix)
-    ribbon_positions, triangles, normals = ribbons(points, radii, counts, view)
+    anchor = _anchor(place, points)
+    ribbon_positions, triangles, normals = ribbons(points, radii, counts, view, anchor)
     if len(triangles) == 0:
         return None
     info = native_scene.add_mesh(f"{obj.name} curves", ribbon_positions, triangles,
                                  corner_normals=normals)
     if info["triangles"] == 0:
         return None
-    return info["index"], info["triangles"], [slots[0]]
+    return info["index"], info["triangles"], [slots[0]], anchor

@@ -21,21 +21,23 @@ def visibility_bits(native, obj):
     return bits
 
 
-def export_light(native, native_scene, obj, matrix, reporter):
-    """Adds one light; returns True if it was added."""
+def light_arguments(native, obj, matrix, reporter):
+    """Scene.add_light keyword arguments of one light, or None when it adds no light. The
+    "matrix" is the world matrix in double precision: sync rebases it (sync_origin) before
+    making it float32."""
     light = obj.data
     power = float(light.energy)
     color = [float(c) for c in light.color]
     if not all(math.isfinite(v) for v in color + [power]):
         reporter.warning(f"Light '{obj.name}': non-finite colour or power; skipped")
-        return False
+        return None
     if power <= 0.0 or max(color) <= 0.0:
         reporter.warning(f"Light '{obj.name}' has zero power; it adds no light")
-        return False
+        return None
     kwargs = {
         "name": obj.name,
         "type": light.type,
-        "matrix": np.asarray(matrix, dtype=np.float32),
+        "matrix": np.array(matrix, dtype=np.float64),
         "color": color,
         "power": power,
         "visibility": visibility_bits(native, obj),
@@ -57,6 +59,5 @@ def export_light(native, native_scene, obj, matrix, reporter):
             degenerate = light.size <= 0.0 or light.size_y <= 0.0
         if degenerate:
             reporter.warning(f"Area light '{obj.name}' has zero size; skipped")
-            return False
-    native_scene.add_light(**kwargs)
-    return True
+            return None
+    return kwargs

@@ -3,6 +3,8 @@
 import bpy
 import numpy as np
 
+from .sync_origin import local_bounds
+
 # Since Blender 3.0 the evaluated geometry of curves, text, surfaces and metaballs reaches render
 # engines as a separate instance whose data is a Mesh (the object's own entry keeps its Curve or
 # MetaBall data). So an object is geometry exactly when its evaluated data is a Mesh.
@@ -80,20 +82,21 @@ def mesh_arrays(mesh):
 
 
 def export_object_mesh(native_scene, obj, reporter):
-    """Converts an evaluated object's geometry; returns (mesh index or None, triangle count)."""
+    """Converts an evaluated object's geometry; returns (mesh index or None, triangle count,
+    (lo, hi) object-space bounds of its vertices in float64)."""
     try:
         mesh = obj.to_mesh()
     except RuntimeError as exc:
         reporter.warning(f"Object '{obj.name}': cannot convert to a mesh ({exc}); skipped")
-        return None, 0
+        return None, 0, (None, None)
     if mesh is None:
-        return None, 0
+        return None, 0, (None, None)
     try:
         arrays = mesh_arrays(mesh)
     finally:
         obj.to_mesh_clear()
     if arrays is None:
-        return None, 0
+        return None, 0, (None, None)
     method, kwargs = arrays
     info = getattr(native_scene, method)(obj.name, **kwargs)
     if info["non_finite_vertices"]:
@@ -103,5 +106,5 @@ def export_object_mesh(native_scene, obj, reporter):
         reporter.warning(f"Object '{obj.name}': dropped {info['dropped_triangles']} degenerate "
                          f"or invalid triangles")
     if info["triangles"] == 0:
-        return None, 0
-    return info["index"], info["triangles"]
+        return None, 0, (None, None)
+    return info["index"], info["triangles"], local_bounds(kwargs["positions"])

@@ -129,6 +129,11 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
   top_ = rtcNewScene(device_);
   rtcSetSceneFlags(top_, RTC_SCENE_FLAG_ROBUST);
   size_t skipped = 0;
+  // Objects too small for floats where they stand (kObjectFarFromOriginRatio): how many, and
+  // the one farthest beyond precision.
+  size_t coarse_objects = 0;
+  float coarse_ratio = 0.0f, coarse_size = 0.0f, coarse_distance = 0.0f;
+  std::string coarse_name;
   embree_instance_.assign(scene.instances.size(), UINT32_MAX);
   for (size_t index = 0; index < scene.instances.size(); ++index) {
     const Instance& inst = scene.instances[index];
@@ -155,6 +160,35 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
     rtcReleaseGeometry(geom);
     embree_instance_[index] = static_cast<uint32_t>(instances_.size());
     instances_.push_back(data);
+
+    // The instance's world box: its mesh's box centre transformed, half size by |rotation|.
+    RTCBounds local;
+    rtcGetSceneBounds(mesh_scenes_[inst.mesh], &local);
+    const Vec3 centre(0.5f * (local.lower_x + local.upper_x),
+                      0.5f * (local.lower_y + local.upper_y),
+                      0.5f * (local.lower_z + local.upper_z));
+    const Vec3 half(0.5f * (local.upper_x - local.lower_x), 0.5f * (local.upper_y - local.lower_y),
+                    0.5f * (local.upper_z - local.lower_z));
+    Vec3 world_lo, world_hi;
+    for (int r = 0; r < 3; ++r) {
+      const float c = to_world.m[r][0] * centre.x + to_world.m[r][1] * centre.y +
+                      to_world.m[r][2] * centre.z + to_world.m[r][3];
+      const float h = std::abs(to_world.m[r][0]) * half.x + std::abs(to_world.m[r][1]) * half.y +
+                      std::abs(to_world.m[r][2]) * half.z;
+      (&world_lo.x)[r] = c - h;
+      (&world_hi.x)[r] = c + h;
+    }
+    if (scene_beyond_float_precision(world_lo, world_hi, kObjectFarFromOriginRatio)) {
+      const float size = length(world_hi - world_lo);
+      const float distance = std::max(max_abs_component(world_lo), max_abs_component(world_hi));
+      const float ratio = size > 0.0f ? distance / size : INFINITY;
+      if (coarse_objects++ == 0 || ratio > coarse_ratio) {
+        coarse_ratio = ratio;
+        coarse_size = size;
+        coarse_distance = distance;
+        coarse_name = inst.name.empty() ? data.mesh->name : inst.name;
+      }
+    }
   }
   if (!commit(top_)) {
     clear_after_cancel();
@@ -180,6 +214,17 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
                     "resolve only %.3g m there, so surfaces band and shadows and contact light "
                     "go wrong; move the scene near the origin",
                     extent, distance, distance * std::numeric_limits<float>::epsilon());
+      warnings_->push_back(text);
+    } else if (warnings_ && coarse_objects) {
+      char text[480];
+      std::snprintf(text, sizeof text,
+                    "%zu object(s) are too small for 32-bit floats where they lie: '%.100s' spans "
+                    "%.3g m but lies %.3g m from the origin, where floats resolve only %.3g m, "
+                    "so it bands and its shadows and contact light go wrong (the scene spans "
+                    "%.3g m); keep small detail nearer the origin or the scene smaller",
+                    coarse_objects, coarse_name.c_str(), coarse_size, coarse_distance,
+                    coarse_distance * std::numeric_limits<float>::epsilon(),
+                    length(bounds_max_ - bounds_min_));
       warnings_->push_back(text);
     }
   }

@@ -43,11 +43,19 @@ inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& ng, const Vec3& w, floa
 // 2^-16 of the extent and the ray offset above over 1% of it (surfaces band, contact shadows
 // and light leaks show).
 constexpr float kFarFromOriginRatio = 128.0f;
-inline bool scene_beyond_float_precision(const Vec3& bounds_min, const Vec3& bounds_max) {
+inline bool scene_beyond_float_precision(const Vec3& bounds_min, const Vec3& bounds_max,
+                                         float ratio = kFarFromOriginRatio) {
   const float extent = length(bounds_max - bounds_min);
   const float distance = std::max(max_abs_component(bounds_min), max_abs_component(bounds_max));
   if (!std::isfinite(extent) || !std::isfinite(distance)) return false;
-  return distance > kFarFromOriginRatio * extent;
+  return distance > ratio * extent;
 }
+
+// The same test for one object (an instance's world box) of a scene that is itself near the
+// origin but far larger than its objects (a 1e7 m scene with metre-sized objects at its edge):
+// beyond this ratio the ray offset above exceeds 80% of the object's size and one float step is
+// 2^-10 of it, so the object's own shading is lost. Higher than the scene's ratio because
+// scattered small objects (grass, pebbles) a few hundred sizes out still render acceptably.
+constexpr float kObjectFarFromOriginRatio = 8192.0f;
 
 }  // namespace photon

@@ -1,7 +1,9 @@
 """One small sun-lit scene (floor, red back wall, a box casting a shadow that only indirect light
 fills) built at any scale and distance from the origin, rendered with PHOTON_MAP.
 
-Arguments: out_dir tag scale offset [near_camera: 1 = camera 6.7 units away]. Every length (geometry, camera position, clip range) is
+Arguments: out_dir tag scale offset [near_camera: 1 = camera 6.7 units away] [far_box: a
+distance D; when not 0, a 1-unit box also stands at (-D, -D, 0), out of view, so the scene's own
+extent is about 1.4 D]. Every length (geometry, camera position, clip range) is
 multiplied by `scale`; every object is then moved by (offset, offset, 0). The sun is scale
 invariant, so the image should not change with `scale`. Object locations are exactly `offset`
 and the camera's coordinates are whole numbers at scale 1, so a 1e7 offset is exactly
@@ -34,13 +36,15 @@ def scaled_box(name, lo, hi, material, scale, offset):
     return obj
 
 
-def build(scale, offset, near_camera=False):
+def build(scale, offset, near_camera=False, far_box=0.0):
     scene = builders.reset_scene(width=RES, height=RES)
     white = builders.diffuse_material("White", (0.8, 0.8, 0.8))
     red = builders.diffuse_material("Red", (0.8, 0.1, 0.1))
     scaled_quad("Floor", (-3, -3, 0), (6, 0, 0), (0, 6, 0), white, scale, offset)
     scaled_quad("Back", (-3, 1.5, 0), (6, 0, 0), (0, 0, 3), red, scale, offset)
     scaled_box("Box", (-0.5, -0.5, 0.0), (0.5, 0.5, 1.0), white, scale, offset)
+    if far_box:
+        scaled_box("FarBox", (-0.5, -0.5, 0.0), (0.5, 0.5, 1.0), white, scale, -far_box)
     sun = builders.light("Sun", 'SUN', 3.0, (offset, offset, 0.0),
                          rotation=(math.radians(40), 0.0, math.radians(30)))
     sun.data.angle = math.radians(2.0)
@@ -63,9 +67,9 @@ def build(scale, offset, near_camera=False):
     return scene
 
 
-def main(out_dir, tag, scale, offset, near_camera="0"):
+def main(out_dir, tag, scale, offset, near_camera="0", far_box="0"):
     os.makedirs(out_dir, exist_ok=True)
-    scene = build(float(scale), float(offset), near_camera == "1")
+    scene = build(float(scale), float(offset), near_camera == "1", float(far_box))
     path = os.path.join(out_dir, f"scale_scene_{tag}.exr")
     scene.render.filepath = path
     scene.render.use_file_extension = False
