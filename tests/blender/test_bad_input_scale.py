@@ -81,7 +81,7 @@ def test_scene_too_large_for_floats_still_warns(blender):
 @pytest.mark.parametrize("scale, clipped", [(1.0, False), (1e-7, True)])
 def test_camera_clipped_by_blenders_minimum_clip_start_warns(blender, scale, clipped):
     """Blender will not set clip_start below 1e-6 m: a camera 6.7e-7 m from a 1e-7-scale scene
-    clips all of it (the testers' missing floor). That is said, not left as a black image."""
+    clips all of it (the floor goes missing). That is said, not left as a black image."""
     result, proc = render(blender, f"near_{scale:g}", scale, near_camera=True)
     warned = any(line.startswith("Photon: warning:") and "clip start" in line
                  for line in proc.stdout.splitlines())

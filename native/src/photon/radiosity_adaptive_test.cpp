@@ -16,7 +16,7 @@ namespace photon {
 namespace {
 
 // A 20 m floor of two triangles (instance 0) and a finely tessellated unit sphere above it
-// (instance 1): the testers' unbalanced scene, smaller.
+// (instance 1): a scene whose triangle sizes differ by orders of magnitude.
 Scene floor_and_sphere(int segments) {
   Scene scene;
   scene.materials.push_back(Material::diffuse(Vec3(0.8f)));
