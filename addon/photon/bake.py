@@ -1,7 +1,7 @@
-"""Lighting bake (issue 6): the view-independent lighting of the scene, computed once by the native
+"""Lighting bake: the view-independent lighting of the scene, computed once by the native
 integrator (photon maps or radiosity) at surface points, written into Blender data for real-time
 viewing: a per-corner Color Attribute `PhotonLighting` on each mesh, and optionally a per-object
-UV lightmap image (seed 003: photon maps turned into textures, filtered in 2D).
+UV lightmap image (photon-mapped light turned into textures, filtered in 2D).
 
 A BakeJob syncs the scene exactly as a render does, lists the points to shade (one per face
 corner, one per covered lightmap texel), runs one native BakeSession for all of them (so photon

@@ -1,7 +1,7 @@
 // Camera-ray throughput of the RAY_TRACE integrator against a bare Embree rtcIntersect1 loop over
 // the same rays (and, for reference, the same rays as coherent rtcIntersect1M streams).
 // Run: build/photon_bench --benchmark_filter=Camera
-// Target (issue 2): integrator camera rays >= 70% of the bare rtcIntersect1 loop.
+// Target: integrator camera rays >= 70% of the bare rtcIntersect1 loop.
 #include <benchmark/benchmark.h>
 
 #include <atomic>

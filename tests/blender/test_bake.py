@@ -1,4 +1,4 @@
-"""Lighting bake (issue 6): the native bake API from plain Python, the photon.bake_lighting
+"""Lighting bake: the native bake API from plain Python, the photon.bake_lighting
 operator on the Cornell box against a render of the same scene, and bad input."""
 
 import json

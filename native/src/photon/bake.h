@@ -1,6 +1,6 @@
-// Lighting bakes (issue 6): the view-independent radiance of given surface points, computed
+// Lighting bakes: the view-independent radiance of given surface points, computed
 // once by an integrator that has such a solution (photon maps, radiosity) and written by the
-// add-on into Blender data (colour attributes, lightmaps) for real-time viewing (seed 003).
+// add-on into Blender data (colour attributes, lightmaps) for real-time viewing.
 // Runs on a background thread like RenderSession: prepare the integrator once (progress,
 // cancel, stop early), then shade every point in parallel. Results do not depend on the thread
 // count: point i always draws from the sampler streams (seed, 3i + {0, 1, 2}).

@@ -1,5 +1,5 @@
-// Follows a camera ray through the non-diffuse lobes of the surfaces it meets (seed 000 eq.
-// 2.15: specular and glossy reflection and refraction, ray traced), adding emission met on the
+// Follows a camera ray through the non-diffuse lobes of the surfaces it meets (Jensen
+// 2001 sec. 9.1: specular and glossy reflection and refraction, ray traced), adding emission met on the
 // way and direct light at every vertex (direct_lighting.h). The diffuse lobes' indirect light
 // is left to the integrator, through `shade_diffuse`, so ray tracing and photon mapping share
 // one path walker.

@@ -10,8 +10,8 @@
 
 namespace photon {
 
-// Reflected (and transmitted) radiance towards `wo` from every light and the world, seed 000
-// eq. 2.14. `bsdf`'s normals face wo.
+// Reflected (and transmitted) radiance towards `wo` from every light and the world: the
+// direct term of Jensen 2001 sec. 9.1. `bsdf`'s normals face wo.
 // Only the lobes in `lobes` (diffuse and / or glossy) are lit this way.
 Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
                      const Bsdf& bsdf, const Vec3& wo, Sampler& sampler,

@@ -35,7 +35,7 @@ struct RenderSettings {
   IntegratorType integrator = IntegratorType::kPhotonMap;
   bool light_passes = false;  // also write the Direct / Indirect / Caustics / Photon Map passes
 
-  // Photon mapping (seed 000 sec. 2.1; Jensen 2001).
+  // Photon mapping (Jensen 2001).
   uint64_t photons = 200000;          // photon paths emitted for the global map
   uint64_t caustic_photons = 100000;  // photon paths aimed at specular objects
   int gather_count = 100;             // k nearest photons in a global-map estimate
@@ -48,7 +48,7 @@ struct RenderSettings {
   // fraction of the memory available when tracing starts (MemAvailable; photon_memory.h).
   float memory_limit = 0.75f;
 
-  // Radiosity (seed 002; radiosity_solver.h).
+  // Radiosity (radiosity_solver.h).
   float radiosity_patch_size = 0.0f;  // element edge length; 0 = automatic (~20k elements)
   uint64_t radiosity_rays = 8000000;  // rays traced by the whole solve
   float radiosity_threshold = 0.01f;  // shooting stops below this unshot fraction

@@ -1,4 +1,4 @@
-// Lightmaps from baked points (seed 003: photon maps turned into textures, "filtered in 2D"):
+// Lightmaps from baked points (photon-mapped light turned into textures, filtered in 2D):
 // texel centres are mapped to surface points through a UV layout, baked, then filtered in the
 // texture plane with a filter that does not mix texels of different surfaces, and dilated into
 // the gutters so bilinear lookups at chart borders do not read empty texels.

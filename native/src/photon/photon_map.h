@@ -74,7 +74,7 @@ class PhotonMap {
   int64_t nearest(const Vec3& p, float max_radius, uint8_t flag_mask) const;
 
   // Reflected radiance of a Lambertian surface of albedo 1 at `p` with normal `n` (multiply by
-  // the albedo): seed 000 eq. 2.7 with f_r = 1/pi, the k nearest photons in a disc of area
+  // the albedo): Jensen 2001 sec. 7.1 with f_r = 1/pi, the k nearest photons in a disc of area
   // pi r^2, weighted by the cone filter w = 1 - d / (c r), normalised by 1 - 2 / (3c) (Jensen
   // 1996, c = 1.1). Only photons that lie on the queried surface count, so light does not leak
   // through walls (photon_on_surface). `scratch` avoids allocation per query.

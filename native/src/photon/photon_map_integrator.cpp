@@ -394,7 +394,7 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
   return sum / static_cast<float>(n);
 }
 
-// Seed 000's photon-map view: a dot where a stored photon lies, coloured by its power's hue.
+// The classic photon-map view: a dot where a stored photon lies, coloured by its power's hue.
 // The dot radius follows the local photon spacing, so dots stay dots in dense and sparse areas.
 Vec3 PhotonMapIntegrator::photon_dots(const SurfaceInteraction& x) const {
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();

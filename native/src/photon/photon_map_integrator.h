@@ -1,4 +1,4 @@
-// Jensen's two-pass photon mapping (Jensen 1996; seed 000 eqs. 2.13-2.17). The first pass
+// Jensen's two-pass photon mapping (Jensen 1996; Jensen 2001 ch. 9). The first pass
 // (prepare) traces global and caustic photons into two maps and precomputes reflected radiance
 // at a subset of the global photons (Christensen 1999). The second pass splits the light
 // leaving each visible diffuse point into
@@ -50,7 +50,7 @@ class PhotonMapIntegrator : public Integrator {
   // Radiance (for albedo 1) leaving a diffuse point p with normal n: the nearest precomputed
   // record, else a small global-map estimate.
   Vec3 gathered_radiance(const Vec3& p, const Vec3& n, std::vector<PhotonNeighbor>* scratch) const;
-  // Radiance reaching the origin of a final-gather ray (seed 000 eq. 2.17's integrand), and
+  // Radiance reaching the origin of a final-gather ray (the integrand of the indirect term, Jensen 2001 sec. 9.1), and
   // the distance to its first hit (infinity if none).
   Vec3 gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
                   std::vector<PhotonNeighbor>* scratch, float* hit_distance = nullptr) const;

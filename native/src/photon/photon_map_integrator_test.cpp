@@ -40,8 +40,8 @@ double mean_channel(const std::vector<float>& rgba, int c) {
 }
 
 // A closed box whose walls emit Le and reflect albedo rho: every wall sends
-// L = Le + rho L, so L = Le / (1 - rho) everywhere (the furnace-like test of seed 000's
-// rendering equation, all four terms together).
+// L = Le + rho L, so L = Le / (1 - rho) everywhere (a furnace-like test of the
+// rendering equation's four terms together).
 Scene emissive_furnace(float rho, float le) {
   Scene scene;
   scene.materials.push_back(Material::diffuse(Vec3(rho)).with_emission(Vec3(le)));

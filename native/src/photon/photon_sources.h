@@ -1,6 +1,6 @@
 // Everything that emits photons (Blender lights, emissive triangles, a uniform world), with
-// photons split between them in proportion to their power (seed 000 sec. 2.1: "the total number
-// of photons is divided in proportion to the sources' brightness").
+// photons split between them in proportion to their power (Jensen 2001 sec. 5.1.4, multiple light
+// sources).
 #pragma once
 
 #include <vector>

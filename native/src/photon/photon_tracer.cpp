@@ -29,7 +29,7 @@ struct PathSetup {
   float power_scale;  // 1 / photons emitted when known up front, else 1 (rescaled later)
 };
 
-// Seed 000 eq. 2.2 / Jensen 2001 sec. 5.2: the BSDF picks a lobe by albedo and samples it; the
+// Jensen 2001 sec. 5.2: the BSDF picks a lobe by albedo and samples it; the
 // photon survives with probability q = max channel of the sampled weight (so its power never
 // grows) and carries power * weight / q per channel.
 bool scatter(const Bsdf& bsdf, const Vec3& wo, uint8_t mask, Sampler& sampler, Vec3* power,

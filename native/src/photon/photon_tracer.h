@@ -1,6 +1,6 @@
-// The first pass of photon mapping (seed 000 sec. 2.1; Jensen 2001 ch. 5): photons leave the
+// The first pass of photon mapping (Jensen 2001 ch. 5): photons leave the
 // lights and are traced through the scene with Russian roulette on the material's lobes
-// (seed 000 eq. 2.2), stored at every diffuse hit. Photons are traced in parallel in fixed
+// (Jensen 2001 sec. 5.2), stored at every diffuse hit. Photons are traced in parallel in fixed
 // chunks whose results are concatenated in chunk order, and every random number comes from
 // (seed, pass, photon index), so the maps do not depend on the number of threads.
 #pragma once

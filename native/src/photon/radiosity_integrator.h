@@ -1,6 +1,6 @@
 // Integrator RADIOSITY: a view-independent diffuse solution computed once in prepare()
 // (meshing: radiosity_mesh.h; stochastic Jacobi solver: radiosity_solver.h), then displayed:
-// camera rays follow mirrors and glass (specular_chain.h) to a diffuse point and read its
+// camera rays follow mirrors and glass (camera_path.h) to a diffuse point and read its
 // Gouraud-interpolated radiosity, L = B / pi (radiosity_field.h). Emission met on the way is
 // added as in the other integrators. Light passes: Direct = emission plus light reflected
 // straight from the lights; Caustics = light that reached the surface from a light through

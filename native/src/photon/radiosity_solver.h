@@ -1,11 +1,11 @@
 // Monte Carlo radiosity without form factors: stochastic Jacobi iterations with local lines
-// (seed 002 sec. 2.3-2.4; Dutre, Bekaert, Bala, "Advanced Global Illumination" (AGI) 2nd ed.,
+// (Dutre, Bekaert, Bala, "Advanced Global Illumination" (AGI) 2nd ed.,
 // sec. 6.3 "Stochastic relaxation radiosity" and appendix C; Bekaert's PhD thesis 1999,
 // "Hierarchical and stochastic algorithms for radiosity", on stochastic Jacobi iterations).
 //
-// In power form (seed 002 eq. 12) the radiosity system reads P_i = Pe_i + rho_i sum_j F_ji P_j.
+// In power form the radiosity system reads P_i = Pe_i + rho_i sum_j F_ji P_j.
 // Since sum_j F_ij = 1 and F_ij is the probability that a cosine-distributed line leaving a
-// uniform point of i lands on j (eq. 10, local lines), one Jacobi step P' = Pe + rho F^T P is
+// uniform point of i lands on j (local lines), one Jacobi step P' = Pe + rho F^T P is
 // estimated by shooting N rays, each from a source chosen with probability proportional to its
 // power and carrying the same power P_T / N; the element a ray lands on receives rho times it
 // (AGI sec. 6.3, solving the system of eq. 6.6). Two phases:

@@ -1,5 +1,6 @@
-// Whitted-style ray tracing (Whitted 1980): direct light from every light at diffuse surfaces,
-// perfect mirror reflection and dielectric refraction followed recursively up to max_depth.
+// Whitted-style ray tracing (Whitted 1980) extended to glossy lobes: direct light at every
+// surface, mirror, glossy and glass lobes followed up to max_depth (camera_path.h), no indirect
+// diffuse light.
 #pragma once
 
 #include "photon/integrator.h"

@@ -65,7 +65,7 @@ class RenderSession {
   void wait();   // blocks until the render has finished or been cancelled
   void cancel();
   // Ends the integrator's preparation (photon tracing) early; the render then goes on with
-  // what was prepared so far (Esc during photon tracing, seed 003).
+  // what was prepared so far (Esc during photon tracing).
   void stop_preparation();
 
   // Finished tiles since the last call; waits up to `timeout_seconds` for at least one.
