@@ -112,16 +112,12 @@ class PHOTON_PT_radiosity(PhotonPanel, bpy.types.Panel):
         col.prop(props, "radiosity_iterations")
 
 
-class PHOTON_PT_passes(bpy.types.Panel):
-    bl_label = "Photon Passes"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
+class PhotonViewLayerPanel(PhotonPanel):
     bl_context = "view_layer"
-    COMPAT_ENGINES = {ENGINE}
 
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES
+
+class PHOTON_PT_passes(PhotonViewLayerPanel, bpy.types.Panel):
+    bl_label = "Photon Passes"
 
     def draw(self, context):
         layout = self.layout
@@ -136,18 +132,10 @@ class PHOTON_PT_passes(bpy.types.Panel):
         col.prop(settings, "use_pass_photon_map", text="Photon Map")
 
 
-class PHOTON_PT_layer_override(bpy.types.Panel):
+class PHOTON_PT_layer_override(PhotonViewLayerPanel, bpy.types.Panel):
     """The view layer's Material Override (Blender draws it only in Cycles' own panel)."""
     bl_label = "Override"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "view_layer"
     bl_options = {"DEFAULT_CLOSED"}
-    COMPAT_ENGINES = {ENGINE}
-
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES
 
     def draw(self, context):
         layout = self.layout
