@@ -20,7 +20,8 @@ except Exception as exc:  # ImportError, or an undefined symbol from a stale bui
     _photon = None
     NATIVE_IMPORT_ERROR = f"{type(exc).__name__}: {exc}"
 
-from . import bake_ops, engine, properties, ui  # noqa: E402
+from . import engine, properties, ui  # noqa: E402
+from .bake import operators as bake_ops  # noqa: E402
 
 _modules = (properties, engine, ui, bake_ops)
 

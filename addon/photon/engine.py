@@ -7,7 +7,8 @@ import traceback
 import bpy
 import numpy as np
 
-from . import properties, report, sync, sync_camera
+from . import properties, report, sync
+from .sync import camera as sync_camera
 
 POLL_SECONDS = 0.05  # tile poll interval; bounds Esc latency together with the per-row check
 

@@ -7,13 +7,13 @@
 
 #include <random>
 
-#include "photon/scene_resources.h"
-#include "photon/photon_map.h"
-#include "photon/photon_tracer.h"
-#include "photon/radiance_cache.h"
-#include "photon/rng.h"
-#include "photon/sampling.h"
-#include "photon/test_scenes.h"
+#include "photon/render/scene_resources.h"
+#include "photon/integrators/photon_map/photon_map.h"
+#include "photon/integrators/photon_map/photon_tracer.h"
+#include "photon/integrators/photon_map/radiance_cache.h"
+#include "photon/base/rng.h"
+#include "photon/base/sampling.h"
+#include "photon/testing/test_scenes.h"
 
 #if __has_include(<nanoflann.hpp>)
 #include <nanoflann.hpp>

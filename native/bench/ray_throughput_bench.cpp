@@ -7,12 +7,12 @@
 #include <atomic>
 #include <memory>
 
-#include "photon/scene_resources.h"
-#include "photon/accel.h"
-#include "photon/camera.h"
-#include "photon/pixel_renderer.h"
-#include "photon/ray_trace_integrator.h"
-#include "photon/test_scenes.h"
+#include "photon/render/scene_resources.h"
+#include "photon/render/accel.h"
+#include "photon/scene/camera.h"
+#include "photon/session/pixel_renderer.h"
+#include "photon/integrators/ray_trace/ray_trace_integrator.h"
+#include "photon/testing/test_scenes.h"
 
 using namespace photon;
 

@@ -6,10 +6,10 @@
 #include <cstring>
 #include <string>
 
-#include "photon/image_io.h"
-#include "photon/pixel_renderer.h"
-#include "photon/render_session.h"
-#include "photon/test_scenes.h"
+#include "photon/session/image_io.h"
+#include "photon/session/pixel_renderer.h"
+#include "photon/session/render_session.h"
+#include "photon/testing/test_scenes.h"
 
 using namespace photon;
 

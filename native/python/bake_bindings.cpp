@@ -9,8 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "photon/bake.h"
-#include "photon/lightmap.h"
+#include "photon/session/bake.h"
+#include "photon/session/lightmap.h"
 
 namespace py = pybind11;
 using namespace photon;

@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "photon/image_io.h"
-#include "photon/texture_convert.h"
+#include "photon/session/image_io.h"
+#include "photon/render/texture_convert.h"
 
 namespace py = pybind11;
 using namespace photon;

@@ -1,5 +1,5 @@
 // Materials and textures between Python and native: parses the closure dicts the add-on builds
-// from Blender node trees (addon/photon/sync_materials.py documents the schema) into
+// from Blender node trees (addon/photon/sync/materials.py documents the schema) into
 // photon::Material, and describes a Material back as the same dicts (tests prove both sides
 // agree through _photon.describe_material).
 #pragma once
@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "photon/material.h"
+#include "photon/scene/material.h"
 
 namespace photon_python {
 

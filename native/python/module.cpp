@@ -8,11 +8,11 @@
 #include <stdexcept>
 
 #include "material_binding.h"
-#include "photon/mesh_import.h"
-#include "photon/pixel_renderer.h"
-#include "photon/render_session.h"
-#include "photon/scene.h"
-#include "photon/texture_convert.h"
+#include "photon/scene/mesh_import.h"
+#include "photon/session/pixel_renderer.h"
+#include "photon/session/render_session.h"
+#include "photon/scene/scene.h"
+#include "photon/render/texture_convert.h"
 
 namespace py = pybind11;
 using namespace photon;
@@ -257,7 +257,7 @@ PYBIND11_MODULE(_photon, m) {
             return scene.materials.size() - 1;
           },
           py::arg("name"), py::arg("closures"),
-          "Adds a material from closure dicts (schema: addon/photon/sync_materials.py); "
+          "Adds a material from closure dicts (schema: addon/photon/sync/materials.py); "
           "texture indices refer to add_texture's.")
       .def(
           "add_light",

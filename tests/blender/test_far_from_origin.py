@@ -2,7 +2,7 @@
 wall, box, smooth ball, a Curves hair tuft, sun and point light) rendered at the origin and moved
 1e5 m and 1e7 m away, camera moved along, gives the same image within noise and no
 far-from-origin warning. Float32 resolves 1 m at 1e7 m: without rebasing the native scene
-around a world origin offset chosen in double precision (addon/photon/sync_origin.py), the
+around a world origin offset chosen in double precision (addon/photon/sync/origin.py), the
 far renders band, lose the ball's shape and the hair, and Photon warns instead."""
 
 import sys
@@ -83,7 +83,7 @@ def test_bake_far_from_origin_matches_the_bake_at_the_origin(blender):
 def sync_origin(blender):
     """The staged add-on's sync_origin module (numpy only, no bpy), loaded outside Blender."""
     import importlib.util
-    path = blender.stage / "addons" / "photon" / "sync_origin.py"
+    path = blender.stage / "addons" / "photon" / "sync" / "origin.py"
     spec = importlib.util.spec_from_file_location("photon_sync_origin", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)

@@ -97,7 +97,7 @@ def test_huge_hair_is_thinned_with_a_warning(blender, tmp_path, bald):
 @pytest.fixture(scope="module")
 def sync_hair(blender):
     """The staged add-on's sync_hair module (numpy only, no bpy), loaded outside Blender."""
-    path = blender.stage / "addons" / "photon" / "sync_hair.py"
+    path = blender.stage / "addons" / "photon" / "sync" / "hair.py"
     spec = importlib.util.spec_from_file_location("photon_sync_hair", path)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)

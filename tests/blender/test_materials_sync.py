@@ -1,4 +1,4 @@
-"""Blender node trees to native closure lists (addon/photon/sync_materials.py), and the native
+"""Blender node trees to native closure lists (addon/photon/sync/materials.py), and the native
 parser (_photon.describe_material) agreeing with what the add-on sends."""
 
 import math

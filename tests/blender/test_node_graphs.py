@@ -1,4 +1,4 @@
-"""Shader graphs that share sub-trees or run long (addon/photon/sync_graph.py): they convert and
+"""Shader graphs that share sub-trees or run long (addon/photon/sync/graph.py): they convert and
 render in bounded time, paths to one closure add up, and the closure count is capped with a
 warning. The graphs are built by scripts/node_graphs.py (see its docstring)."""
 

@@ -7,7 +7,7 @@ import harness
 
 
 def main(max_points, image_path):
-    from photon import sync_hair  # the enabled add-on's module, used by its render
+    from photon.sync import hair as sync_hair  # the enabled add-on's module, used by its render
     sync_hair.MAX_HAIR_POINTS = int(max_points)
     scene = bpy.context.scene
     scene.render.image_settings.file_format = 'OPEN_EXR'

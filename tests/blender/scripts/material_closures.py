@@ -240,7 +240,7 @@ def build(folder):
 
 
 def main(folder):
-    from photon import sync_materials, sync_textures
+    from photon.sync import materials as sync_materials, textures as sync_textures
     try:
         from photon import _photon
         pixels_type = getattr(_photon, "TexturePixels", None)

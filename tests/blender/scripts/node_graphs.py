@@ -173,7 +173,8 @@ def build(kind, size):
 
 
 def convert(mat):
-    from photon import _photon, sync_materials, sync_textures
+    from photon import _photon
+    from photon.sync import materials as sync_materials, textures as sync_textures
     scene, reporter = RecordingScene(), RecordingReporter()
     textures = sync_textures.TextureTable(scene, reporter, _photon.TexturePixels)
     reporter.current = mat.name

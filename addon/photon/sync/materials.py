@@ -1,0 +1,281 @@
+"""Blender materials to native closure lists, and the world colour.
+
+A material becomes a flat list of closures (see native/src/photon/scene/material.h): Mix Shader and
+Add Shader nodes are flattened into each closure's weight, a product of mix factors (`fac`, or
+`1 - fac` for a Mix Shader's first input), by graph.py. Each closure is a dict
+    {"type": "PRINCIPLED", "sharp": False, "params": {"color": [r, g, b] | {"texture": i,
+     "channel": "COLOR"}, "roughness": 0.5, ...}, "normal_map": {"texture": i, "strength": 1.0},
+     "weight": [{"fac": 0.3 | {"texture": i, "channel": "ALPHA"}, "complement": True}, ...]}
+which Scene.add_material parses. Unsupported nodes are reported once per material and node and
+fall back to their nearest meaning (a shader: diffuse of its colour), never to silent black.
+"""
+
+import math
+
+from . import graph, nodes
+from .inputs import (DEFAULT_COLOR, MaterialContext, Param, clamp_constant, read_input,
+                          read_normal_map)
+from .textures import TextureTable
+
+INF = 1e6       # bound for "absurd" emission values
+MAX_BSDF_LOBES = 8  # Bsdf::kMaxLobes (native/src/photon/render/bsdf.h): lobes kept per point
+
+# Native params by node input name(s) (3.4 names first, 4.x names after).
+COLOR = Param("color", 'color', 0.0, 1.0, [0.8, 0.8, 0.8])
+WHITE = Param("color", 'color', 0.0, 1.0, [1.0, 1.0, 1.0])
+ROUGHNESS = Param("roughness", 'scalar', 0.0, 1.0, 0.5)
+IOR = Param("ior", 'scalar', 1e-3, 100.0, 1.45)
+PRINCIPLED_PARAMS = [
+    (("Base Color",), COLOR),
+    (("Metallic",), Param("metallic", 'scalar', 0.0, 1.0, 0.0)),
+    (("Roughness",), ROUGHNESS),
+    (("Specular", "Specular IOR Level"), Param("specular", 'scalar', 0.0, 10.0, 0.5)),
+    (("Specular Tint",), Param("specular_tint", 'scalar', 0.0, 1.0, 0.0)),
+    (("Transmission", "Transmission Weight"), Param("transmission", 'scalar', 0.0, 1.0, 0.0)),
+    (("IOR",), IOR),
+    (("Emission", "Emission Color"), Param("emission", 'color', 0.0, INF, [0.0, 0.0, 0.0])),
+    (("Emission Strength",), Param("strength", 'scalar', 0.0, INF, 1.0)),
+    (("Alpha",), Param("alpha", 'scalar', 0.0, 1.0, 1.0)),
+    (("Clearcoat", "Coat Weight"), Param("clearcoat", 'scalar', 0.0, 1.0, 0.0)),
+    (("Clearcoat Roughness", "Coat Roughness"),
+     Param("clearcoat_roughness", 'scalar', 0.0, 1.0, 0.03)),
+]
+# Closure type, input params and whether a Normal input applies, for the other BSDF nodes.
+SIMPLE_NODES = {
+    'BSDF_DIFFUSE': ("DIFFUSE", [(("Color",), COLOR),
+                                 (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0, 0.0))]),
+    'BSDF_GLOSSY': ("GLOSSY", [(("Color",), COLOR), (("Roughness",), ROUGHNESS)]),
+    'BSDF_GLASS': ("GLASS", [(("Color",), WHITE),
+                             (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0, 0.0)),
+                             (("IOR",), IOR)]),
+    'BSDF_REFRACTION': ("REFRACTION", [(("Color",), WHITE),
+                                       (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0,
+                                                              0.0)),
+                                       (("IOR",), IOR)]),
+    'BSDF_TRANSPARENT': ("TRANSPARENT", [(("Color",), WHITE)]),
+    'BSDF_TRANSLUCENT': ("TRANSLUCENT", [(("Color",), COLOR)]),
+    'EMISSION': ("EMISSION", [(("Color",), Param("color", 'color', 0.0, INF, [1.0, 1.0, 1.0])),
+                              (("Strength",), Param("strength", 'scalar', 0.0, INF, 1.0))]),
+    # Cuts a hole in the image where camera rays meet it (native/src/photon/render/matte.h).
+    'HOLDOUT': ("HOLDOUT", []),
+}
+# Microfacet distributions rendered as GGX without comment; others warn.
+GGX_LIKE = {'GGX', 'MULTI_GGX'}
+# Principled inputs Photon does not render: (input names, Blender default, whether the input
+# itself is ignored, inputs that only matter when this one is active: (name, default or None
+# for "only a link counts")). Linked counts as active.
+PRINCIPLED_IGNORED = [
+    (("Subsurface", "Subsurface Weight"), 0.0, True,
+     [("Subsurface Radius", (1.0, 0.2, 0.1)), ("Subsurface Color", (0.8, 0.8, 0.8, 1.0)),
+      ("Subsurface IOR", 1.4), ("Subsurface Anisotropy", 0.0)]),
+    (("Anisotropic",), 0.0, True, [("Anisotropic Rotation", 0.0), ("Tangent", None)]),
+    (("Sheen", "Sheen Weight"), 0.0, True, [("Sheen Tint", 0.5)]),
+    (("Transmission Roughness",), 0.0, True, []),
+    (("Clearcoat", "Coat Weight"), 0.0, False, [("Clearcoat Normal", None)]),
+]
+
+
+def _differs(socket, default):
+    """Whether an input is active: linked, or its value is not Blender's default (default None:
+    only a link counts)."""
+    if socket is None:
+        return False
+    if socket.is_linked:
+        return True
+    if default is None:
+        return False
+    value = socket.default_value
+    if isinstance(default, tuple):
+        return any(abs(float(value[i]) - d) > 1e-6 for i, d in enumerate(default))
+    return abs(float(value) - default) > 1e-6
+
+
+def _note_ignored_principled(node, stack, ctx):
+    for names, default, ignored, dependents in PRINCIPLED_IGNORED:
+        main = nodes.find_input(node, *names)
+        if not _differs(main, default):
+            continue
+        if ignored:
+            ctx.ignored_principled.append(main.name)
+        for name, dep_default in dependents:
+            if _differs(node.inputs.get(name), dep_default):
+                ctx.ignored_principled.append(name)
+
+
+def _read_params(node, stack, table, ctx):
+    params = {}
+    for names, param in table:
+        socket = nodes.find_input(node, *names)
+        if socket is not None:
+            params[param.name] = read_input(socket, stack, param, ctx)
+    return params
+
+
+def _bsdf_closure(node, stack, ctx):
+    """The closure of a supported BSDF / emission node, or None if the node is unsupported."""
+    kind = node.type
+    if kind == 'BSDF_PRINCIPLED':
+        closure = {"type": "PRINCIPLED", "sharp": False,
+                   "params": _read_params(node, stack, PRINCIPLED_PARAMS, ctx)}
+        _note_ignored_principled(node, stack, ctx)
+    elif kind in SIMPLE_NODES:
+        closure_type, table = SIMPLE_NODES[kind]
+        closure = {"type": closure_type, "sharp": False,
+                   "params": _read_params(node, stack, table, ctx)}
+        distribution = getattr(node, "distribution", None)
+        if distribution == 'SHARP':
+            closure["sharp"] = True
+        elif distribution is not None and distribution not in GGX_LIKE:
+            where = ctx.where(node, stack)
+            ctx.warn_once(("distribution", where),
+                          f"{where}: the {distribution.replace('_', ' ').title()} "
+                          f"distribution is rendered as GGX")
+    else:
+        return None
+    normal = node.inputs.get("Normal")
+    if normal is not None:
+        normal_map = read_normal_map(normal, stack, ctx)
+        if normal_map is not None:
+            closure["normal_map"] = normal_map
+    return closure
+
+
+def _fallback_closure(node, stack, ctx):
+    """Nearest meaning of an unsupported shader node: diffuse of its own colour."""
+    path = nodes.node_path(node, stack)
+    ctx.warn_once(("node", path), f"Material '{ctx.name}': node '{path}' ({node.bl_idname}) "
+                                  f"is not supported yet; rendering it as diffuse")
+    socket = nodes.find_input(node, "Color", "Base Color")
+    color = (read_input(socket, stack, COLOR, ctx) if socket is not None and
+             socket.type == 'RGBA' else list(DEFAULT_COLOR))
+    return {"type": "DIFFUSE", "sharp": False, "params": {"color": color}}
+
+
+def _leaf_closure(node, stack, ctx):
+    """The closure of a shader node that is not a Mix or Add Shader."""
+    closure = _bsdf_closure(node, stack, ctx)
+    return closure if closure is not None else _fallback_closure(node, stack, ctx)
+
+
+def _diffuse_of(color):
+    return [{"type": "DIFFUSE", "sharp": False,
+             "params": {"color": [float(color[0]), float(color[1]), float(color[2])]},
+             "weight": []}]
+
+
+def convert_material(material, reporter, textures):
+    """(name, closures) for Scene.add_material; textures is a TextureTable."""
+    if material is None:
+        return "default", _diffuse_of(DEFAULT_COLOR)
+    name = material.name
+    ctx = MaterialContext(name, reporter, textures)
+    if not material.use_nodes or material.node_tree is None:
+        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
+    output = nodes.output_node(material.node_tree, 'OUTPUT_MATERIAL')
+    surface = output.inputs.get("Surface") if output else None
+    if surface is None or nodes.source(surface, (), ctx.links).node is None:
+        # Cycles renders an unconnected output black; keep the artist's viewport colour instead
+        # of a silent black object, and say so.
+        reporter.warning(f"Material '{name}' has no shader connected to its output; "
+                         f"rendering its viewport colour")
+        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
+    closures = graph.collect_closures(
+        surface, ctx, lambda node, stack: _leaf_closure(node, stack, ctx))
+    for socket_name in ("Volume", "Displacement"):
+        socket = output.inputs.get(socket_name)
+        if socket is not None and nodes.source(socket, (), ctx.links).node is not None:
+            reporter.warning(f"Material '{name}': {socket_name.lower()} is not supported yet "
+                             f"and is ignored")
+    if ctx.ignored_principled:
+        unique = list(dict.fromkeys(ctx.ignored_principled))
+        reporter.warning(f"Material '{name}': Principled BSDF inputs not supported yet are "
+                         f"rendered at their defaults: {', '.join(unique)}")
+    scattering = sum(1 for c in closures if c["type"] not in ("EMISSION", "HOLDOUT"))
+    if scattering > MAX_BSDF_LOBES:
+        reporter.warning(f"Material '{name}': {scattering} BSDF closures; Photon shades the "
+                         f"{MAX_BSDF_LOBES} strongest lobes at each point and drops the rest")
+    return name, closures
+
+
+def read_constant_color(value, ctx):
+    return clamp_constant([value[0], value[1], value[2]], 'color', 0.0, 1.0,
+                          list(DEFAULT_COLOR), ctx, "the viewport colour")
+
+
+class MaterialTable:
+    """Converts each Blender material once per render and hands out native indices."""
+
+    def __init__(self, native_scene, reporter, pixels_type=None):
+        self._scene = native_scene
+        self._reporter = reporter
+        self._index = {}
+        self.textures = TextureTable(native_scene, reporter, pixels_type)
+
+    def index(self, material):
+        key = material.name_full if material is not None else None
+        found = self._index.get(key)
+        if found is None:
+            name, closures = convert_material(material, self._reporter, self.textures)
+            found = self._scene.add_material(name, closures)
+            self._index[key] = found
+        return found
+
+    def slot_indices(self, obj):
+        slots = [self.index(slot.material) for slot in obj.material_slots]
+        return slots or [self.index(None)]
+
+    def release(self):
+        """Deletes the textures written for this render (call after the render ends)."""
+        self.textures.release()
+
+
+def _checked_world(name, color, strength, reporter, max_emission):
+    """colour x strength with NaN read as 0, negatives clamped to 0 and the product to
+    `max_emission` (hue kept), each reported once."""
+    if math.isnan(strength):
+        reporter.warning(f"World '{name}': the Background strength is NaN; using 0 (a black "
+                         f"world)")
+        strength = 0.0
+    elif strength < 0.0:
+        reporter.warning(f"World '{name}': the Background strength {strength:g} is negative; "
+                         f"clamped to 0 (a black world)")
+        strength = 0.0
+    if not all(c >= 0.0 for c in color):  # NaN fails the test too
+        reporter.warning(f"World '{name}': the background colour has NaN or negative "
+                         f"components; they are read as 0")
+        color = [c if c >= 0.0 else 0.0 for c in color]
+    radiance = [c * strength if c > 0.0 else 0.0 for c in color]  # 0 x inf is not NaN here
+    brightest = max(radiance)
+    if max_emission is not None and brightest > max_emission:
+        scale = max_emission / brightest if math.isfinite(brightest) else 0.0
+        radiance = ([min(r * scale, max_emission) for r in radiance] if scale > 0.0 else
+                    [max_emission if math.isinf(r) else 0.0 for r in radiance])
+        reporter.warning(f"World '{name}': background colour x strength {brightest:.3g} is "
+                         f"more than Photon can render; clamped to {max_emission:.3g}")
+    return radiance
+
+
+def world_color(world, reporter, max_emission=None):
+    """Background radiance (colour x strength) of the world; at most `max_emission`."""
+    if world is None:
+        return [0.0, 0.0, 0.0]
+    if not world.use_nodes or world.node_tree is None:
+        return _checked_world(world.name, [float(c) for c in world.color], 1.0, reporter,
+                              max_emission)
+    output = nodes.output_node(world.node_tree, 'OUTPUT_WORLD')
+    src = nodes.source(output.inputs.get("Surface")) if output else None
+    node = src.node if src is not None else None
+    if node is None:
+        return [0.0, 0.0, 0.0]
+    if node.type != 'BACKGROUND':
+        reporter.warning(f"World '{world.name}': node '{node.name}' is not supported; "
+                         f"using a black background")
+        return [0.0, 0.0, 0.0]
+    color_socket = node.inputs.get("Color")
+    if color_socket.is_linked:
+        reporter.warning(f"World '{world.name}': the 'Color' input of node '{node.name}' is "
+                         f"connected to a texture or node, which is not supported yet; using "
+                         f"its colour value")
+    color = [float(color_socket.default_value[i]) for i in range(3)]
+    strength = float(node.inputs.get("Strength").default_value)
+    return _checked_world(world.name, color, strength, reporter, max_emission)

@@ -1,0 +1,110 @@
+"""Evaluated geometry to native triangle meshes, with numpy foreach_get (no per-vertex loops)."""
+
+import bpy
+import numpy as np
+
+from .origin import local_bounds
+
+# Since Blender 3.0 the evaluated geometry of curves, text, surfaces and metaballs reaches render
+# engines as a separate instance whose data is a Mesh (the object's own entry keeps its Curve or
+# MetaBall data). So an object is geometry exactly when its evaluated data is a Mesh.
+def is_geometry(obj):
+    return isinstance(obj.data, bpy.types.Mesh)
+
+
+# Types that carry geometry Photon cannot render yet: reported, not silently dropped (Curves
+# objects, the new hair type, are rendered as ribbons by sync_hair).
+UNSUPPORTED_GEOMETRY_TYPES = {'VOLUME', 'POINTCLOUD', 'GPENCIL'}
+
+
+def _get(collection, attribute, dtype, count, components=1):
+    array = np.empty(count * components, dtype=dtype)
+    collection.foreach_get(attribute, array)
+    return array
+
+
+def mesh_arrays(mesh):
+    """Returns (method name, keyword arguments) for the native Scene, or None without faces.
+
+    Chooses the cheapest foreach_get route (measured on a 1M-triangle grid, Blender 3.4):
+    triangle "vertices" costs about as much as triangle "loops", so when UVs or split normals
+    need the loops anyway, vertices come from loops -> vertex_index and the per-corner gathers
+    happen in C++.
+    """
+    mesh.calc_loop_triangles()
+    tri_count = len(mesh.loop_triangles)
+    if tri_count == 0:
+        return None
+    vertex_count = len(mesh.vertices)
+    loop_count = len(mesh.loops)
+    positions = _get(mesh.vertices, "co", np.float32, vertex_count, 3)
+
+    material_slots = None
+    if len(mesh.materials) > 1:
+        material_slots = _get(mesh.loop_triangles, "material_index", np.int32, tri_count)
+
+    # Shading normals: none for all-flat meshes (the geometric normal is exact), vertex normals
+    # for all-smooth meshes, split (per-loop) normals for auto smooth, custom normals or a mix.
+    smooth = _get(mesh.polygons, "use_smooth", bool, len(mesh.polygons))
+    split = mesh.has_custom_normals or (mesh.use_auto_smooth and smooth.any()) or (
+        smooth.any() and not smooth.all())
+    vertex_normals = None
+    if smooth.all() and not split:
+        vertex_normals = _get(mesh.vertices, "normal", np.float32, vertex_count, 3)
+
+    # Image textures without a UV Map node read the layer marked for render (the camera icon
+    # in Object Data > UV Maps), as in Cycles; it is usually also the active one.
+    uv_layer = next((layer for layer in mesh.uv_layers if layer.active_render),
+                    mesh.uv_layers.active)
+    has_uvs = uv_layer is not None and len(uv_layer.data) == loop_count
+    if not has_uvs and not split:
+        triangles = _get(mesh.loop_triangles, "vertices", np.int32, tri_count, 3)
+        if vertex_normals is not None:
+            # Vertex indices stand in for loops, with the identity as the loop -> vertex map.
+            return "add_loop_mesh", {
+                "positions": positions, "corner_loops": triangles,
+                "loop_vertices": np.arange(vertex_count, dtype=np.int32),
+                "vertex_normals": vertex_normals, "material_slots": material_slots}
+        return "add_mesh", {"positions": positions, "triangles": triangles,
+                            "material_slots": material_slots}
+
+    corner_loops = _get(mesh.loop_triangles, "loops", np.int32, tri_count, 3)
+    loop_vertices = _get(mesh.loops, "vertex_index", np.int32, loop_count)
+    loop_normals = None
+    if split:
+        mesh.calc_normals_split()
+        loop_normals = _get(mesh.loops, "normal", np.float32, loop_count, 3)
+    loop_uvs = _get(uv_layer.data, "uv", np.float32, loop_count, 2) if has_uvs else None
+    return "add_loop_mesh", {
+        "positions": positions, "corner_loops": corner_loops, "loop_vertices": loop_vertices,
+        "vertex_normals": vertex_normals, "loop_normals": loop_normals, "loop_uvs": loop_uvs,
+        "material_slots": material_slots}
+
+
+def export_object_mesh(native_scene, obj, reporter):
+    """Converts an evaluated object's geometry; returns (mesh index or None, triangle count,
+    (lo, hi) object-space bounds of its vertices in float64)."""
+    try:
+        mesh = obj.to_mesh()
+    except RuntimeError as exc:
+        reporter.warning(f"Object '{obj.name}': cannot convert to a mesh ({exc}); skipped")
+        return None, 0, (None, None)
+    if mesh is None:
+        return None, 0, (None, None)
+    try:
+        arrays = mesh_arrays(mesh)
+    finally:
+        obj.to_mesh_clear()
+    if arrays is None:
+        return None, 0, (None, None)
+    method, kwargs = arrays
+    info = getattr(native_scene, method)(obj.name, **kwargs)
+    if info["non_finite_vertices"]:
+        reporter.warning(f"Object '{obj.name}': {info['non_finite_vertices']} vertices with "
+                         f"NaN or infinite coordinates")
+    if info["dropped_triangles"]:
+        reporter.warning(f"Object '{obj.name}': dropped {info['dropped_triangles']} degenerate "
+                         f"or invalid triangles")
+    if info["triangles"] == 0:
+        return None, 0, (None, None)
+    return info["index"], info["triangles"], local_bounds(kwargs["positions"])

@@ -1,0 +1,200 @@
+"""Builds a native scene from Blender's evaluated depsgraph (Blender types stop here)."""
+
+import time
+
+import numpy as np
+
+from . import camera as sync_camera
+from . import hair as sync_hair
+from . import layers as sync_layers
+from . import lights as sync_lights
+from . import materials as sync_materials
+from . import mattes as sync_mattes
+from . import mesh as sync_mesh
+from . import origin as sync_origin
+
+
+class SyncStats:
+    def __init__(self):
+        self.meshes = 0
+        self.instances = 0
+        self.triangles = 0
+        self.lights = 0
+        self.seconds = 0.0
+        # World origin offset (float64) the native scene is built around (sync_origin): world
+        # positions of the native scene plus this are Blender's.
+        self.origin = np.zeros(3, dtype=np.float64)
+        self._release = []
+
+    def release(self):
+        """Frees what the render needed until its end (textures written to a temp folder)."""
+        for release in self._release:
+            release()
+        self._release = []
+
+
+def sync_scene(native, depsgraph, reporter, object_instances=None):
+    """Returns (native Scene, SyncStats); call stats.release() once the render has ended.
+
+    When `object_instances` is a dict it is filled with object name -> list of native instance
+    indices (Scene.instances) of the object's own geometry, not of instances it generates
+    (particles, collection instances); lighting bakes use it to address surface points.
+    """
+    stats = SyncStats()
+    try:
+        return _sync(native, depsgraph, reporter, stats, object_instances), stats
+    except BaseException:
+        stats.release()
+        raise
+
+
+def _sync(native, depsgraph, reporter, stats, object_instances):
+    t0 = time.perf_counter()
+    scene = depsgraph.scene
+    native_scene = native.Scene()
+    materials = sync_materials.MaterialTable(native_scene, reporter,
+                                             getattr(native, "TexturePixels", None))
+    stats._release.append(materials.release)
+
+    mesh_index = {}        # data identity -> native mesh index (None: no triangles)
+    mesh_bounds = {}       # native mesh index -> object-space (lo, hi), float64
+    bounds = sync_origin.SceneBounds()  # world bounds of the geometry, for the origin offset
+    lights = []            # add_light arguments, world matrices in float64 until rebased
+    # (mesh index, slot tuple, visibility, mattes) -> [(4x4 matrix, owner or None)]
+    pending = {}
+    mattes = sync_mattes.MatteFlags(depsgraph)
+    unsupported = {}       # object type -> object names
+    layer_visibility = sync_layers.LayerVisibility(native, depsgraph, reporter)
+    override = sync_layers.material_override(depsgraph)
+    hair = []              # (mesh index, slots, visibility, mattes) of hair ribbons (world space)
+    hair_view = None       # the camera the ribbons face, read once the first hair shows up
+    hair_strands = {}      # (object, particle system) -> strands, shared by its instances
+    has_hair = {}          # object name -> whether it has hair systems to render
+    render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
+
+    def place_hair(points):
+        """Anchor of hair ribbons with these world points (zero near the origin)."""
+        hair_bounds = sync_origin.SceneBounds()
+        hair_bounds.add_points(points)
+        bounds.add(hair_bounds.lo, hair_bounds.hi)
+        return hair_bounds.origin()
+
+    for inst in depsgraph.object_instances:
+        # Instance items die when iteration moves on: use them only inside this body.
+        obj = inst.object
+        obj_type = obj.type
+        if obj_type == 'LIGHT':
+            arguments = sync_lights.light_arguments(native, obj, inst.matrix_world, reporter)
+            if arguments is not None:
+                lights.append(arguments)
+                stats.lights += 1
+            continue
+        hair_here = obj_type == 'CURVES'
+        if not hair_here and inst.show_particles and obj_type == 'MESH':
+            # Once per object: a scene of many instances of one mesh asks many times.
+            name = obj.name
+            if name not in has_hair:
+                has_hair[name] = sync_hair.has_hair(obj, render_mode)
+            hair_here = has_hair[name]
+        if hair_here:
+            hair_view = hair_view or sync_hair.HairView(scene, depsgraph)
+            slots = materials.slot_indices(obj)
+            if obj_type == 'CURVES':
+                made = [sync_hair.curves_hair(native_scene, obj, inst.matrix_world, hair_view,
+                                              slots, reporter, place_hair)]
+            else:
+                relocate = (sync_hair.relocation(inst.matrix_world, obj.matrix_world)
+                            if inst.is_instance else None)
+                made = [] if relocate is False else sync_hair.particle_hair(
+                    native_scene, obj, render_mode, hair_view, slots, reporter, relocate,
+                    hair_strands, place_hair)
+            visibility = layer_visibility.apply(inst, obj,
+                                                sync_lights.visibility_bits(native, obj))
+            for index, triangles, hair_slots, anchor in filter(None, made):
+                stats.meshes += 1
+                stats.triangles += triangles
+                if override is not None:
+                    hair_slots = [materials.index(override)] * len(hair_slots)
+                hair.append((index, hair_slots, visibility,
+                             mattes.of(obj, inst.parent if inst.is_instance else None), anchor))
+            if obj_type == 'CURVES':
+                continue
+        if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
+            unsupported.setdefault(obj_type, set()).add(obj.name)
+            continue
+        if not sync_mesh.is_geometry(obj):
+            continue
+        if not inst.is_instance and not inst.show_self:
+            continue
+        # The evaluated data block identifies shared geometry: every instance of one mesh
+        # (particles, geometry nodes, linked duplicates) maps to one native mesh and one BVH.
+        key = obj.data.as_pointer()
+        if key not in mesh_index:
+            index, triangles, local = sync_mesh.export_object_mesh(native_scene, obj, reporter)
+            mesh_index[key] = index
+            if index is not None:
+                mesh_bounds[index] = local
+                stats.meshes += 1
+                stats.triangles += triangles
+        index = mesh_index[key]
+        if index is None:
+            continue
+        if override is None:
+            slots = tuple(materials.slot_indices(obj))
+        else:  # the view layer's Material Override replaces every slot, as in Cycles
+            slots = (materials.index(override),) * max(1, len(obj.material_slots))
+        visibility = layer_visibility.apply(inst, obj, sync_lights.visibility_bits(native, obj))
+        owner = None if inst.is_instance else obj.name
+        matte = mattes.of(obj, inst.parent if inst.is_instance else None)
+        pending.setdefault((index, slots, visibility, matte), []).append(
+            (np.array(inst.matrix_world, dtype=np.float64), owner))
+
+    # The world origin offset, once every world-space quantity is known in double precision.
+    stacked = {key: np.stack([matrix for matrix, _ in entries])
+               for key, entries in pending.items()}
+    for key, matrices in stacked.items():
+        bounds.add_instances(*mesh_bounds[key[0]], matrices)
+    origin = stats.origin = bounds.origin()
+    if origin.any():
+        reporter.info(f"world space rebased by ({origin[0]:.9g}, {origin[1]:.9g}, "
+                      f"{origin[2]:.9g}) m to keep 32-bit float precision")
+
+    for arguments in lights:
+        arguments["matrix"] = sync_origin.rebased_matrix(arguments["matrix"], origin)
+        native_scene.add_light(**arguments)
+
+    for key, entries in pending.items():
+        index, slots, visibility, (holdout, catcher) = key
+        first = native_scene.instance_count
+        stats.instances += native_scene.add_instances(
+            index, sync_origin.rebased_matrices(stacked[key], origin), list(slots), visibility,
+            holdout=holdout, shadow_catcher=catcher)
+        if object_instances is not None:
+            for offset, (_, owner) in enumerate(entries):
+                if owner is not None:
+                    object_instances.setdefault(owner, []).append(first + offset)
+
+    for index, slots, visibility, (holdout, catcher), anchor in hair:
+        # Ribbons are stored relative to their anchor: placed back at anchor - origin.
+        placement = np.identity(4, dtype=np.float64)
+        placement[:3, 3] = anchor
+        stats.instances += native_scene.add_instances(
+            index, sync_origin.rebased_matrix(placement, origin)[None], slots, visibility,
+            holdout=holdout, shadow_catcher=catcher)
+
+    for obj_type, names in sorted(unsupported.items()):
+        shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")
+        reporter.warning(f"{obj_type.title()} objects are not supported yet and were skipped: "
+                         f"{shown}")
+
+    sync_camera.export_camera(native_scene, scene, depsgraph, reporter, origin=origin)
+    world = sync_materials.world_color(scene.world, reporter,
+                                       getattr(native, "MAX_EMISSION", None))
+    native_scene.set_world(world)
+
+    if stats.triangles == 0:
+        reporter.warning("The scene has no renderable geometry")
+    if stats.lights == 0 and max(world) <= 0.0:
+        reporter.warning("The scene has no lights and a black world: only emissive surfaces will show")
+    stats.seconds = time.perf_counter() - t0
+    return native_scene

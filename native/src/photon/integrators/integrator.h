@@ -1,0 +1,153 @@
+// The interface every rendering algorithm implements (after Nori): prepare once per render,
+// then answer radiance queries for camera rays from any thread.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "photon/render/accel.h"
+#include "photon/lights/lights.h"
+#include "photon/base/math.h"
+#include "photon/base/rng.h"
+#include "photon/scene/scene.h"
+
+namespace photon {
+
+enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity };
+
+class EmissiveMeshes;
+class TextureSet;
+
+struct RenderSettings {
+  int full_width = 64, full_height = 64;  // whole frame in pixels
+  // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
+  int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
+  int samples = 64;   // camera samples per pixel
+  int max_depth = 8;  // specular bounces after the camera ray
+  uint64_t seed = 0;
+  int threads = 0;  // 0 = all cores
+  int tile_size = 64;
+  bool transparent_background = false;
+  IntegratorType integrator = IntegratorType::kPhotonMap;
+  bool light_passes = false;  // also write the Direct / Indirect / Caustics / Photon Map passes
+
+  // Photon mapping (Jensen 2001).
+  uint64_t photons = 200000;          // photon paths emitted for the global map
+  uint64_t caustic_photons = 100000;  // photon paths aimed at specular objects
+  int gather_count = 100;             // k nearest photons in a global-map estimate
+  float gather_radius = 0.0f;         // maximum search radius; 0 = from the scene's size
+  int caustic_gather_count = 50;      // k nearest photons in a caustic estimate
+  int final_gather_rays = 16;         // per camera sample; 0 = read the global map directly
+  float photon_time = 0.0f;           // > 0: trace photons for this many seconds instead
+  bool irradiance_cache = true;       // final gathers at camera-visible points interpolated
+  // Photon counts are scaled down when the photon maps' estimated peak memory would exceed this
+  // fraction of the memory available when tracing starts (MemAvailable; photon_memory.h).
+  float memory_limit = 0.75f;
+
+  // Radiosity (radiosity_solver.h).
+  float radiosity_patch_size = 0.0f;  // element edge length; 0 = automatic (~20k elements)
+  uint64_t radiosity_rays = 8000000;  // rays traced by the whole solve
+  float radiosity_threshold = 0.01f;  // shooting stops below this unshot fraction
+  int radiosity_iterations = 4;       // averaged Jacobi iterations after shooting
+};
+
+// Read-only state shared by all threads during a render.
+struct RenderContext {
+  const Scene* scene = nullptr;
+  const Accel* accel = nullptr;
+  const LightSet* lights = nullptr;
+  const RenderSettings* settings = nullptr;
+  const EmissiveMeshes* emissive = nullptr;  // emissive triangles as lights (may be empty)
+  const TextureSet* textures = nullptr;      // the scene's image textures (may be null)
+};
+
+// What one camera sample sees, split into light passes whose sum is the Combined image.
+struct RadianceSample {
+  Vec3 direct;         // emission, direct light, and lights / world seen through specular paths
+  Vec3 indirect;       // light that bounced off at least one diffuse surface
+  Vec3 caustic;        // light that reached a diffuse surface through specular paths only
+  Vec3 photon_map;     // a view of the stored photons (not light; not part of Combined)
+  float alpha = 0.0f;  // 1 when the camera ray hit something that is not background
+  // Share of the sample taken out by holdouts (the path's throughput into them): the pixel's
+  // alpha is reduced by it whether or not the film is transparent, as in Cycles.
+  float holdout = 0.0f;
+  Vec3 radiance() const { return direct + indirect + caustic; }
+};
+
+// Reports and controls a long preparation (photon tracing, a radiosity solve).
+struct PrepareControl {
+  const std::atomic<bool>* cancel = nullptr;      // abandon the render
+  const std::atomic<bool>* stop_early = nullptr;  // finish this phase now, keep what is done
+  std::function<void(const std::string& status, float fraction)> progress;
+  std::function<void(const std::string& warning)> warn;
+
+  bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
+  bool should_stop() const {
+    return cancelled() || (stop_early && stop_early->load(std::memory_order_relaxed));
+  }
+  void report(const std::string& status, float fraction) const {
+    if (progress) progress(status, fraction);
+  }
+};
+
+// The first intersection of a camera ray, traced beforehand together with its neighbours.
+struct CameraHit {
+  bool found = false;
+  Hit hit;
+};
+
+// The points of a lighting bake, on the side each is baked: what Integrator::prepare_bake sees.
+struct BakePointSet {
+  size_t count = 0;
+  const Vec3* positions = nullptr;
+  const Vec3* normals = nullptr;   // shading normal of the baked side
+  const uint8_t* valid = nullptr;  // 0: the point is not shaded (may be null: all are)
+  // The interaction of point i on its baked side; false when there is none. Thread-safe.
+  std::function<bool(size_t i, SurfaceInteraction* si)> interaction;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  // Runs once before pixels are rendered (photon tracing, radiosity solve, ...). Long
+  // preparations poll `control` and return early when asked to.
+  virtual void prepare(const RenderContext& context, const PrepareControl& control) {
+    (void)context;
+    (void)control;
+  }
+  // Statistics of the preparation, as "name: value" lines for the UI and logs.
+  virtual std::vector<std::pair<std::string, double>> prepare_stats() const { return {}; }
+  // Radiance arriving along a camera ray whose first hit is already known (the renderer traces
+  // camera rays in coherent batches). Must be thread-safe and deterministic in `sampler`.
+  virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
+                                           const CameraHit& first, Sampler& sampler) const = 0;
+  // View-independent radiance leaving a diffuse surface point (emission plus reflected light,
+  // averaged over outgoing directions as a Lambertian surface would), for baking lighting into
+  // Blender data. `hit` is the point on the scene, `si` its interaction. Integrators without a
+  // view-independent solution return false.
+  virtual bool baked_radiance(const RenderContext& context, const Hit& hit,
+                              const SurfaceInteraction& si, Sampler& sampler,
+                              Vec3* radiance) const {
+    (void)context, (void)hit, (void)si, (void)sampler, (void)radiance;
+    return false;
+  }
+  // A cheap estimate of baked_radiance, only to choose which side of a point is baked.
+  virtual bool baked_probe(const RenderContext& context, const Hit& hit,
+                           const SurfaceInteraction& si, Sampler& sampler, Vec3* radiance) const {
+    return baked_radiance(context, hit, si, sampler, radiance);
+  }
+  // Called once before baked_radiance with every point the bake shades, so work shared between
+  // nearby points (an irradiance cache) is placed among them. Polls `control`.
+  virtual void prepare_bake(const RenderContext& context, const BakePointSet& points,
+                            const PrepareControl& control) {
+    (void)context, (void)points, (void)control;
+  }
+};
+
+std::unique_ptr<Integrator> make_integrator(IntegratorType type);
+
+}  // namespace photon

@@ -1,0 +1,326 @@
+#include "photon/integrators/photon_map/photon_map.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "photon/base/cancel_poll.h"
+
+namespace photon {
+namespace {
+
+// 256 quantised angles each way: a lookup table instead of sin/cos per decoded photon.
+struct DirectionTable {
+  float cos_theta[256], sin_theta[256], cos_phi[256], sin_phi[256];
+  DirectionTable() {
+    for (int i = 0; i < 256; ++i) {
+      const float theta = (i + 0.5f) * (kPi / 256.0f);
+      const float phi = (i + 0.5f) * (2.0f * kPi / 256.0f);
+      cos_theta[i] = std::cos(theta);
+      sin_theta[i] = std::sin(theta);
+      cos_phi[i] = std::cos(phi);
+      sin_phi[i] = std::sin(phi);
+    }
+  }
+};
+const DirectionTable& direction_table() {
+  static const DirectionTable table;
+  return table;
+}
+
+uint8_t quantise(float x, float scale) {
+  const int q = static_cast<int>(x * scale);
+  return static_cast<uint8_t>(std::clamp(q, 0, 255));
+}
+
+constexpr float kConeFilterC = 1.1f;  // Jensen's cone filter constant, c >= 1
+
+// Octahedral normal map (Meyer et al. 2010, "On Floating-Point Normal Vectors"): the unit sphere
+// folded onto the square [-1, 1]^2, quantised to 64 x 32 cells.
+constexpr int kNormalUBits = 6, kNormalVBits = 5;
+constexpr int kNormalULevels = (1 << kNormalUBits) - 1, kNormalVLevels = (1 << kNormalVBits) - 1;
+
+Vec2 octahedral_encode(const Vec3& n) {
+  const float l1 = std::abs(n.x) + std::abs(n.y) + std::abs(n.z);
+  if (!(l1 > 0.0f) || !std::isfinite(l1)) return {0.0f, 0.0f};  // +z: unknown normal
+  float u = n.x / l1, v = n.y / l1;
+  if (n.z < 0.0f) {
+    const float fu = (1.0f - std::abs(v)) * std::copysign(1.0f, u);
+    const float fv = (1.0f - std::abs(u)) * std::copysign(1.0f, v);
+    u = fu;
+    v = fv;
+  }
+  return {u, v};
+}
+
+Vec3 octahedral_decode(float u, float v) {
+  const float z = 1.0f - std::abs(u) - std::abs(v);
+  if (z < 0.0f) {
+    const float fu = (1.0f - std::abs(v)) * std::copysign(1.0f, u);
+    const float fv = (1.0f - std::abs(u)) * std::copysign(1.0f, v);
+    u = fu;
+    v = fv;
+  }
+  return normalize(Vec3(u, v, z));
+}
+
+int quantise_signed(float x, int levels) {
+  return std::clamp(static_cast<int>(std::lround((x * 0.5f + 0.5f) * levels)), 0, levels);
+}
+
+}  // namespace
+
+void encode_rgbe(const Vec3& c, uint8_t out[4]) {
+  const float m = std::max(max_component(c), 0.0f);
+  if (!(m > 1e-32f) || !std::isfinite(m)) {
+    out[0] = out[1] = out[2] = out[3] = 0;
+    return;
+  }
+  int e;
+  std::frexp(m, &e);  // m = f * 2^e, f in [0.5, 1)
+  float scale = std::ldexp(1.0f, 8 - e);
+  // Round to nearest; if the largest channel rounds up to 256, use the next exponent.
+  if (m * scale + 0.5f >= 256.0f) {
+    ++e;
+    scale *= 0.5f;
+  }
+  auto channel = [&](float v) {
+    return static_cast<uint8_t>(
+        std::clamp(static_cast<int>(std::max(v, 0.0f) * scale + 0.5f), 0, 255));
+  };
+  out[0] = channel(c.x);
+  out[1] = channel(c.y);
+  out[2] = channel(c.z);
+  out[3] = static_cast<uint8_t>(std::clamp(e + 128, 0, 255));
+}
+
+Vec3 decode_rgbe(const uint8_t in[4]) {
+  if (in[3] == 0) return Vec3(0.0f);
+  const float f = std::ldexp(1.0f, static_cast<int>(in[3]) - (128 + 8));
+  return {in[0] * f, in[1] * f, in[2] * f};
+}
+
+Vec3 Photon::power() const {
+  return decode_rgbe(power_rgbe);
+}
+
+Vec3 Photon::direction() const {
+  const DirectionTable& t = direction_table();
+  return {t.sin_theta[theta] * t.cos_phi[phi], t.sin_theta[theta] * t.sin_phi[phi],
+          t.cos_theta[theta]};
+}
+
+Vec3 Photon::normal() const {
+  const float u = (axis >> 2) * (2.0f / kNormalULevels) - 1.0f;
+  const float v = (flags >> 3) * (2.0f / kNormalVLevels) - 1.0f;
+  return octahedral_decode(u, v);
+}
+
+Photon Photon::make(const Vec3& p, const Vec3& direction, const Vec3& power, uint8_t flags,
+                    const Vec3& normal) {
+  Photon ph{};
+  ph.position[0] = p.x;
+  ph.position[1] = p.y;
+  ph.position[2] = p.z;
+  encode_rgbe(power, ph.power_rgbe);
+  const float theta = std::acos(std::clamp(direction.z, -1.0f, 1.0f));
+  float phi = std::atan2(direction.y, direction.x);
+  if (phi < 0.0f) phi += 2.0f * kPi;
+  ph.theta = quantise(theta, 256.0f / kPi);
+  ph.phi = quantise(phi, 256.0f / (2.0f * kPi));
+  const Vec2 uv = octahedral_encode(normal);
+  ph.flags =
+      static_cast<uint8_t>((flags & kPhotonAny) | quantise_signed(uv.y, kNormalVLevels) << 3);
+  ph.axis = static_cast<uint8_t>(quantise_signed(uv.x, kNormalULevels) << 2);
+  return ph;
+}
+
+PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel)
+    : photons_(std::move(photons)) {
+  try {
+    if (photons_.capacity() != photons_.size()) {
+      // shrink_to_fit, in slices that poll for cancellation (a billion-photon copy takes seconds).
+      std::vector<Photon> exact;
+      exact.reserve(photons_.size());
+      constexpr size_t kSlice = size_t{1} << 20;
+      for (size_t i = 0; i < photons_.size(); i += kSlice) {
+        if (cancel && cancel->load(std::memory_order_relaxed)) throw Cancelled();
+        exact.insert(exact.end(), photons_.begin() + i,
+                     photons_.begin() + std::min(photons_.size(), i + kSlice));
+      }
+      photons_.swap(exact);
+    }
+    build(0, photons_.size(), 0, cancel);
+  } catch (const Cancelled&) {
+    photons_ = std::vector<Photon>();
+  }
+}
+
+// Balances [lo, hi): the median along the widest axis of the range's bounds becomes the node at
+// (lo + hi) / 2, smaller coordinates to its left. Big halves are built in parallel; the result
+// depends only on the input order.
+void PhotonMap::build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel) {
+  if (hi - lo <= 1) {
+    if (hi > lo) photons_[lo].axis &= ~3u;
+    return;
+  }
+  CancelPoll poll(cancel);
+  float bmin[3] = {INFINITY, INFINITY, INFINITY}, bmax[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t i = lo; i < hi; ++i) {
+    poll();
+    for (int a = 0; a < 3; ++a) {
+      bmin[a] = std::min(bmin[a], photons_[i].position[a]);
+      bmax[a] = std::max(bmax[a], photons_[i].position[a]);
+    }
+  }
+  int axis = 0;
+  for (int a = 1; a < 3; ++a)
+    if (bmax[a] - bmin[a] > bmax[axis] - bmin[axis]) axis = a;
+  const size_t mid = (lo + hi) / 2;
+  std::nth_element(photons_.begin() + lo, photons_.begin() + mid, photons_.begin() + hi,
+                   [axis, &poll](const Photon& a, const Photon& b) {
+                     poll();
+                     return a.position[axis] < b.position[axis];
+                   });
+  photons_[mid].axis = static_cast<uint8_t>((photons_[mid].axis & ~3u) | axis);
+  // Cancelled thrown in either half reaches the constructor (TBB rethrows it here).
+  if (hi - lo > 65536 && depth < 12) {
+    tbb::parallel_invoke([&] { build(lo, mid, depth + 1, cancel); },
+                         [&] { build(mid + 1, hi, depth + 1, cancel); });
+  } else {
+    build(lo, mid, depth + 1, cancel);
+    build(mid + 1, hi, depth + 1, cancel);
+  }
+}
+
+void PhotonMap::k_nearest(const Vec3& p, size_t k, float max_radius, uint8_t flag_mask,
+                          std::vector<PhotonNeighbor>* out) const {
+  out->clear();
+  if (photons_.empty() || k == 0) return;
+  float max_d2 = max_radius * max_radius;
+  const float q[3] = {p.x, p.y, p.z};
+  auto farther = [](const PhotonNeighbor& a, const PhotonNeighbor& b) {
+    return a.distance_squared < b.distance_squared;
+  };
+  // Explicit stack of ranges; depth is at most ~log2(n) + 1 per pending far side.
+  // Explicit stack of far sides with their splitting plane's squared distance; at most one
+  // entry per tree level is pending, and the tree is under 40 levels deep.
+  struct Range {
+    uint32_t lo, hi;
+    float plane_d2;
+  };
+  Range stack[64];
+  int top = 0;
+  stack[top++] = {0, static_cast<uint32_t>(photons_.size()), 0.0f};
+  while (top > 0) {
+    Range r = stack[--top];
+    if (r.plane_d2 >= max_d2) continue;  // the radius shrank since it was queued
+    while (r.hi > r.lo) {
+      const uint32_t mid = (r.lo + r.hi) / 2;
+      const Photon& ph = photons_[mid];
+      const int axis = ph.split_axis();
+      const float delta = q[axis] - ph.position[axis];
+      // Visit the near side now, queue the far side if the splitting plane is within reach.
+      const float d2_plane = delta * delta;
+      const Range near_side = delta < 0.0f ? Range{r.lo, mid, 0.0f} : Range{mid + 1, r.hi, 0.0f};
+      const Range far_side =
+          delta < 0.0f ? Range{mid + 1, r.hi, d2_plane} : Range{r.lo, mid, d2_plane};
+      if (d2_plane < max_d2 && far_side.hi > far_side.lo) stack[top++] = far_side;
+      if (ph.flags & flag_mask) {
+        const float dx = ph.position[0] - q[0], dy = ph.position[1] - q[1],
+                    dz = ph.position[2] - q[2];
+        const float d2 = dx * dx + dy * dy + dz * dz;
+        if (d2 < max_d2) {
+          if (out->size() < k) {
+            out->push_back({mid, d2});
+            std::push_heap(out->begin(), out->end(), farther);
+            if (out->size() == k) max_d2 = out->front().distance_squared;
+          } else {
+            std::pop_heap(out->begin(), out->end(), farther);
+            out->back() = {mid, d2};
+            std::push_heap(out->begin(), out->end(), farther);
+            max_d2 = out->front().distance_squared;
+          }
+        }
+      }
+      r = near_side;
+    }
+  }
+}
+
+int64_t PhotonMap::nearest(const Vec3& p, float max_radius, uint8_t flag_mask) const {
+  std::vector<PhotonNeighbor> one;
+  one.reserve(1);
+  k_nearest(p, 1, max_radius, flag_mask, &one);
+  return one.empty() ? -1 : static_cast<int64_t>(one[0].index);
+}
+
+Vec3 PhotonMap::radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
+                                  uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const {
+  k_nearest(p, k, max_radius, flag_mask, scratch);
+  if (scratch->empty()) return Vec3(0.0f);
+  // With fewer than k photons inside max_radius the disc is the whole search disc; otherwise it
+  // is the disc through the farthest of the k (Jensen's expanding sphere).
+  const float r2 =
+      scratch->size() < k ? max_radius * max_radius : scratch->front().distance_squared;
+  if (!(r2 > 0.0f)) return Vec3(0.0f);
+  const float r = std::sqrt(r2);
+  Vec3 sum(0.0f);
+  for (const PhotonNeighbor& nb : *scratch) {
+    const Photon& ph = photons_[nb.index];
+    const float d = std::sqrt(nb.distance_squared);
+    if (!photon_on_surface(ph, p, n, d)) continue;
+    const float w = 1.0f - d / (kConeFilterC * r);
+    sum += ph.power() * w;
+  }
+  const float norm = 1.0f - 2.0f / (3.0f * kConeFilterC);
+  return sum * (kInvPi / (norm * kPi * r2));
+}
+
+bool photon_on_surface(const Photon& photon, const Vec3& p, const Vec3& n, float distance) {
+  if (dot(photon.direction(), n) >= 0.0f) return false;
+  return on_same_surface(p, n, photon.pos(), photon.normal(), distance);
+}
+
+bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq, float distance) {
+  const float c = dot(nq, n);
+  if (!(c >= kSurfaceMinCos)) return false;
+  const float sin_half = std::sqrt(std::max(0.0f, 0.5f * (1.0f - c)));
+  // An allowance relative to |p| keeps points on the plane itself when they are within float
+  // round-off of p (relative, so that a scene a micrometre across is not one surface).
+  const float height = std::abs(dot(q - p, n));
+  return height <= (sin_half + kSurfaceSlope) * distance +
+                       1e-6f * std::max({std::abs(p.x), std::abs(p.y), std::abs(p.z)});
+}
+
+float PhotonMap::median_kth_distance(size_t k, uint8_t flag_mask, size_t samples) const {
+  if (photons_.empty() || k == 0 || samples == 0) return 0.0f;
+  // The tree is stored in order (each range's median is its node), so evenly spaced indices
+  // are spread over the photons' extent.
+  const size_t step = std::max<size_t>(1, photons_.size() / samples);
+  std::vector<float> distances;
+  std::vector<PhotonNeighbor> scratch;
+  for (size_t i = step / 2; i < photons_.size(); i += step) {
+    if (!(photons_[i].path_flags() & flag_mask)) continue;
+    k_nearest(photons_[i].pos(), k, INFINITY, flag_mask, &scratch);
+    if (scratch.size() == k) distances.push_back(std::sqrt(scratch.front().distance_squared));
+  }
+  if (distances.empty()) return 0.0f;
+  std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
+  return distances[distances.size() / 2];
+}
+
+Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask) {
+  double s[3] = {0, 0, 0};
+  for (const Photon& ph : photons) {
+    if (!(ph.flags & flag_mask)) continue;
+    const Vec3 p = ph.power();
+    s[0] += p.x;
+    s[1] += p.y;
+    s[2] += p.z;
+  }
+  return {static_cast<float>(s[0]), static_cast<float>(s[1]), static_cast<float>(s[2])};
+}
+
+}  // namespace photon

@@ -1,0 +1,117 @@
+// Photon storage and k-nearest-neighbour lookup (Jensen 2001, "Realistic Image Synthesis Using
+// Photon Mapping", ch. 6): a compact 20-byte photon record and a balanced kd-tree stored
+// implicitly in the photon array (the median of every range is its node), so the tree costs no
+// memory beyond the photons themselves.
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "photon/base/math.h"
+
+namespace photon {
+
+// How the photon's path reached its surface, used to keep estimates from counting light twice.
+enum PhotonFlags : uint8_t {
+  kPhotonDirect = 1u << 0,    // first hit after leaving the light
+  kPhotonCaustic = 1u << 1,   // light -> specular+ -> this diffuse surface
+  kPhotonIndirect = 1u << 2,  // at least one diffuse bounce before this surface
+  kPhotonAny = 0x7u,
+};
+
+// 20 bytes, as Jensen's: position 12, power as Ward's shared-exponent RGBE 4, incoming direction
+// quantised to (theta, phi) 2, path flags 1, kd-tree split axis 1. The flags and the split axis
+// use 5 bits between them; the other 11 hold the normal of the surface the photon lies on
+// (octahedral map, 6 + 5 bits, within 6 degrees), so an estimate can leave out photons of
+// another surface (Jensen 2001, sec. 7.1) at no cost in memory.
+struct Photon {
+  float position[3];
+  uint8_t power_rgbe[4];
+  uint8_t theta, phi;
+  uint8_t flags;  // low 3 bits: PhotonFlags; high 5 bits: normal, octahedral v
+  uint8_t axis;   // low 2 bits: kd-tree split axis; high 6 bits: normal, octahedral u
+
+  Vec3 pos() const { return {position[0], position[1], position[2]}; }
+  Vec3 power() const;
+  Vec3 direction() const;  // direction of travel, unit length
+  Vec3 normal() const;     // unit normal of the surface on the side the photon arrived from
+  uint8_t path_flags() const { return flags & kPhotonAny; }
+  int split_axis() const { return axis & 3; }
+  // `normal`: the surface's geometric normal on the side the photon arrived from.
+  static Photon make(const Vec3& p, const Vec3& direction, const Vec3& power, uint8_t flags,
+                     const Vec3& normal);
+};
+static_assert(sizeof(Photon) == 20, "the photon record is 20 bytes");
+
+// Ward's RGBE with rounding to nearest (Graphics Gems II, "Real Pixels").
+void encode_rgbe(const Vec3& c, uint8_t out[4]);
+Vec3 decode_rgbe(const uint8_t in[4]);
+
+struct PhotonNeighbor {
+  uint32_t index;
+  float distance_squared;
+};
+
+class PhotonMap {
+ public:
+  PhotonMap() = default;
+  // Takes the photons and balances the tree (parallel, deterministic for a given input order).
+  // When `cancel` is set during the build the map is left empty (within ~a millisecond).
+  explicit PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel = nullptr);
+
+  size_t size() const { return photons_.size(); }
+  bool empty() const { return photons_.empty(); }
+  const Photon& operator[](size_t i) const { return photons_[i]; }
+  size_t memory_bytes() const { return photons_.capacity() * sizeof(Photon); }
+
+  // The `k` nearest photons to `p` within `max_radius` whose flags intersect `flag_mask`,
+  // written to `out` (cleared first) as a max-heap on distance: out->front() is the farthest.
+  void k_nearest(const Vec3& p, size_t k, float max_radius, uint8_t flag_mask,
+                 std::vector<PhotonNeighbor>* out) const;
+  // Index of the nearest photon within max_radius, or -1.
+  int64_t nearest(const Vec3& p, float max_radius, uint8_t flag_mask) const;
+
+  // Reflected radiance of a Lambertian surface of albedo 1 at `p` with normal `n` (multiply by
+  // the albedo): Jensen 2001 sec. 7.1 with f_r = 1/pi, the k nearest photons in a disc of area
+  // pi r^2, weighted by the cone filter w = 1 - d / (c r), normalised by 1 - 2 / (3c) (Jensen
+  // 1996, c = 1.1). Only photons that lie on the queried surface count, so light does not leak
+  // through walls (photon_on_surface). `scratch` avoids allocation per query.
+  Vec3 radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
+                         uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const;
+
+  // Median distance from a stored photon to its k-th nearest photon (itself included), over up
+  // to `samples` photons spread through the map: the radius of the disc a k-nearest estimate
+  // covers at a typical photon. 0 when the map holds fewer than k photons of `flag_mask`.
+  float median_kth_distance(size_t k, uint8_t flag_mask, size_t samples = 256) const;
+
+ private:
+  void build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel);
+  std::vector<Photon> photons_;
+};
+
+// Whether a photon can belong to the surface through p with normal n (Jensen 2001, sec. 7.1:
+// photons of other surfaces within the search sphere bias the estimate; behind a wall they
+// leak light through it). It must
+//  - have arrived from the side n faces (dot(direction, n) < 0): not the far side of a thin wall;
+//  - lie on the same surface as p (on_same_surface).
+bool photon_on_surface(const Photon& photon, const Vec3& p, const Vec3& n, float distance);
+
+// Whether a point q with normal nq, `distance` from p, can lie on the same smooth surface as p
+// with normal n:
+//  - the normals agree, dot(nq, n) >= kSurfaceMinCos: not the inner face of an adjacent wall
+//    at a corner or edge of a closed object;
+//  - q is no farther off p's tangent plane than a surface bending from n to nq puts it (Jensen's
+//    search sphere compressed into a disc along n): between p and q at distance d on a sphere
+//    whose normals differ by theta, |(q - p) . n| = d sin(theta / 2), allowed up to
+//    d (sin(theta / 2) + kSurfaceSlope). Not a parallel surface across a gap, such as the
+//    inside of a box's bottom over the floor (theta = 0, height = the gap).
+constexpr float kSurfaceMinCos = 0.25f;
+constexpr float kSurfaceSlope = 0.1f;
+bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq, float distance);
+
+// Sum of the photons' power (used by tests and statistics).
+Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask = kPhotonAny);
+
+}  // namespace photon

@@ -1,0 +1,541 @@
+#include "photon/integrators/photon_map/photon_map_integrator.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "photon/lights/direct_lighting.h"
+#include "photon/integrators/photon_map/irradiance_cache_build.h"
+#include "photon/integrators/photon_map/photon_memory.h"
+#include "photon/integrators/photon_map/irradiance_cache_points.h"
+#include "photon/integrators/photon_map/photon_tracer.h"
+#include "photon/base/sampling.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Per-thread neighbour list, so radiance queries do not allocate.
+std::vector<PhotonNeighbor>& scratch_neighbors() {
+  thread_local std::vector<PhotonNeighbor> scratch;
+  return scratch;
+}
+
+// Point j of the R2 sequence (Roberts 2018), rotated by `shift`: the final-gather directions of
+// one camera sample are stratified, and the rotation differs per sample.
+Vec2 rotated_r2(uint32_t j, Vec2 shift) {
+  constexpr double kA1 = 0.7548776662466927, kA2 = 0.5698402909980532;
+  double u = shift.x + kA1 * (j + 1), v = shift.y + kA2 * (j + 1);
+  u -= std::floor(u);
+  v -= std::floor(v);
+  return {std::min(static_cast<float>(u), 0.99999994f),
+          std::min(static_cast<float>(v), 0.99999994f)};
+}
+
+constexpr size_t kFallbackCount = 32;         // photons when no precomputed record is near
+constexpr float kGatherMinCos = 0.5f;         // normals of gather point and surface must agree
+constexpr float kDefaultGlobalRadius = 0.1f;  // of the scene's bounding radius
+constexpr float kDefaultCausticRadius = 0.05f;
+// Final-gather rays of an irradiance-cache record per final-gather ray of a camera sample:
+// 16 -> 1024, enough that records differ by under 1% and their interpolation shows no blotches.
+constexpr int kRecordRaysPerGatherRay = 64;
+constexpr int kMinRecordRays = 256, kMaxRecordRays = 16384;
+
+// Grid cell for the radiance records: about two record spacings, from the photon density
+// measured at up to 256 gather points (median of k / (pi r_k^2), scaled by records / photons).
+float record_cell_size(const PhotonMap& map, const std::vector<GatherPoint>& points, size_t k,
+                       float max_radius, float length_scale) {
+  if (points.empty()) return max_radius;
+  std::vector<float> spacing;
+  std::vector<PhotonNeighbor> scratch;
+  const size_t step = std::max<size_t>(1, points.size() / 256);
+  for (size_t i = 0; i < points.size(); i += step) {
+    map.k_nearest(points[i].p, k, max_radius, kPhotonAny, &scratch);
+    if (scratch.size() < 2) continue;
+    const float photon_area = kPi * scratch.front().distance_squared / scratch.size();
+    spacing.push_back(std::sqrt(photon_area * map.size() / points.size()));
+  }
+  if (spacing.empty()) return max_radius;
+  std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
+  return std::clamp(2.0f * spacing[spacing.size() / 2], 1e-6f * length_scale, max_radius);
+}
+
+// A 48-bit stream id drawn from `sampler`, so the bake's inner samplers are a pure function of
+// the caller's sampler.
+uint64_t derived_stream(Sampler& sampler) {
+  const auto a = static_cast<uint64_t>(sampler.get_1d() * 16777216.0f);
+  const auto b = static_cast<uint64_t>(sampler.get_1d() * 16777216.0f);
+  return (a << 24) | b;
+}
+
+// Photons per pass of the pilot trace that measures how many photons a path stores; requests
+// under kPilotMinimum photons need no estimate (at worst a few hundred MB).
+constexpr uint64_t kPilotPhotons = 8192;
+constexpr uint64_t kPilotMinimum = 65536;
+constexpr uint64_t kPilotSeedTag = 0x9E3779B97F4A7C15ull;  // pilot streams differ from the real ones
+
+std::string thousands(uint64_t n) {
+  std::string digits = std::to_string(n), out;
+  for (size_t i = 0; i < digits.size(); ++i) {
+    if (i && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+// Scales `trace`'s photon counts down when their estimated peak memory exceeds the
+// configured fraction of the available memory. A pilot trace of a few thousand photons (its
+// own random streams, discarded) measures the photons stored per photon emitted.
+void fit_photon_counts_to_memory(const RenderContext& context, const PhotonSources& sources,
+                                 const PrepareControl& control, PhotonTraceSettings* trace,
+                                 std::vector<std::pair<std::string, double>>* stats) {
+  const RenderSettings& s = *context.settings;
+  if (trace->time_budget > 0.0) return;  // counts unknown up front
+  const uint64_t global = sources.has_global() ? trace->global_photons : 0;
+  const uint64_t caustic = sources.has_caustic() ? trace->caustic_photons : 0;
+  if (global + caustic < kPilotMinimum) return;
+  control.report("Estimating photon memory", 0.0f);
+  PhotonTraceSettings pilot = *trace;
+  pilot.global_photons = global ? kPilotPhotons : 0;
+  pilot.caustic_photons = caustic ? kPilotPhotons : 0;
+  pilot.seed = trace->seed ^ kPilotSeedTag;
+  PrepareControl pilot_control;  // no progress, no early stop: only cancellation
+  pilot_control.cancel = control.cancel;
+  const PhotonTraceResult traced = trace_photons(context, sources, pilot, pilot_control);
+  if (control.cancelled()) return;
+
+  PhotonMemoryRequest request;
+  request.global_photons = global;
+  request.caustic_photons = caustic;
+  if (traced.global_emitted) {
+    request.global_stored_per_emitted = static_cast<double>(traced.global.size()) / traced.global_emitted;
+    request.gather_points_per_emitted =
+        static_cast<double>(traced.gather_points.size()) / traced.global_emitted;
+  }
+  if (traced.caustic_emitted)
+    request.caustic_stored_per_emitted =
+        static_cast<double>(traced.caustic.size()) / traced.caustic_emitted;
+  request.radiance_records = s.final_gather_rays > 0;
+  request.irradiance_pixels = s.final_gather_rays > 0 && s.irradiance_cache
+                                  ? static_cast<uint64_t>(s.full_width) * s.full_height
+                                  : 0;
+  const double available = static_cast<double>(available_memory_bytes());
+  const double budget = s.memory_limit * available;
+  const PhotonMemoryPlan plan = plan_photon_memory(request, budget);
+  stats->push_back({"memory_estimate_bytes", plan.planned_bytes});
+  stats->push_back({"memory_available_bytes", available});
+  if (plan.scale >= 1.0) return;
+  trace->global_photons = plan.global_photons;
+  trace->caustic_photons = plan.caustic_photons;
+  char percent[32];
+  std::snprintf(percent, sizeof percent, "%.0f%%", 100.0 * s.memory_limit);
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.3g%%", 100.0 * plan.scale);
+  if (control.warn)
+    control.warn("Photon memory: " + thousands(global) + " global and " + thousands(caustic) +
+                 " caustic photons would need about " + bytes_text(plan.requested_bytes) +
+                 " at the peak, more than the memory limit (" + percent + " of the " +
+                 bytes_text(available) + " available); tracing " +
+                 thousands(plan.global_photons) + " and " + thousands(plan.caustic_photons) +
+                 " instead (" + scale + " of the request, about " +
+                 bytes_text(plan.planned_bytes) +
+                 "). Raise the memory limit or lower the photon counts to avoid this");
+}
+
+// A gather radius set by hand below the typical distance to the k-th nearest photon turns most
+// k-nearest estimates (Jensen 2001, eq. 7.6: L = sum of photon powers / (pi r^2)) into
+// fixed-disc estimates over a handful of photons. Radiance records sit on photons, so the photon
+// at the centre alone gives power / (pi r^2): at r = 1e-6 m the image mean grew 5e4-fold.
+// Such a radius is raised to the median k-th-nearest distance of the map (`k` its gather count),
+// the smallest disc that holds a full estimate at a typical photon. Returns the note for the
+// warning ("" when `radius` is kept).
+std::string raise_to_photon_density(const PhotonMap& map, size_t k, uint8_t flags, const char* what,
+                                    float* radius) {
+  const float floor = map.median_kth_distance(k, flags);
+  if (!(*radius < floor)) return "";
+  *radius = floor;
+  char text[200];
+  std::snprintf(text, sizeof text, "%s: the median radius holding %zu of its %s photons is %.3g m",
+                what, k, thousands(map.size()).c_str(), floor);
+  return text;
+}
+
+}  // namespace
+
+void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
+  const RenderSettings& s = *context.settings;
+  stats_.clear();
+  irradiance_stats_.clear();
+  irradiance_ = IrradianceCache();
+  const PhotonSources sources(context);
+  const float scene_radius = sources.scene_radius();
+  global_radius_ = s.gather_radius > 0.0f ? s.gather_radius : kDefaultGlobalRadius * scene_radius;
+  caustic_radius_ = s.gather_radius > 0.0f ? s.gather_radius : kDefaultCausticRadius * scene_radius;
+
+  PhotonTraceSettings trace;
+  trace.global_photons = s.photons;
+  trace.caustic_photons = s.caustic_photons;
+  trace.time_budget = s.photon_time;
+  trace.seed = s.seed;
+  std::vector<std::pair<std::string, double>> memory_stats;
+  fit_photon_counts_to_memory(context, sources, control, &trace, &memory_stats);
+  if (control.cancelled()) return;
+  PhotonTraceResult traced = trace_photons(context, sources, trace, control);
+  if (control.cancelled()) return;
+  if (traced.stopped_early && control.warn)
+    control.warn("Photon tracing was stopped early: rendering with " +
+                 std::to_string(traced.global_emitted + traced.caustic_emitted) +
+                 " photons traced so far");
+
+  control.report("Building photon maps", 1.0f);
+  auto t0 = Clock::now();
+  const uint64_t global_stored = traced.global.size(), caustic_stored = traced.caustic.size();
+  global_ = PhotonMap(std::move(traced.global), control.cancel);
+  if (control.cancelled()) return;
+  caustic_ = PhotonMap(std::move(traced.caustic), control.cancel);
+  if (control.cancelled()) return;
+  if (s.gather_radius > 0.0f) {
+    std::string notes;
+    for (const std::string& note :
+         {raise_to_photon_density(global_, static_cast<size_t>(s.gather_count), kPhotonAny,
+                                  "global map", &global_radius_),
+          raise_to_photon_density(caustic_, static_cast<size_t>(s.caustic_gather_count),
+                                  kPhotonCaustic, "caustic map", &caustic_radius_)})
+      if (!note.empty()) notes += (notes.empty() ? "" : "; ") + note;
+    if (!notes.empty() && control.warn) {
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "Gather radius %.3g m is smaller than the photon density supports (",
+                    s.gather_radius);
+      control.warn(text + notes +
+                   "): raised to that distance. Raise Photons or lower Gather Count for a "
+                   "smaller radius");
+    }
+  }
+  const double build_seconds = seconds_since(t0);
+
+  // Christensen 1999: radiance (for albedo 1) precomputed at every gather point, so a final
+  // gather ray needs one nearest-point lookup instead of a k-nearest estimate.
+  t0 = Clock::now();
+  if (s.final_gather_rays > 0 && !global_.empty()) {
+    control.report("Precomputing radiance", 1.0f);
+    const std::vector<GatherPoint>& points = traced.gather_points;
+    std::vector<RadianceRecord> records(points.size());
+    const size_t k = static_cast<size_t>(std::max(s.gather_count, 1));
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const auto& r) {
+      std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+      // The partitioner hands out ranges of up to points / (4 threads): poll per point.
+      for (size_t i = r.begin(); i != r.end(); ++i) {
+        if (control.cancelled()) return;
+        records[i].p = points[i].p;
+        records[i].n = points[i].n;
+        records[i].radiance = global_.radiance_estimate(points[i].p, points[i].n, k, global_radius_,
+                                                        kPhotonAny, &scratch);
+        // The same neighbours show where the indirect light comes from.
+        records[i].guide = build_guide(global_, scratch, Frame(points[i].n));
+      }
+    });
+    if (control.cancelled()) return;
+    radiance_ = RadianceCache(
+        std::move(records),
+        record_cell_size(global_, points, k, global_radius_, context.accel->length_scale()),
+        control.cancel);
+    if (control.cancelled()) return;
+  }
+  const double precompute_seconds = seconds_since(t0);
+  if (s.final_gather_rays > 0 && s.irradiance_cache && !global_.empty()) {
+    build_irradiance(context, control);
+    if (control.cancelled()) return;
+  }
+
+  stats_ = {
+      {"photons_emitted", static_cast<double>(traced.global_emitted)},
+      {"caustic_photons_emitted", static_cast<double>(traced.caustic_emitted)},
+      {"global_photons_stored", static_cast<double>(global_stored)},
+      {"caustic_photons_stored", static_cast<double>(caustic_stored)},
+      {"radiance_points", static_cast<double>(radiance_.size())},
+      {"photon_rays", static_cast<double>(traced.rays)},
+      {"photon_trace_seconds", traced.seconds},
+      {"photon_map_build_seconds", build_seconds},
+      {"radiance_precompute_seconds", precompute_seconds},
+      {"photon_map_bytes", static_cast<double>(global_.memory_bytes() + caustic_.memory_bytes() +
+                                               radiance_.memory_bytes())},
+      {"radiance_cell_size", radiance_.cell_size()},
+      {"global_gather_radius", global_radius_},
+      {"caustic_gather_radius", caustic_radius_},
+  };
+  stats_.insert(stats_.end(), irradiance_stats_.begin(), irradiance_stats_.end());
+  stats_.insert(stats_.end(), memory_stats.begin(), memory_stats.end());
+}
+
+void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
+                                           const PrepareControl& control) {
+  irradiance_stats_.clear();
+  IrradianceCacheSettings settings;
+  settings.rays = std::clamp(kRecordRaysPerGatherRay * context.settings->final_gather_rays,
+                             kMinRecordRays, kMaxRecordRays);
+  IrradianceCacheBuildStats build;
+  // A record gathers up to 16384 rays: the gather polls for cancellation every 64 rays.
+  auto gather = [&](const SurfaceInteraction& si, const Bsdf& bsdf, int rays, Sampler& sampler,
+                    float* harmonic) {
+    return final_gather(context, si, bsdf, rays, sampler, harmonic, control.cancel);
+  };
+  irradiance_ = build_irradiance_cache(context, settings, gather, control, &build);
+  irradiance_stats_ = {
+      {"irradiance_records", static_cast<double>(irradiance_.size())},
+      {"irradiance_candidates", static_cast<double>(build.candidates)},
+      {"irradiance_gather_rays", static_cast<double>(build.gather_rays)},
+      {"irradiance_cache_seconds", build.seconds},
+      {"irradiance_cache_bytes", static_cast<double>(irradiance_.memory_bytes())},
+  };
+}
+
+std::vector<std::pair<std::string, double>> PhotonMapIntegrator::prepare_stats() const {
+  return stats_;
+}
+
+Vec3 PhotonMapIntegrator::gathered_radiance(const Vec3& p, const Vec3& n,
+                                            std::vector<PhotonNeighbor>* scratch) const {
+  if (const RadianceRecord* record = radiance_.nearest(p, n, kGatherMinCos))
+    return record->radiance;
+  return global_.radiance_estimate(p, n, kFallbackCount, global_radius_, kPhotonAny, scratch);
+}
+
+Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
+                                     std::vector<PhotonNeighbor>* scratch,
+                                     float* hit_distance) const {
+  const int max_depth = context.settings->max_depth;
+  Vec3 sum(0.0f), throughput(1.0f);
+  uint32_t mask = kVisibleDiffuse;
+  // Light met on the way is direct light (light sampling) or a caustic (the caustic map),
+  // unless a rough glossy lobe was followed: neither of those holds such paths.
+  bool after_glossy = false;
+  for (int depth = 0;; ++depth) {
+    Hit hit;
+    const bool found = context.accel->intersect(ray, mask, &hit);
+    if (after_glossy) {
+      float t_light;
+      Vec3 lamp;
+      if (context.lights->intersect(ray, found ? hit.t : ray.tmax, mask, &t_light, &lamp))
+        return sum + throughput * lamp;
+      if (!found)
+        return sum + throughput * (context.scene->world.color +
+                                   context.lights->distant_radiance(ray.direction, mask));
+    }
+    if (depth == 0 && hit_distance) *hit_distance = found ? hit.t : INFINITY;
+    if (!found) return sum;
+    const SurfaceInteraction y = context.accel->interaction(hit);
+    const Vec3 wo = -ray.direction;
+    const ShadingPoint sp = shade(context, y, wo);
+    if (after_glossy) sum += throughput * sp.emission;
+    const Bsdf& bsdf = sp.bsdf;
+    const Vec3 rd = bsdf.diffuse_reflectance();
+    if (!is_black(rd)) sum += throughput * rd * gathered_radiance(y.p, bsdf.ng(), scratch);
+    if (depth >= max_depth) return sum;
+    BsdfSample s;
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    if (!bsdf.sample(wo, u_lobe, u, kLobeGlossy | kLobeSpecular, &s) || is_black(s.weight))
+      return sum;
+    throughput *= s.weight;
+    if (depth >= 2) {
+      const float q = std::min(1.0f, max_component(throughput));
+      if (!(sampler.get_1d() < q)) return sum;
+      throughput = throughput / q;
+    }
+    after_glossy = after_glossy || !s.is_delta();
+    mask = visibility_after(s.flags);
+    ray.origin = offset_ray_origin(y.p, y.ng, s.wi, context.accel->length_scale());
+    ray.direction = s.wi;
+    ray.tmin = 0.0f;
+    ray.tmax = INFINITY;
+  }
+}
+
+Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const SurfaceInteraction& x,
+                                       const Bsdf& bsdf, int n, Sampler& sampler,
+                                       float* harmonic_distance,
+                                       const std::atomic<bool>* cancel) const {
+  const Vec2 shift = sampler.get_2d();
+  const Frame& frame = bsdf.frame();
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  // Directions from the nearest record's photon histogram mixed with cosine sampling; without
+  // a record, plain cosine sampling.
+  const RadianceRecord* record = radiance_.nearest(x.p, bsdf.ng(), kGatherMinCos);
+  const GuidedSquare guide(record ? record->guide : GuideHistogram{});
+  Vec3 sum(0.0f);
+  double inverse_distances = 0.0;  // for the harmonic mean (Ward 1988)
+  int traced = 0;
+  for (int j = 0; j < n; ++j) {
+    if (cancel && (j & 63) == 0 && cancel->load(std::memory_order_relaxed)) break;
+    // pdf = density * cos / pi, so each ray adds (albedo / pi) L cos / pdf = albedo L / density.
+    float density;
+    const Vec2 u = guide.sample(rotated_r2(static_cast<uint32_t>(j), shift), &density);
+    const Vec3 wi = frame.to_world(sample_cosine_hemisphere(u));
+    if (dot(wi, bsdf.ng()) <= 0.0f) continue;
+    Ray ray;
+    ray.origin = offset_ray_origin(x.p, x.ng, wi, context.accel->length_scale());
+    ray.direction = wi;
+    float t = INFINITY;
+    sum += gather_ray(context, ray, sampler, &scratch, harmonic_distance ? &t : nullptr) / density;
+    inverse_distances += 1.0 / std::max(t, 1e-6f * context.accel->length_scale());
+    ++traced;
+  }
+  if (harmonic_distance)
+    *harmonic_distance =
+        inverse_distances > 0.0 ? static_cast<float>(traced / inverse_distances) : INFINITY;
+  return sum / static_cast<float>(n);
+}
+
+// The classic photon-map view: a dot where a stored photon lies, coloured by its power's hue.
+// The dot radius follows the local photon spacing, so dots stay dots in dense and sparse areas.
+Vec3 PhotonMapIntegrator::photon_dots(const SurfaceInteraction& x) const {
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  for (const PhotonMap* map : {&caustic_, &global_}) {
+    if (map->empty()) continue;
+    map->k_nearest(x.p, 8, global_radius_, kPhotonAny, &scratch);
+    if (scratch.size() < 2) continue;
+    const float spacing2 =
+        kPi * scratch.front().distance_squared / static_cast<float>(scratch.size());
+    float best = INFINITY;
+    uint32_t index = 0;
+    for (const PhotonNeighbor& nb : scratch)
+      if (nb.distance_squared < best) best = nb.distance_squared, index = nb.index;
+    if (best < 0.09f * spacing2) {
+      const Vec3 power = (*map)[index].power();
+      const float m = max_component(power);
+      return m > 0.0f ? power / m : Vec3(0.0f);
+    }
+  }
+  return Vec3(0.0f);
+}
+
+void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const PathVertex& v,
+                                        Sampler& sampler, RadianceSample* result) const {
+  const RenderSettings& s = *context.settings;
+  const SurfaceInteraction& x = *v.si;
+  const Bsdf& bsdf = v.shading->bsdf;
+  if (s.light_passes && v.depth == 0) result->photon_map = photon_dots(x);
+  const Vec3 weight = v.throughput * bsdf.diffuse_reflectance();
+  if (is_black(weight)) return;
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  if (!caustic_.empty())
+    result->caustic +=
+        weight * caustic_.radiance_estimate(
+                     x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+                     caustic_radius_, kPhotonCaustic, &scratch);
+  // Final gathering where it shows: at the first diffuse surface seen directly or through
+  // perfect mirrors and glass. After a rough glossy bounce the blur hides the global map.
+  Vec3 cached;
+  if (s.final_gather_rays > 0 && !v.after_glossy &&
+      irradiance_.lookup(x.p, bsdf.frame().n, &cached)) {
+    result->indirect += weight * cached;
+  } else if (s.final_gather_rays > 0 && !v.after_glossy) {
+    result->indirect += weight * final_gather(context, x, bsdf, s.final_gather_rays, sampler);
+  } else if (!global_.empty()) {
+    // Photons that bounced off a diffuse or glossy surface at least once; direct light and
+    // caustics come from the other two estimates.
+    result->indirect +=
+        weight * global_.radiance_estimate(x.p, bsdf.ng(),
+                                           static_cast<size_t>(std::max(s.gather_count, 1)),
+                                           global_radius_, kPhotonIndirect, &scratch);
+  }
+}
+
+RadianceSample PhotonMapIntegrator::radiance_from_hit(const RenderContext& context,
+                                                      const Ray& camera_ray, const CameraHit& first,
+                                                      Sampler& sampler) const {
+  RadianceSample result;
+  trace_camera_path(
+      context, camera_ray, first, sampler,
+      [&](const PathVertex& v, RadianceSample* r) { shade_diffuse(context, v, sampler, r); },
+      &result);
+  return result;
+}
+
+bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit& hit,
+                                         const SurfaceInteraction& si, Sampler& sampler,
+                                         Vec3* radiance) const {
+  (void)hit;
+  // The view-independent part of the surface: its emission and its diffuse lobes (seen along
+  // the normal of the baked side). Surfaces with neither (mirrors, glass, metals) cannot bake.
+  const ShadingPoint sp = shade(context, si, si.ng);
+  const Vec3 albedo = sp.bsdf.diffuse_reflectance();
+  if (is_black(albedo) && is_black(sp.emission)) return false;
+  Vec3 reflected(0.0f);
+  if (!is_black(albedo)) {
+    const RenderSettings& s = *context.settings;
+    const int n = std::max(s.samples, 1);
+    std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+    Vec3 cached(0.0f);
+    const bool gather = s.final_gather_rays > 0;
+    const bool from_cache = gather && bake_irradiance_.lookup(si.p, si.ns, &cached);
+    // Direct light and final gathering are averaged over n stratified samples (the sampler's
+    // 2D dimensions follow the R2 sequence over the n sample indices).
+    const uint64_t stream = derived_stream(sampler);
+    Vec3 direct(0.0f), indirect(0.0f);
+    for (int k = 0; k < n; ++k) {
+      Sampler inner(s.seed, stream, static_cast<uint32_t>(k), static_cast<uint32_t>(n));
+      direct += direct_irradiance(context, si, inner);
+      if (gather && !from_cache)
+        indirect += final_gather(context, si, sp.bsdf, s.final_gather_rays, inner);
+    }
+    reflected = direct * (kInvPi / n) + (from_cache ? cached : indirect / static_cast<float>(n));
+    if (!gather && !global_.empty())
+      reflected +=
+          global_.radiance_estimate(si.p, si.ng, static_cast<size_t>(std::max(s.gather_count, 1)),
+                                    global_radius_, kPhotonIndirect, &scratch);
+    if (!caustic_.empty())
+      reflected += caustic_.radiance_estimate(
+          si.p, si.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)), caustic_radius_,
+          kPhotonCaustic, &scratch);
+    reflected *= albedo;
+  }
+  *radiance = sp.emission + reflected;
+  return true;
+}
+
+bool PhotonMapIntegrator::baked_probe(const RenderContext& context, const Hit& hit,
+                                      const SurfaceInteraction& si, Sampler& sampler,
+                                      Vec3* radiance) const {
+  (void)hit, (void)sampler;
+  const ShadingPoint sp = shade(context, si, si.ng);
+  const Vec3 albedo = sp.bsdf.diffuse_reflectance();
+  if (is_black(albedo) && is_black(sp.emission)) return false;
+  // The photons tell a lit side from a dark one without tracing a ray: the total radiance
+  // (direct photons included) of the nearest precomputed record on this side, else a small
+  // estimate. Both sides of a bake point are probed, so this keeps the probe cheap.
+  Vec3 photons(0.0f);
+  if (!global_.empty()) photons = gathered_radiance(si.p, si.ng, &scratch_neighbors());
+  *radiance = sp.emission + albedo * photons;
+  return true;
+}
+
+void PhotonMapIntegrator::prepare_bake(const RenderContext& context, const BakePointSet& points,
+                                       const PrepareControl& control) {
+  bake_irradiance_ = IrradianceCache();
+  const RenderSettings& s = *context.settings;
+  if (s.final_gather_rays <= 0 || global_.empty()) return;
+  PointIrradianceCacheSettings settings;
+  settings.rays =
+      std::clamp(kRecordRaysPerGatherRay * s.final_gather_rays, kMinRecordRays, kMaxRecordRays);
+  settings.seed = s.seed;
+  auto gather = [&](const SurfaceInteraction& si, int rays, Sampler& sampler, float* harmonic) {
+    const ShadingPoint sp = shade(context, si, si.ng);
+    return final_gather(context, si, sp.bsdf, rays, sampler, harmonic, control.cancel);
+  };
+  PointIrradianceCacheStats build;
+  bake_irradiance_ = build_point_irradiance_cache(points, gather, settings, control, &build);
+  stats_.push_back({"bake_irradiance_records", static_cast<double>(bake_irradiance_.size())});
+  stats_.push_back({"bake_irradiance_candidates", static_cast<double>(build.candidates)});
+  stats_.push_back({"bake_irradiance_seconds", build.seconds});
+}
+
+}  // namespace photon

@@ -1,0 +1,259 @@
+#include "photon/integrators/photon_map/photon_tracer.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "photon/integrators/camera_path.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr uint64_t kChunk = 2048;         // photons per parallel work item
+constexpr uint64_t kRound = 32 * kChunk;  // photons between progress / time checks
+constexpr uint64_t kGlobalStream = 0x6C6F62616C, kCausticStream = 0x636175737469;
+
+struct ChunkOutput {
+  std::vector<Photon> photons;
+  std::vector<GatherPoint> gather_points;
+  uint64_t rays = 0;
+};
+
+struct PathSetup {
+  const RenderContext* context;
+  const PhotonTraceSettings* settings;
+  bool caustic_pass;
+  float power_scale;  // 1 / photons emitted when known up front, else 1 (rescaled later)
+};
+
+// Jensen 2001 sec. 5.2: the BSDF picks a lobe by albedo and samples it; the
+// photon survives with probability q = max channel of the sampled weight (so its power never
+// grows) and carries power * weight / q per channel.
+bool scatter(const Bsdf& bsdf, const Vec3& wo, uint8_t mask, Sampler& sampler, Vec3* power,
+             BsdfSample* s) {
+  const float u_lobe = sampler.get_1d();
+  const Vec2 u = sampler.get_2d();
+  const float u_survive = sampler.get_1d();
+  if (!bsdf.sample(wo, u_lobe, u, mask, s) || is_black(s->weight)) return false;
+  const float q = std::min(1.0f, max_component(s->weight));
+  if (!(u_survive < q)) return false;
+  *power = *power * s->weight / q;
+  return true;
+}
+
+// Where a path stands for the photon maps: at the light's first hit (direct), after perfectly
+// specular bounces only (caustic: L S+ D), or after a diffuse or rough glossy bounce (indirect).
+// Rough glossy paths are not caustics here: final gathering collects them (see
+// photon_map_integrator.cpp), so the two never count the same light twice.
+enum class PathKind : uint8_t { kDirect, kCaustic, kIndirect };
+
+void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emitted,
+                Sampler& sampler, ChunkOutput* out) {
+  const RenderContext& context = *setup.context;
+  Ray ray = emitted.ray;
+  Vec3 power = emitted.power * setup.power_scale;
+  PathKind kind = PathKind::kDirect;
+  uint32_t mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
+  // Caustic photons follow perfectly specular lobes only; global photons every lobe.
+  const uint8_t scatter_mask = setup.caustic_pass ? kLobeSpecular : kLobeAll;
+  for (int bounce = 0; bounce < setup.settings->max_bounces; ++bounce) {
+    Hit hit;
+    ++out->rays;
+    if (!context.accel->intersect(ray, mask, &hit)) return;
+    const SurfaceInteraction si = context.accel->interaction(hit);
+    const Vec3 wo = -ray.direction;
+    const ShadingPoint sp = shade(context, si, wo);
+    const Bsdf& bsdf = sp.bsdf;
+    if (bsdf.flags() & kLobeDiffuse) {
+      if (!setup.caustic_pass) {
+        const uint8_t flags = kind == PathKind::kDirect    ? kPhotonDirect
+                              : kind == PathKind::kCaustic ? kPhotonCaustic
+                                                           : kPhotonIndirect;
+        out->photons.push_back(Photon::make(si.p, ray.direction, power, flags, bsdf.ng()));
+        if (hash_combine(index, static_cast<uint64_t>(bounce)) % setup.settings->gather_point_stride == 0)
+          out->gather_points.push_back({si.p, bsdf.ng()});
+      } else if (kind == PathKind::kCaustic) {
+        out->photons.push_back(
+            Photon::make(si.p, ray.direction, power, kPhotonCaustic, bsdf.ng()));
+      }
+    }
+    BsdfSample s;
+    if (!scatter(bsdf, wo, scatter_mask, sampler, &power, &s)) return;
+    if (s.is_delta()) {
+      if (kind == PathKind::kDirect) kind = PathKind::kCaustic;
+    } else {
+      kind = PathKind::kIndirect;
+    }
+    mask = visibility_after(s.flags);
+    ray.origin = offset_ray_origin(si.p, si.ng, s.wi, context.accel->length_scale());
+    ray.direction = s.wi;
+    ray.tmin = 0.0f;
+    ray.tmax = INFINITY;
+  }
+}
+
+// Traces photons [begin, end) of one pass in parallel chunks; their results, in chunk order,
+// become one block of `blocks` (concatenated once at the end, so the big arrays are never
+// reallocated and copied while tracing). Chunks poll for cancellation.
+void trace_range(const PathSetup& setup, const PhotonSources& sources, uint64_t begin,
+                 uint64_t end, uint32_t stratify_count, const PrepareControl& control,
+                 PhotonTraceResult* result, std::vector<std::vector<Photon>>* blocks,
+                 std::vector<std::vector<GatherPoint>>* gather_blocks) {
+  const uint64_t chunks = (end - begin + kChunk - 1) / kChunk;
+  std::vector<ChunkOutput> outputs(chunks);
+  const uint64_t stream = setup.caustic_pass ? kCausticStream : kGlobalStream;
+  tbb::parallel_for(tbb::blocked_range<uint64_t>(0, chunks, 1), [&](const auto& r) {
+    for (uint64_t c = r.begin(); c != r.end(); ++c) {
+      if (control.cancelled()) return;
+      ChunkOutput& out = outputs[c];
+      const uint64_t lo = begin + c * kChunk, hi = std::min(end, lo + kChunk);
+      for (uint64_t i = lo; i < hi; ++i) {
+        Sampler sampler(setup.settings->seed, stream, static_cast<uint32_t>(i), stratify_count);
+        EmittedPhoton e;
+        const bool ok = setup.caustic_pass ? sources.emit_caustic(sampler, &e)
+                                           : sources.emit_global(sampler, &e);
+        if (ok) trace_path(setup, i, e, sampler, &out);
+      }
+    }
+  });
+  size_t photon_count = 0, gather_count = 0;
+  for (const ChunkOutput& out : outputs) {
+    photon_count += out.photons.size();
+    gather_count += out.gather_points.size();
+  }
+  std::vector<Photon>& photons = blocks->emplace_back();
+  photons.reserve(photon_count);
+  std::vector<GatherPoint>& gather_points = gather_blocks->emplace_back();
+  gather_points.reserve(gather_count);
+  for (ChunkOutput& out : outputs) {
+    photons.insert(photons.end(), out.photons.begin(), out.photons.end());
+    gather_points.insert(gather_points.end(), out.gather_points.begin(), out.gather_points.end());
+    result->rays += out.rays;
+  }
+}
+
+// Moves the blocks into one exactly sized array, block by block, polling for cancellation.
+template <typename T>
+void concatenate(std::vector<std::vector<T>>* blocks, std::vector<T>* out,
+                 const PrepareControl& control) {
+  size_t total = 0;
+  for (const auto& b : *blocks) total += b.size();
+  out->clear();
+  out->reserve(total);
+  for (auto& b : *blocks) {
+    if (control.cancelled()) break;
+    out->insert(out->end(), b.begin(), b.end());
+    std::vector<T>().swap(b);  // give the block's memory back now
+  }
+  blocks->clear();
+}
+
+void rescale(std::vector<Photon>* photons, float scale, const PrepareControl& control) {
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, photons->size(), 8192), [&](const auto& r) {
+    for (size_t i = r.begin(); i != r.end(); ++i) {
+      if ((i & 0xFFFF) == 0 && control.cancelled()) return;
+      Photon& ph = (*photons)[i];
+      encode_rgbe(ph.power() * scale, ph.power_rgbe);
+    }
+  });
+}
+
+std::string count_text(uint64_t n) {
+  char buf[32];
+  if (n >= 1000000) std::snprintf(buf, sizeof buf, "%.2fM", n / 1e6);
+  else if (n >= 1000) std::snprintf(buf, sizeof buf, "%.0fk", n / 1e3);
+  else std::snprintf(buf, sizeof buf, "%llu", static_cast<unsigned long long>(n));
+  return buf;
+}
+
+}  // namespace
+
+PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSources& sources,
+                                const PhotonTraceSettings& settings,
+                                const PrepareControl& control) {
+  PhotonTraceResult result;
+  const auto t0 = Clock::now();
+  const bool timed = settings.time_budget > 0.0;
+  uint64_t want_global = sources.has_global() ? settings.global_photons : 0;
+  uint64_t want_caustic = sources.has_caustic() ? settings.caustic_photons : 0;
+  if (timed) {
+    // Keep the ratio of the two counts; each round traces kRound photons in that ratio.
+    const double g = sources.has_global() ? std::max<double>(settings.global_photons, 1) : 0;
+    const double c = sources.has_caustic() ? static_cast<double>(settings.caustic_photons) : 0;
+    if (g + c <= 0) return result;
+    want_global = static_cast<uint64_t>(kRound * g / (g + c));
+    want_caustic = kRound - want_global;
+  }
+  if (want_global + want_caustic == 0) return result;
+
+  PathSetup global_setup{&context, &settings, false, timed ? 1.0f : 1.0f / std::max<uint64_t>(want_global, 1)};
+  PathSetup caustic_setup{&context, &settings, true, timed ? 1.0f : 1.0f / std::max<uint64_t>(want_caustic, 1)};
+  const uint32_t strat_global = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_global, UINT32_MAX));
+  const uint32_t strat_caustic = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_caustic, UINT32_MAX));
+  uint64_t stored = 0;
+
+  std::vector<std::vector<Photon>> global_blocks, caustic_blocks;
+  std::vector<std::vector<GatherPoint>> gather_blocks;
+  for (uint64_t round = 0;; ++round) {
+    if (control.should_stop()) {
+      result.stopped_early = true;
+      break;
+    }
+    const double elapsed = std::chrono::duration<double>(Clock::now() - t0).count();
+    if (timed && elapsed >= settings.time_budget) break;
+    uint64_t g_end, c_end;
+    if (timed) {
+      g_end = result.global_emitted + want_global;
+      c_end = result.caustic_emitted + want_caustic;
+    } else {
+      // Both passes advance together so an early stop leaves both maps usable.
+      const double total = static_cast<double>(want_global + want_caustic);
+      const double done = std::min(1.0, (round + 1) * static_cast<double>(kRound) / total);
+      g_end = static_cast<uint64_t>(std::ceil(done * want_global));
+      c_end = static_cast<uint64_t>(std::ceil(done * want_caustic));
+    }
+    if (g_end > result.global_emitted) {
+      trace_range(global_setup, sources, result.global_emitted, g_end, strat_global, control,
+                  &result, &global_blocks, &gather_blocks);
+      stored += global_blocks.back().size();
+    }
+    if (c_end > result.caustic_emitted) {
+      // The caustic pass makes no gather points: its (empty) blocks change nothing.
+      trace_range(caustic_setup, sources, result.caustic_emitted, c_end, strat_caustic, control,
+                  &result, &caustic_blocks, &gather_blocks);
+      stored += caustic_blocks.back().size();
+    }
+    if (control.cancelled()) return result;
+    result.global_emitted = g_end;
+    result.caustic_emitted = c_end;
+    const double t = std::chrono::duration<double>(Clock::now() - t0).count();
+    const float fraction = timed ? static_cast<float>(std::min(1.0, t / settings.time_budget))
+                                 : static_cast<float>(result.global_emitted + result.caustic_emitted) /
+                                       static_cast<float>(want_global + want_caustic);
+    control.report("Tracing photons " + count_text(result.global_emitted + result.caustic_emitted) +
+                       (timed ? "" : " / " + count_text(want_global + want_caustic)) + " (" +
+                       count_text(stored) + " stored)",
+                   fraction);
+    if (!timed && g_end >= want_global && c_end >= want_caustic) break;
+  }
+  concatenate(&global_blocks, &result.global, control);
+  concatenate(&caustic_blocks, &result.caustic, control);
+  concatenate(&gather_blocks, &result.gather_points, control);
+  // Each photon carries flux / (photons emitted); when that count was not known in advance
+  // (time budget, early stop) the stored powers are rescaled now.
+  if ((timed || result.stopped_early) && !control.cancelled()) {
+    if (result.global_emitted)
+      rescale(&result.global, (timed ? 1.0f : want_global) / static_cast<float>(result.global_emitted),
+              control);
+    if (result.caustic_emitted)
+      rescale(&result.caustic, (timed ? 1.0f : want_caustic) / static_cast<float>(result.caustic_emitted),
+              control);
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace photon

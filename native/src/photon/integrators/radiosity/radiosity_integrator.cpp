@@ -1,0 +1,125 @@
+#include "photon/integrators/radiosity/radiosity_integrator.h"
+
+#include <chrono>
+
+#include "photon/integrators/camera_path.h"
+#include "photon/render/material_eval.h"
+#include "photon/integrators/radiosity/radiosity_material.h"
+#include "photon/integrators/radiosity/radiosity_refine.h"
+#include "photon/integrators/radiosity/radiosity_solver.h"
+
+namespace photon {
+namespace {
+
+// Settings outside these ranges are clamped (an absurd value must not hang or crash Blender).
+constexpr uint64_t kMinRays = 10000, kMaxRays = 10000000000ull;
+constexpr float kMinThreshold = 1e-4f, kMaxThreshold = 1.0f;
+constexpr int kMaxIterations = 100;
+
+}  // namespace
+
+void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
+  const RenderSettings& s = *context.settings;
+  stats_.clear();
+  const auto t0 = std::chrono::steady_clock::now();
+  control.report("Radiosity: meshing", 0.0f);
+  RadiosityMeshSettings mesh_settings;
+  mesh_settings.patch_size =
+      std::isfinite(s.radiosity_patch_size) ? std::max(s.radiosity_patch_size, 0.0f) : 0.0f;
+  // The automatic patch size keeps enough rays per patch (see RadiosityMeshSettings).
+  mesh_settings.rays = std::clamp<uint64_t>(s.radiosity_rays, kMinRays, kMaxRays);
+  RadiositySolveSettings solve;
+  solve.rays = std::clamp<uint64_t>(s.radiosity_rays, kMinRays, kMaxRays);
+  solve.threshold = std::isfinite(s.radiosity_threshold)
+                        ? std::clamp(s.radiosity_threshold, kMinThreshold, kMaxThreshold)
+                        : 0.01f;
+  solve.iterations = std::clamp(s.radiosity_iterations, 0, kMaxIterations);
+  solve.seed = s.seed;
+  // Meshing, a first solve, refinement where the light changes, and the final solve.
+  std::vector<std::string> warnings;
+  RadiosityRefined refined = solve_radiosity_refined(context, mesh_settings, solve,
+                                                     RadiosityRefineSettings{}, control, &warnings);
+  if (control.warn)
+    for (const std::string& w : warnings) control.warn(w);
+  if (control.cancelled()) return;
+  mesh_ = std::move(refined.mesh);
+  const RadiositySolveStats& solved = refined.stats;
+  std::vector<RadiosityPower>& power = refined.power;
+  const double mesh_seconds =
+      std::max(0.0, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                        solved.seconds);
+  if (solved.stopped_early && control.warn)
+    control.warn("Radiosity was stopped early: rendering the solution of " +
+                 std::to_string(solved.incremental_iterations) + " shooting and " +
+                 std::to_string(solved.regular_iterations) + " averaged iterations");
+  const auto t_field = std::chrono::steady_clock::now();
+  field_ = RadiosityField(mesh_, power);
+  const double field_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t_field).count();
+
+  stats_ = {
+      {"radiosity_elements", static_cast<double>(mesh_.element_count())},
+      {"radiosity_patches", static_cast<double>(mesh_.patch_count())},
+      {"radiosity_clusters", static_cast<double>(mesh_.cluster_count())},
+      {"radiosity_split_patches", static_cast<double>(mesh_.split_count())},
+      {"radiosity_first_patches", static_cast<double>(refined.first_patches)},
+      {"radiosity_vertices", static_cast<double>(mesh_.vertex_count())},
+      {"radiosity_patch_size", mesh_.patch_size()},
+      {"radiosity_area", mesh_.total_area()},
+      {"radiosity_mesh_seconds", mesh_seconds},
+      {"radiosity_field_seconds", field_seconds},
+      {"radiosity_rays", static_cast<double>(solved.rays)},
+      {"radiosity_solve_seconds", solved.seconds},
+      {"radiosity_rays_per_second", solved.seconds > 0.0 ? solved.rays / solved.seconds : 0.0},
+      {"radiosity_shooting_iterations", static_cast<double>(solved.incremental_iterations)},
+      {"radiosity_averaged_iterations", static_cast<double>(solved.regular_iterations)},
+      {"radiosity_emitted_power", solved.emitted},
+      {"radiosity_absorbed_power", solved.absorbed},
+      {"radiosity_absorbed_specular_power", solved.absorbed_specular},
+      {"radiosity_escaped_power", solved.escaped},
+      {"radiosity_unshot_power", solved.unshot},
+  };
+}
+
+bool RadiosityIntegrator::reflected_radiance(const SurfaceInteraction& si, const Vec3& towards,
+                                             RadiosityPower* radiance) const {
+  RadiosityLocation where;
+  if (field_.empty() ||
+      !mesh_.locate(si.instance, si.primitive, si.barycentric.x, si.barycentric.y, &where))
+    return false;
+  const uint32_t side = dot(towards, mesh_.normal(where.element)) >= 0.0f ? 0u : 1u;
+  const RadiosityPower b = field_.radiosity_at(where, side);
+  *radiance = {b.direct * kInvPi, b.caustic * kInvPi, b.indirect * kInvPi};
+  return true;
+}
+
+RadianceSample RadiosityIntegrator::radiance_from_hit(const RenderContext& context,
+                                                      const Ray& camera_ray, const CameraHit& first,
+                                                      Sampler& sampler) const {
+  // The camera path is ray traced through glossy and specular lobes (glossy lobes also see
+  // the lights directly); the diffuse lobes show the radiosity solution.
+  RadianceSample result;
+  trace_camera_path(
+      context, camera_ray, first, sampler,
+      [this](const PathVertex& v, RadianceSample* r) {
+        RadiosityPower l;
+        if (!reflected_radiance(*v.si, v.shading->bsdf.ng(), &l)) return;
+        r->direct += v.throughput * l.direct;
+        r->caustic += v.throughput * l.caustic;
+        r->indirect += v.throughput * l.indirect;
+      },
+      &result, kLobeGlossy);
+  return result;
+}
+
+bool RadiosityIntegrator::baked_radiance(const RenderContext& context, const Hit& hit,
+                                         const SurfaceInteraction& si, Sampler& sampler,
+                                         Vec3* radiance) const {
+  (void)hit, (void)sampler;
+  RadiosityPower l;
+  if (!reflected_radiance(si, si.ng, &l)) return false;
+  *radiance = (si.mat ? emitted_radiance(*si.mat, si, context.textures) : Vec3(0.0f)) + l.total();
+  return true;
+}
+
+}  // namespace photon

@@ -1,0 +1,461 @@
+#include "photon/render/bsdf.h"
+
+#include "photon/base/microfacet.h"
+#include "photon/base/optics.h"
+#include "photon/base/sampling.h"
+
+namespace photon {
+namespace {
+
+// Below this distance from 1 a relative index of refraction leaves directions unchanged: the
+// glass and refraction lobes are then delta lobes whatever their roughness (a rough interface
+// with equal indices refracts every microfacet straight through).
+constexpr float kUnitEtaEpsilon = 1e-4f;
+
+bool is_unit_direction(const Vec3& w) {
+  const float l2 = length_squared(w);
+  return std::isfinite(l2) && l2 > 1e-12f;
+}
+
+// Normalises only when needed, so a direction that sample() returned maps to bit-identical
+// local coordinates in pdf() and eval() (near total internal reflection 1 - F is steep enough
+// for an ulp to show).
+Vec3 unit(const Vec3& w) {
+  const float l2 = length_squared(w);
+  return std::fabs(l2 - 1.0f) < 4e-7f ? w : w / std::sqrt(l2);
+}
+
+bool is_delta(const Lobe& l) {
+  switch (l.type) {
+    case LobeType::kGgxReflection:
+      return l.alpha < kDeltaAlpha;
+    case LobeType::kGgxGlass:
+    case LobeType::kGgxRefraction:
+      return l.alpha < kDeltaAlpha || std::fabs(l.ior - 1.0f) < kUnitEtaEpsilon;
+    case LobeType::kTransparent:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// Fresnel of a kGgxReflection lobe at the microfacet cosine `cos_oh`.
+Vec3 reflection_fresnel(const Lobe& l, float cos_oh, float eta) {
+  switch (l.fresnel) {
+    case FresnelMode::kDielectric:
+      return Vec3(fresnel_dielectric(cos_oh, eta));
+    case FresnelMode::kSchlick:
+      return fresnel_schlick(l.f0, cos_oh);
+    default:
+      return Vec3(1.0f);
+  }
+}
+
+// Where the generalized half vector of a refraction (Walter 2007, eq. 16) is valid: wo above,
+// wi below, both on the front of the microfacet h (oriented to +z). `eta` = n_wi / n_wo.
+struct RefractionGeometry {
+  Vec3 h;
+  float cos_oh = 0.0f, cos_ih = 0.0f;
+  float denom2 = 0.0f;  // (wo.h + eta wi.h)^2
+  bool valid = false;
+};
+
+RefractionGeometry refraction_geometry(const Vec3& wo, const Vec3& wi, float eta) {
+  RefractionGeometry g;
+  Vec3 h = wo + wi * eta;
+  const float l2 = length_squared(h);
+  if (!(l2 > 1e-12f)) return g;
+  h = h / std::sqrt(l2);
+  if (h.z < 0.0f) h = -h;
+  g.h = h;
+  g.cos_oh = dot(wo, h);
+  g.cos_ih = dot(wi, h);
+  if (g.cos_oh <= 0.0f || g.cos_ih >= 0.0f) return g;
+  const float d = g.cos_oh + eta * g.cos_ih;
+  g.denom2 = d * d;
+  g.valid = g.denom2 > 1e-20f;
+  return g;
+}
+
+struct LobeEval {
+  Vec3 f{0.0f};      // f(wo, wi) without the cosine
+  float pdf = 0.0f;  // solid-angle density of this lobe's sampling routine
+};
+
+// Microfacet reflection (Walter 2007, eq. 20) of a GGX reflection or glass lobe, wo.z and wi.z
+// > 0, with the pdf of visible-normal sampling (Heitz 2018, eq. 17 and the reflection
+// Jacobian 1 / (4 wo.h)). Glass picks reflection with probability F.
+LobeEval ggx_reflection(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta) {
+  LobeEval r;
+  const Vec3 h = normalize(wo + wi);
+  const float cos_oh = dot(wo, h);
+  if (cos_oh <= 0.0f) return r;
+  const float d = ggx_d(h, l.alpha);
+  const float g = ggx_g2(wo, wi, h, l.alpha);
+  const bool glass = l.type == LobeType::kGgxGlass;
+  const Vec3 fr =
+      glass ? Vec3(fresnel_dielectric(cos_oh, eta)) : reflection_fresnel(l, cos_oh, eta);
+  r.f = l.weight * fr * (d * g / (4.0f * wo.z * wi.z));
+  r.pdf = ggx_visible_normal_pdf(wo, h, l.alpha) / (4.0f * cos_oh) * (glass ? fr.x : 1.0f);
+  return r;
+}
+
+// Microfacet refraction (Walter 2007, eq. 21) without the radiance scaling 1/eta^2 (see
+// bsdf.h), wo.z > 0 > wi.z; the pdf uses the refraction Jacobian (eq. 17). Glass weights it by
+// 1 - F (and picks it with that probability); the Refraction lobe refracts everything.
+LobeEval ggx_transmission(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta) {
+  LobeEval r;
+  const RefractionGeometry geo = refraction_geometry(wo, wi, eta);
+  if (!geo.valid) return r;
+  const float d = ggx_d(geo.h, l.alpha);
+  const float g = ggx_g2(wo, wi, geo.h, l.alpha);
+  const float t = l.type == LobeType::kGgxGlass ? 1.0f - fresnel_dielectric(geo.cos_oh, eta) : 1.0f;
+  const float jacobian = eta * eta * std::fabs(geo.cos_ih) / geo.denom2;  // d(h) / d(wi)
+  r.f = l.weight * (t * d * g * jacobian * geo.cos_oh / (wo.z * std::fabs(wi.z)));
+  r.pdf = t * ggx_visible_normal_pdf(wo, geo.h, l.alpha) * jacobian;
+  return r;
+}
+
+// f and pdf of one non-delta lobe, in the local frame (wo.z > 0). `reflect` is the geometric
+// classification of the pair; a lobe only contributes where the shading frame agrees with it.
+LobeEval eval_lobe(const Lobe& l, const Vec3& wo, const Vec3& wi, bool reflect, float eta) {
+  LobeEval r;
+  const bool shading_reflect = reflect && wi.z > 0.0f;
+  const bool shading_transmit = !reflect && wi.z < 0.0f;
+  switch (l.type) {
+    case LobeType::kLambert:
+      if (!shading_reflect) break;
+      r.f = l.weight * kInvPi;
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    case LobeType::kBurleyDiffuse: {
+      if (!shading_reflect) break;
+      // Burley 2012, "Physically-Based Shading at Disney", sec. 5.3, as in Cycles' Principled
+      // v1 diffuse (no retro-reflection term split off).
+      const Vec3 h = normalize(wo + wi);
+      const float cos_d = dot(wi, h);
+      const float f90 = 0.5f + 2.0f * l.roughness * cos_d * cos_d;
+      const float fl = schlick_weight(wi.z), fv = schlick_weight(wo.z);
+      r.f = l.weight * (kInvPi * (1.0f + (f90 - 1.0f) * fl) * (1.0f + (f90 - 1.0f) * fv));
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    }
+    case LobeType::kTranslucent:
+      if (!shading_transmit) break;
+      r.f = l.weight * kInvPi;
+      r.pdf = cosine_hemisphere_pdf(-wi.z);
+      break;
+    case LobeType::kGgxReflection:
+      if (shading_reflect) r = ggx_reflection(l, wo, wi, eta);
+      break;
+    case LobeType::kGgxGlass:
+      if (shading_reflect) r = ggx_reflection(l, wo, wi, eta);
+      if (shading_transmit) r = ggx_transmission(l, wo, wi, eta);
+      break;
+    case LobeType::kGgxRefraction:
+      if (shading_transmit) r = ggx_transmission(l, wo, wi, eta);
+      break;
+    case LobeType::kTransparent:
+      break;
+  }
+  return r;
+}
+
+// Samples a direction from one non-delta lobe (local frame, wo.z > 0) and says whether it is a
+// reflection. `u_choice` picks reflection or transmission for glass. Returns false when no
+// direction comes out (refraction lobe at total internal reflection).
+bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 u, Vec3* wi,
+                 bool* reflection) {
+  *reflection = true;
+  switch (l.type) {
+    case LobeType::kLambert:
+    case LobeType::kBurleyDiffuse:
+      *wi = sample_cosine_hemisphere(u);
+      return true;
+    case LobeType::kTranslucent:
+      *wi = -sample_cosine_hemisphere(u);
+      *reflection = false;
+      return true;
+    case LobeType::kGgxReflection: {
+      const Vec3 h = ggx_sample_visible_normal(wo, l.alpha, u);
+      *wi = reflect(wo, h);
+      return true;
+    }
+    case LobeType::kGgxGlass:
+    case LobeType::kGgxRefraction: {
+      const Vec3 h = ggx_sample_visible_normal(wo, l.alpha, u);
+      const float f = l.type == LobeType::kGgxGlass ? fresnel_dielectric(dot(wo, h), eta) : 0.0f;
+      if (u_choice < f) {
+        *wi = reflect(wo, h);
+        return true;
+      }
+      *reflection = false;
+      return refract(wo, h, eta, wi);
+    }
+    case LobeType::kTransparent:
+      return false;
+  }
+  return false;
+}
+
+struct DeltaSample {
+  Vec3 wi;
+  Vec3 f{0.0f};       // throughput f |cos| integrated over the delta, for this event
+  float prob = 1.0f;  // probability of this event within the lobe
+  uint8_t flags = 0;
+};
+
+// Samples a delta lobe (local frame, wo.z > 0).
+bool sample_delta_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, DeltaSample* s) {
+  const Vec3 n(0.0f, 0.0f, 1.0f);
+  switch (l.type) {
+    case LobeType::kGgxReflection:
+      s->wi = reflect(wo, n);
+      s->f = l.weight * reflection_fresnel(l, wo.z, eta);
+      s->flags = kLobeReflection | kLobeSpecular;
+      return true;
+    case LobeType::kGgxGlass: {
+      const float f = fresnel_dielectric(wo.z, eta);  // 1 on total internal reflection
+      if (u_choice < f) {
+        s->wi = reflect(wo, n);
+        s->f = l.weight * f;
+        s->prob = f;
+        s->flags = kLobeReflection | kLobeSpecular;
+        return true;
+      }
+      if (!refract(wo, n, eta, &s->wi)) return false;
+      s->f = l.weight * (1.0f - f);
+      s->prob = 1.0f - f;
+      s->flags = kLobeTransmission | kLobeSpecular;
+      return true;
+    }
+    case LobeType::kGgxRefraction:
+      if (!refract(wo, n, eta, &s->wi)) return false;
+      s->f = l.weight;
+      s->flags = kLobeTransmission | kLobeSpecular;
+      return true;
+    case LobeType::kTransparent:
+      s->wi = -wo;
+      s->f = l.weight;
+      s->flags = kLobeTransmission | kLobeSpecular;
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The albedo estimate of one lobe at wo (local), used for lobe selection.
+Vec3 lobe_albedo(const Lobe& l, const Vec3& wo, float eta) {
+  if (l.type == LobeType::kGgxReflection) return l.weight * reflection_fresnel(l, wo.z, eta);
+  return l.weight;
+}
+
+}  // namespace
+
+uint8_t Lobe::flags() const {
+  const uint8_t rough = is_delta(*this) ? kLobeSpecular : kLobeGlossy;
+  switch (type) {
+    case LobeType::kLambert:
+    case LobeType::kBurleyDiffuse:
+      return kLobeReflection | kLobeDiffuse;
+    case LobeType::kTranslucent:
+      return kLobeTransmission | kLobeGlossy;
+    case LobeType::kGgxReflection:
+      return kLobeReflection | rough;
+    case LobeType::kGgxGlass:
+      return kLobeReflection | kLobeTransmission | rough;
+    case LobeType::kGgxRefraction:
+      return kLobeTransmission | rough;
+    case LobeType::kTransparent:
+      return kLobeTransmission | kLobeSpecular;
+  }
+  return 0;
+}
+
+Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, bool front_facing) : front_facing_(front_facing) {
+  const bool ns_ok = is_unit_direction(ns), ng_ok = is_unit_direction(ng);
+  valid_ = ns_ok || ng_ok;
+  const Vec3 n = normalize(ns_ok ? ns : (ng_ok ? ng : Vec3(0.0f, 0.0f, 1.0f)));
+  ng_ = ng_ok ? normalize(ng) : n;
+  frame_ = Frame(n);
+}
+
+void Bsdf::add(const Lobe& lobe) {
+  if (!valid_) return;
+  Lobe l = lobe;
+  // Sanitise parameters so no NaN can reach the renderer: negative or NaN colours are black,
+  // roughness is clamped to its range and a NaN or non-positive ior falls back to the default.
+  for (int c = 0; c < 3; ++c) {
+    const float w = l.weight[c];
+    l.weight[c] = std::isfinite(w) ? std::max(w, 0.0f) : 0.0f;
+    const float f = l.f0[c];
+    l.f0[c] = std::isfinite(f) ? std::clamp(f, 0.0f, 1.0f) : 0.0f;
+  }
+  if (is_black(l.weight)) return;
+  l.alpha = std::isfinite(l.alpha) ? std::clamp(l.alpha, 0.0f, 1.0f) : 0.0f;
+  l.roughness = std::isfinite(l.roughness) ? std::clamp(l.roughness, 0.0f, 1.0f) : 0.0f;
+  if (!(l.ior > 0.0f) || !std::isfinite(l.ior)) l.ior = 1.45f;
+  l.ior = std::clamp(l.ior, 1e-3f, 1e3f);
+  if (count_ < kMaxLobes) {
+    lobes_[count_++] = l;
+    return;
+  }
+  // Full: keep the kMaxLobes heaviest lobes (by their largest weight channel), so a material
+  // of many closures loses its faintest ones rather than whichever came last.
+  int lightest = 0;
+  for (int i = 1; i < count_; ++i)
+    if (max_component(lobes_[i].weight) < max_component(lobes_[lightest].weight)) lightest = i;
+  if (max_component(l.weight) > max_component(lobes_[lightest].weight)) lobes_[lightest] = l;
+}
+
+uint8_t Bsdf::flags() const {
+  uint8_t f = 0;
+  for (int i = 0; i < count_; ++i) f |= lobes_[i].flags();
+  return f;
+}
+
+bool Bsdf::to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const {
+  if (count_ == 0 || !is_unit_direction(wo)) return false;
+  *wo_world = unit(wo);
+  *wo_local = frame_.to_local(*wo_world);
+  // wo must be above both the shading and the geometric surface (grazing counts as below).
+  return wo_local->z > 1e-7f && dot(*wo_world, ng_) != 0.0f;
+}
+
+float Bsdf::eta(const Lobe& l) const {
+  return front_facing_ ? l.ior : 1.0f / l.ior;
+}
+
+int Bsdf::selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const {
+  float total = 0.0f;
+  int selected = 0;
+  for (int i = 0; i < count_; ++i) {
+    probs[i] = 0.0f;
+    if (!(lobes_[i].flags() & mask)) continue;
+    probs[i] = std::max(0.0f, max_component(lobe_albedo(lobes_[i], wo_local, eta(lobes_[i]))));
+    total += probs[i];
+  }
+  if (!(total > 0.0f) || !std::isfinite(total)) return 0;
+  for (int i = 0; i < count_; ++i) {
+    probs[i] /= total;
+    if (probs[i] > 0.0f) ++selected;
+  }
+  return selected;
+}
+
+void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
+                        uint8_t mask, const float* probs, Vec3* f, float* pdf) const {
+  *f = Vec3(0.0f);
+  *pdf = 0.0f;
+  const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
+  for (int i = 0; i < count_; ++i) {
+    const Lobe& l = lobes_[i];
+    if (!(l.flags() & mask) || is_delta(l)) continue;
+    const LobeEval e = eval_lobe(l, wo, wi, reflect, eta(l));
+    *f += e.f;
+    if (probs) *pdf += probs[i] * e.pdf;
+  }
+}
+
+Vec3 Bsdf::eval(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
+  Vec3 wo_l, wo_w;
+  if (!to_local(wo, &wo_l, &wo_w) || !is_unit_direction(wi)) return Vec3(0.0f);
+  const Vec3 wi_w = unit(wi);
+  Vec3 f;
+  float pdf;
+  eval_mixture(wo_w, wo_l, wi_w, frame_.to_local(wi_w), mask, nullptr, &f, &pdf);
+  return is_finite(f) ? f : Vec3(0.0f);
+}
+
+float Bsdf::pdf(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
+  Vec3 wo_l, wo_w;
+  if (!to_local(wo, &wo_l, &wo_w) || !is_unit_direction(wi)) return 0.0f;
+  float probs[kMaxLobes];
+  if (selection_probabilities(wo_l, mask, probs) == 0) return 0.0f;
+  const Vec3 wi_w = unit(wi);
+  Vec3 f;
+  float pdf;
+  eval_mixture(wo_w, wo_l, wi_w, frame_.to_local(wi_w), mask, probs, &f, &pdf);
+  return std::isfinite(pdf) ? pdf : 0.0f;
+}
+
+bool Bsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample* out) const {
+  Vec3 wo_l, wo_w;
+  if (!to_local(wo, &wo_l, &wo_w)) return false;
+  if (!std::isfinite(u_lobe) || !std::isfinite(u.x) || !std::isfinite(u.y)) return false;
+  u_lobe = std::clamp(u_lobe, 0.0f, 0.99999994f);
+  u = Vec2(std::clamp(u.x, 0.0f, 0.99999994f), std::clamp(u.y, 0.0f, 0.99999994f));
+  float probs[kMaxLobes];
+  if (selection_probabilities(wo_l, mask, probs) == 0) return false;
+
+  // Choose a lobe and remap u_lobe to [0, 1) within its interval for the lobe's own choice.
+  int k = -1;
+  float cdf = 0.0f;
+  for (int i = 0; i < count_; ++i) {
+    if (probs[i] <= 0.0f) continue;
+    k = i;
+    if (u_lobe < cdf + probs[i]) break;
+    cdf += probs[i];
+  }
+  const float u_choice = std::clamp((u_lobe - cdf) / probs[k], 0.0f, 0.99999994f);
+  const Lobe& lobe = lobes_[k];
+  const float lobe_eta = eta(lobe);
+  const float wo_ng = dot(wo_w, ng_);
+
+  if (is_delta(lobe)) {
+    DeltaSample s;
+    if (!sample_delta_lobe(lobe, wo_l, lobe_eta, u_choice, &s)) return false;
+    const Vec3 wi = normalize(frame_.to_world(s.wi));
+    // The geometric normal must agree with the event (Veach 1997, sec. 5.3).
+    const bool reflect = dot(wi, ng_) * wo_ng > 0.0f;
+    if (reflect != ((s.flags & kLobeReflection) != 0)) return false;
+    const float pdf = probs[k] * s.prob;
+    if (!(pdf > 0.0f)) return false;
+    out->wi = wi;
+    out->pdf = pdf;
+    out->weight = s.f / pdf;
+    out->flags = s.flags;
+    return is_finite(out->weight);
+  }
+
+  Vec3 wi_l;
+  bool reflection;
+  if (!sample_lobe(lobe, wo_l, lobe_eta, u_choice, u, &wi_l, &reflection)) return false;
+  const Vec3 wi = normalize(frame_.to_world(wi_l));
+  wi_l = frame_.to_local(wi);
+  const bool reflect = dot(wi, ng_) * wo_ng > 0.0f;
+  // An event that ends on the wrong side of the shading or the geometric surface (a microfacet
+  // reflection below the horizon, say) is not returned: eval() and pdf() count neither, so
+  // sample() follows pdf() exactly. Glass must check the event itself, since a reflection
+  // below the surface lands where its own refraction density is not zero.
+  if (reflect != reflection || (reflection ? wi_l.z <= 0.0f : wi_l.z >= 0.0f)) return false;
+  if (!(eval_lobe(lobe, wo_l, wi_l, reflect, lobe_eta).pdf > 0.0f)) return false;
+  Vec3 f;
+  float pdf;
+  eval_mixture(wo_w, wo_l, wi, wi_l, mask, probs, &f, &pdf);
+  if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
+  out->wi = wi;
+  out->pdf = pdf;
+  out->weight = f * (std::fabs(wi_l.z) / pdf);
+  // The lobe's flags, narrowed to the event that happened (reflection or transmission).
+  out->flags = lobe.flags() & ~(reflect ? kLobeTransmission : kLobeReflection);
+  return is_finite(out->weight);
+}
+
+Vec3 Bsdf::diffuse_reflectance() const {
+  Vec3 r(0.0f);
+  for (int i = 0; i < count_; ++i)
+    if (lobes_[i].flags() & kLobeDiffuse) r += lobes_[i].weight;
+  return r;
+}
+
+Vec3 Bsdf::albedo(const Vec3& wo, uint8_t mask) const {
+  Vec3 wo_l, wo_w;
+  if (!to_local(wo, &wo_l, &wo_w)) return Vec3(0.0f);
+  Vec3 a(0.0f);
+  for (int i = 0; i < count_; ++i)
+    if (lobes_[i].flags() & mask) a += lobe_albedo(lobes_[i], wo_l, eta(lobes_[i]));
+  return a;
+}
+
+}  // namespace photon

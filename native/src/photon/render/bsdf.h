@@ -1,0 +1,127 @@
+// The BSDF at one shading point: a weighted sum of up to kMaxLobes lobes (Lambert, Burley
+// diffuse, translucent, GGX reflection and transmission, transparent). The same object serves
+// camera paths, photon tracing and final gathering, so what is sampled is what is evaluated.
+//
+// Conventions (pbrt-v4 style): every direction is in world space, unit length and points away
+// from the surface. The shading frame's normal faces `wo`'s side (the caller flips normals of
+// back faces); `front_facing` says whether that side is the outward one, which decides the
+// relative index of refraction. eval() returns f(wo, wi) without the cosine; sample() returns
+// f |cos(theta_i)| / pdf. Radiance is not scaled by 1/eta^2 on refraction (as in Cycles), so
+// the BSDF is the same for importance (photons) and radiance (camera paths).
+#pragma once
+
+#include <cstdint>
+
+#include "photon/base/math.h"
+
+namespace photon {
+
+enum class LobeType : uint8_t {
+  kLambert,        // color / pi
+  kBurleyDiffuse,  // Burley 2012 diffuse with `roughness` (Cycles' Principled v1 diffuse)
+  kTranslucent,    // color / pi, to the other side
+  kGgxReflection,  // GGX microfacet reflection (Walter et al. 2007), Fresnel per `fresnel`
+  kGgxGlass,       // GGX reflection + transmission with dielectric Fresnel (Walter 2007)
+  kGgxRefraction,  // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
+  kTransparent,    // straight through, unchanged direction (always a delta lobe)
+};
+
+enum class FresnelMode : uint8_t {
+  kNone,        // F = 1: the lobe's colour is its reflectance (Cycles' Glossy BSDF)
+  kDielectric,  // exact dielectric Fresnel with `ior`
+  kSchlick,     // Schlick's approximation with F0 = `f0` (metals, Principled specular)
+};
+
+// What a lobe does, for choosing which part of the light transport handles it.
+enum LobeFlags : uint8_t {
+  kLobeReflection = 1u << 0,
+  kLobeTransmission = 1u << 1,
+  kLobeDiffuse = 1u << 2,   // Lambert and Burley: the photon map's and final gather's part
+  kLobeGlossy = 1u << 3,    // rough microfacet and translucent: sampled and ray traced
+  kLobeSpecular = 1u << 4,  // delta lobes: sharp reflection / refraction, transparent
+  kLobeAll = 0x1F,
+};
+
+// Below this GGX alpha a microfacet lobe is a perfect (delta) mirror or interface.
+constexpr float kDeltaAlpha = 1e-4f;
+
+struct Lobe {
+  LobeType type = LobeType::kLambert;
+  Vec3 weight{1.0f};       // closure weight times its colour (tint); never negative
+  float alpha = 0.0f;      // GGX alpha = Blender roughness^2, isotropic
+  float roughness = 0.0f;  // Burley diffuse roughness (Blender's, not squared)
+  float ior = 1.45f;       // kDielectric Fresnel and glass / refraction lobes
+  FresnelMode fresnel = FresnelMode::kNone;
+  Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence
+
+  uint8_t flags() const;  // LobeFlags of this lobe with its parameters (delta when alpha small)
+};
+
+struct BsdfSample {
+  Vec3 wi;
+  Vec3 weight{0.0f};  // f |cos theta_i| / pdf, over all lobes allowed by the mask
+  float pdf = 0.0f;   // solid-angle density; for a delta lobe, its discrete probability
+  uint8_t flags = 0;  // LobeFlags of the lobe that was sampled
+  bool is_delta() const { return (flags & kLobeSpecular) != 0; }
+};
+
+class Bsdf {
+ public:
+  static constexpr int kMaxLobes = 8;
+
+  Bsdf() = default;
+  // `ns`: shading normal, `ng`: geometric normal, both unit length and facing wo's side.
+  Bsdf(const Vec3& ns, const Vec3& ng, bool front_facing);
+
+  // Adds a lobe; lobes with a zero weight are dropped, and past kMaxLobes the lightest lobe is.
+  void add(const Lobe& lobe);
+  int lobe_count() const { return count_; }
+  const Lobe& lobe(int i) const { return lobes_[i]; }
+  uint8_t flags() const;  // union of the lobes' flags
+  bool empty() const { return count_ == 0; }
+
+  // f(wo, wi) summed over the non-delta lobes whose flags intersect `mask`. Reflection and
+  // transmission are told apart with the geometric normal (Veach 1997 sec. 5.3), so shading
+  // normals do not leak light through a surface.
+  Vec3 eval(const Vec3& wo, const Vec3& wi, uint8_t mask = kLobeAll) const;
+  // Solid-angle pdf of sample() producing wi, for the same mask (non-delta lobes only; the
+  // lobe choice probabilities are included).
+  float pdf(const Vec3& wo, const Vec3& wi, uint8_t mask = kLobeAll) const;
+  // Chooses a lobe among those in `mask` with probability proportional to its estimated albedo
+  // at wo (using u_lobe), then samples it with u. For a non-delta lobe, weight and pdf are
+  // those of the whole masked mixture (one-sample MIS over lobes). Returns false when nothing
+  // can be sampled (wo below the surface, total internal reflection with nothing else, ...).
+  bool sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample* out) const;
+
+  // Hemispherical reflectance of the lobes with kLobeDiffuse: the albedo that multiplies a
+  // photon-map irradiance estimate (E / pi).
+  Vec3 diffuse_reflectance() const;
+  // An estimate of the directional albedo at wo of the lobes in `mask` (used for choosing
+  // lobes and for Russian roulette; exact for Lambert, approximate elsewhere).
+  Vec3 albedo(const Vec3& wo, uint8_t mask = kLobeAll) const;
+
+  const Frame& frame() const { return frame_; }
+  const Vec3& ng() const { return ng_; }
+  bool front_facing() const { return front_facing_; }
+
+ private:
+  // Normalises wo and maps it to the shading frame; false when it cannot be shaded (NaN,
+  // zero, at or below the shading or geometric horizon, or no lobes).
+  bool to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const;
+  // n_wi / n_wo of a transmission through this surface from wo's side.
+  float eta(const Lobe& lobe) const;
+  // Lobe choice probabilities at wo over the lobes in `mask`; returns how many are non-zero.
+  int selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const;
+  // Sum of f over the masked non-delta lobes and, when `probs` is given, the mixture pdf.
+  void eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
+                    uint8_t mask, const float* probs, Vec3* f, float* pdf) const;
+
+  Frame frame_{Vec3(0.0f, 0.0f, 1.0f)};
+  Vec3 ng_{0.0f, 0.0f, 1.0f};
+  bool front_facing_ = true;
+  bool valid_ = true;  // false when constructed without a usable normal: the BSDF is black
+  Lobe lobes_[kMaxLobes];
+  int count_ = 0;
+};
+
+}  // namespace photon

@@ -1,0 +1,31 @@
+// Evaluates a Material at a hit point: textures are read, Mix/Add weights multiplied out, and
+// each closure becomes BSDF lobes (Cycles 3.4's Principled v1 model for the Principled BSDF).
+#pragma once
+
+#include "photon/render/accel.h"
+#include "photon/render/bsdf.h"
+#include "photon/scene/material.h"
+#include "photon/render/textures.h"
+
+namespace photon {
+
+struct ShadingPoint {
+  Bsdf bsdf;
+  Vec3 emission{0.0f};  // emitted radiance, both sides (as in Cycles)
+  float holdout = 0.0f;  // summed weight of Holdout closures, in [0, 1]
+};
+
+// The Blender socket name of a param, for warnings ("Base Color").
+const char* input_label(ClosureType type, Param p);
+
+// The BSDF and emission of `si` seen from direction `wo` (pointing away from the surface).
+// Normals are flipped to wo's side; a normal map bends the shading normal. `textures` may be
+// null (inputs then use their constants). `accel` supplies UV tangents for normal maps.
+ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const Accel& accel,
+                           const TextureSet* textures);
+
+// Emitted radiance only (for emissive triangles as lights): cheaper than shade_surface.
+Vec3 emitted_radiance(const Material& material, const SurfaceInteraction& si,
+                      const TextureSet* textures);
+
+}  // namespace photon

@@ -1,0 +1,45 @@
+// Everything rendering derives from a Scene before the first pixel: the BVH, the lights, the
+// image textures, the emissive triangles, and the RenderContext that points at them. Render
+// sessions, lighting bakes, tests and benchmarks all build it here, so none of them can forget
+// a part (a bake without textures would bake untextured albedo).
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "photon/render/accel.h"
+#include "photon/lights/emissive_mesh.h"
+#include "photon/integrators/integrator.h"
+#include "photon/lights/lights.h"
+#include "photon/render/textures.h"
+
+namespace photon {
+
+class SceneResources {
+ public:
+  // `scene` and `settings` must outlive this object. Build it inside the task arena that will
+  // render, so the BVH build uses the same threads. Warnings go to `warnings` (may be null).
+  // Textures are prepared first; when `cancel` becomes true meanwhile, they stop within
+  // ~100 ms and textures().cancelled() is true (the rest is then built without textures).
+  SceneResources(const Scene& scene, const RenderSettings& settings,
+                 std::vector<std::string>* warnings, const std::atomic<bool>* cancel = nullptr);
+  SceneResources(const SceneResources&) = delete;
+  SceneResources& operator=(const SceneResources&) = delete;
+
+  const RenderContext& context() const { return context_; }
+  const Accel& accel() const { return accel_; }
+  const LightSet& lights() const { return lights_; }
+  const TextureSet& textures() const { return textures_; }
+  const EmissiveMeshes& emissive() const { return emissive_; }
+
+ private:
+  TextureSet textures_;  // first: the BVH is not needed to convert images
+  Accel accel_;
+  LightSet lights_;
+  EmissiveMeshes emissive_;
+  RenderContext context_;
+};
+
+}  // namespace photon

@@ -1,0 +1,145 @@
+// Plain-data material description: what the add-on reads out of a Blender node tree. A material
+// is a flat list of closures (BSDF and emission nodes); Mix Shader and Add Shader nodes become
+// each closure's weight, a product of mix factors. Every colour or scalar input is a constant or
+// an image texture lookup. material_eval.h turns this into a Bsdf at a hit point.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "photon/base/math.h"
+
+namespace photon {
+
+class TexturePixels;  // texture_convert.h: pixels of an image that exists only in memory
+
+enum class TextureExtension : uint8_t { kRepeat, kExtend, kClip };
+enum class TextureInterpolation : uint8_t { kClosest, kLinear, kCubic };
+
+// An Image Texture node's image and sampling settings (Scene::textures).
+struct ImageTexture {
+  // A file OpenImageIO can read (packed images are written out by the add-on); with `pixels`,
+  // the image's name (for messages).
+  std::string path;
+  bool srgb = true;  // colour space: sRGB (converted to linear) or Non-Color / linear data
+  TextureExtension extension = TextureExtension::kRepeat;
+  TextureInterpolation interpolation = TextureInterpolation::kLinear;
+  std::shared_ptr<TexturePixels> pixels;  // instead of `path`: a generated image's pixels
+};
+
+enum class TextureChannel : uint8_t { kColor, kAlpha };
+
+// A shader input socket: a constant, or an image texture read at the hit's UV coordinates
+// (the mesh's active UV layer). Scalars use value.x.
+struct Input {
+  Vec3 value{0.0f};
+  int32_t texture = -1;  // Scene::textures index, or -1 for the constant
+  TextureChannel channel = TextureChannel::kColor;
+
+  static Input constant(float v) { return Input{Vec3(v), -1, TextureChannel::kColor}; }
+  static Input constant(const Vec3& v) { return Input{v, -1, TextureChannel::kColor}; }
+};
+
+enum class ClosureType : uint8_t {
+  kDiffuse,      // Diffuse BSDF: Lambert
+  kPrincipled,   // Principled BSDF (Cycles' 3.4 model, see material_eval.cpp)
+  kGlossy,       // Glossy BSDF: sharp or GGX reflection, F = 1 tinted by colour
+  kGlass,        // Glass BSDF: reflection + refraction
+  kRefraction,   // Refraction BSDF
+  kTransparent,  // Transparent BSDF
+  kTranslucent,  // Translucent BSDF
+  kEmission,     // Emission: colour x strength
+  // Holdout: camera rays that meet it lose their weight's share of the pixel, colour and alpha
+  // (Cycles' holdout closure); to every other ray it is black.
+  kHoldout,
+};
+
+// The inputs a closure reads, by role; each closure type uses a subset (the rest keep their
+// Blender defaults).
+enum class Param : uint8_t {
+  kColor,  // Base Color / Color
+  kRoughness,
+  kMetallic,
+  kSpecular,
+  kSpecularTint,
+  kTransmission,
+  kIor,
+  kEmission,  // Principled Emission colour
+  kStrength,  // Emission Strength (Principled) / Strength (Emission node)
+  kAlpha,
+  kClearcoat,
+  kClearcoatRoughness,
+  kCount,
+};
+
+// A Normal Map node (tangent space) feeding a closure's Normal input.
+struct NormalMap {
+  int32_t texture = -1;  // -1: no normal map, use the interpolated normal
+  float strength = 1.0f;
+};
+
+// One factor of a closure's weight: `fac` or (1 - fac) (the second input of a Mix Shader).
+struct WeightFactor {
+  Input fac;
+  bool complement = false;
+};
+
+struct Closure {
+  ClosureType type = ClosureType::kDiffuse;
+  std::array<Input, static_cast<size_t>(Param::kCount)> params = default_params();
+  bool sharp = false;  // Glossy / Glass / Refraction with the Sharp distribution
+  NormalMap normal;
+  std::vector<WeightFactor> weight;  // empty: weight 1
+
+  Input& operator[](Param p) { return params[static_cast<size_t>(p)]; }
+  const Input& operator[](Param p) const { return params[static_cast<size_t>(p)]; }
+  // Blender's defaults for every Param (Principled BSDF's where the nodes differ).
+  static std::array<Input, static_cast<size_t>(Param::kCount)> default_params();
+};
+
+struct Material {
+  std::string name;
+  std::vector<Closure> closures;  // empty: black (Cycles renders an empty output black)
+
+  // Single-closure materials for tests, the CLI and the built-in scenes.
+  static Material diffuse(const Vec3& color, const std::string& name = "diffuse");
+  static Material mirror(const Vec3& tint, const std::string& name = "mirror");
+  static Material glass(float ior, const Vec3& tint = Vec3(1.0f),
+                        const std::string& name = "glass");
+  static Material emission(const Vec3& radiance, const std::string& name = "emission");
+  // This material plus an Emission closure of radiance `radiance` (an Add Shader).
+  Material with_emission(const Vec3& radiance) const;
+
+  // Whether any closure could emit, and whether any could be non-diffuse (glossy, specular,
+  // transmissive): a conservative answer without evaluating textures.
+  bool may_emit() const;
+  bool may_be_specular() const;
+};
+
+// The range a closure input may take: Blender's socket ranges, except that emission colours and
+// strengths may exceed 1 (up to a finite bound) and IOR stays positive. Constants are clamped to
+// it when the material is built (sanitize_material), textured values after each lookup.
+struct ParamRange {
+  float lo, hi;
+};
+ParamRange param_range(ClosureType type, Param p);
+
+// The range of a lamp's power (W; a sun's strength in W/m^2, both times its colour) and of the
+// world's radiance: up to the brightest emission a material may have (colour x strength, each
+// bounded by param_range). The bound keeps the sums a light enters finite: the largest factor a
+// lamp's size adds to its radiance is 0.25 / area <= 2.5e11 for the smallest area light kept
+// (1e-12 m^2) and 1 / (pi tan^2(half angle)) <= 3.2e11 for the narrowest sun, so lamp radiance
+// stays under 1e24 and a pixel's sum of 2^20 samples under 1e31 (FLT_MAX is 3.4e38).
+ParamRange emitter_range();
+
+// Makes a material safe to render, whoever built it (the add-on through the Python binding, the
+// CLI, tests): constants outside their Param's range are clamped and non-finite ones replaced by
+// Blender's default; texture indices outside [0, texture_count) become the default constant (a
+// normal map with such an index is dropped); normal-map strength is clamped to [0, 100] and mix
+// factors to [0, 1] (0.5 when not finite).
+void sanitize_material(Material* material, size_t texture_count);
+
+}  // namespace photon

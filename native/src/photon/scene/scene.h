@@ -1,0 +1,117 @@
+// Plain-data scene description: what the renderer knows about a scene. No Blender types and no
+// Python here, so tests, benchmarks and the CLI build scenes directly.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "photon/scene/material.h"
+#include "photon/base/math.h"
+
+namespace photon {
+
+// Ray-visibility bits, mirroring Blender's Object > Visibility > Ray Visibility toggles.
+enum Visibility : uint32_t {
+  kVisibleCamera = 1u << 0,
+  kVisibleDiffuse = 1u << 1,
+  kVisibleGlossy = 1u << 2,
+  kVisibleTransmission = 1u << 3,
+  kVisibleShadow = 1u << 4,
+  kVisibleAll = 0x1Fu,
+};
+
+struct Mesh {
+  std::string name;
+  std::vector<Vec3> positions;
+  std::vector<uint32_t> indices;        // three per triangle
+  std::vector<Vec3> corner_normals;     // three per triangle, or empty (flat shading)
+  std::vector<Vec2> corner_uvs;         // three per triangle, or empty
+  std::vector<int32_t> material_slots;  // one per triangle, or empty (slot 0)
+  // Index each triangle had as given (before clean_mesh dropped any), or empty when none was
+  // dropped: lets a bake address triangles by the caller's numbering (Blender loop triangles).
+  std::vector<uint32_t> source_triangles;
+
+  size_t triangle_count() const { return indices.size() / 3; }
+};
+
+struct MeshCleanupReport {
+  size_t non_finite_vertices = 0;
+  size_t dropped_triangles = 0;  // degenerate, out of range, or touching a non-finite vertex
+};
+
+// Drops triangles that cannot be rendered (NaN/inf vertices, zero area, bad indices) and resets
+// non-finite vertices and normals, keeping the per-triangle arrays aligned.
+MeshCleanupReport clean_mesh(Mesh* mesh);
+
+struct Instance {
+  std::string name;
+  uint32_t mesh = 0;
+  Transform object_to_world;
+  std::vector<int32_t> slot_materials;  // material slot -> scene material index
+  uint32_t visibility = kVisibleAll;
+  // Mattes for compositing, seen only by camera rays (and rays through Transparent BSDFs after
+  // them); every other ray meets the object as usual (camera_path.cpp, matte.h).
+  bool holdout = false;         // Blender's Object holdout: the pixel becomes transparent
+  bool shadow_catcher = false;  // only the shadows cast on it show, as alpha or over the world
+};
+
+enum class LightType : uint8_t { kPoint, kSpot, kSun, kArea };
+enum class AreaShape : uint8_t { kRectangle, kEllipse };
+
+// Blender light conventions: the light looks down its local -Z axis; `power` is Blender's
+// `energy` (W for point, spot and area lights, W/m^2 irradiance for the sun).
+struct Light {
+  std::string name;
+  LightType type = LightType::kPoint;
+  Transform light_to_world;
+  Vec3 color{1.0f, 1.0f, 1.0f};
+  float power = 10.0f;
+  float radius = 0.0f;       // point and spot: Blender's shadow_soft_size
+  float spot_size = 0.785f;  // full cone angle in radians
+  float spot_blend = 0.15f;
+  float sun_angle = 0.0f;  // angular diameter in radians
+  AreaShape shape = AreaShape::kRectangle;
+  float size_x = 1.0f, size_y = 1.0f;
+  uint32_t visibility = kVisibleGlossy | kVisibleTransmission;  // lamps hide from camera rays
+};
+
+enum class Projection : uint8_t { kPerspective, kOrthographic };
+
+struct Camera {
+  Projection projection = Projection::kPerspective;
+  // Rigid (rotation + translation, no scale): camera looks down local -Z, +Y up. Use
+  // set_camera_to_world(), which removes scale and shear.
+  Transform camera_to_world;
+  // Image-plane window in camera space: at distance 1 for perspective, in scene units for
+  // orthographic. Blender's sensor fit, lens shift and aspect are already folded in.
+  float window_min_x = -0.5f, window_max_x = 0.5f;
+  float window_min_y = -0.5f, window_max_y = 0.5f;
+  float clip_start = 0.1f, clip_end = 1000.0f;  // along the view axis
+  float aperture_radius = 0.0f;                 // thin lens; 0 = pinhole
+  float focus_distance = 10.0f;
+
+  // Stores `xf` with its axes orthonormalised (Gram-Schmidt; Blender cameras may carry scale,
+  // which Cycles ignores too). A degenerate matrix leaves the identity rotation.
+  void set_camera_to_world(const Transform& xf);
+};
+
+struct World {
+  Vec3 color{0.0f, 0.0f, 0.0f};  // background radiance (colour x strength)
+};
+
+struct Scene {
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<Material> materials;
+  std::vector<ImageTexture> textures;  // images read by materials' Input::texture
+  std::vector<Light> lights;
+  Camera camera;
+  World world;
+  std::vector<std::string> warnings;
+
+  // Material used when a triangle's slot does not map to a valid material.
+  static const Material& default_material();
+};
+
+}  // namespace photon

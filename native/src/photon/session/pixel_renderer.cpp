@@ -1,0 +1,102 @@
+#include "photon/session/pixel_renderer.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "photon/scene/camera.h"
+
+namespace photon {
+namespace {
+
+// Samples are finite, but their sum can still overflow (a 1e38 W lamp): an average that left the
+// float range is written as the largest float, never as inf.
+float finite_average(float sum, float inv_spp) {
+  const float v = sum * inv_spp;
+  return std::isnan(v) ? 0.0f : std::clamp(v, -FLT_MAX, FLT_MAX);
+}
+
+}  // namespace
+
+bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
+                   int width, int height, float* rgba, const std::atomic<bool>& cancel,
+                   uint64_t* non_finite, float* passes) {
+  const RenderSettings& s = *context.settings;
+  const Camera& camera = context.scene->camera;
+  const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
+  const float inv_spp = 1.0f / s.samples;
+  const size_t n = static_cast<size_t>(width);
+
+  std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
+  std::vector<Ray> rays(n);
+  std::vector<Hit> hits(n);
+  std::unique_ptr<bool[]> found(new bool[n]);
+  std::vector<Vec3> sums(n);
+  std::vector<Vec3> pass_sums(passes ? n * kPassCount : 0);
+  std::vector<float> alphas(n);
+
+  for (int row = 0; row < height; ++row) {
+    const int py = y + row;
+    std::fill(sums.begin(), sums.end(), Vec3(0.0f));
+    std::fill(alphas.begin(), alphas.end(), 0.0f);
+    std::fill(pass_sums.begin(), pass_sums.end(), Vec3(0.0f));
+    for (int k = 0; k < s.samples; ++k) {
+      if (cancel.load(std::memory_order_relaxed)) return false;
+      for (size_t i = 0; i < n; ++i) {
+        const int px = x + static_cast<int>(i);
+        // The stream depends on the pixel's place in the full frame only.
+        const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
+        samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
+                              static_cast<uint32_t>(s.samples));
+        const Vec2 jitter = samplers[i].get_2d();
+        const Vec2 lens = samplers[i].get_2d();
+        rays[i] = generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h,
+                                      lens);
+      }
+      context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
+      for (size_t i = 0; i < n; ++i) {
+        CameraHit first;
+        first.found = found[i];
+        if (first.found) first.hit = hits[i];
+        const RadianceSample r = integrator.radiance_from_hit(context, rays[i], first, samplers[i]);
+        const Vec3 radiance = r.radiance();
+        if (!is_finite(radiance) || !is_finite(r.photon_map)) {
+          ++*non_finite;
+          continue;
+        }
+        sums[i] += radiance;
+        // Without Film > Transparent the background is opaque too, as in Blender's engines;
+        // holdouts make the pixel transparent either way (Cycles).
+        const float coverage = s.transparent_background ? r.alpha : 1.0f;
+        alphas[i] += r.holdout > 0.0f ? std::max(coverage - r.holdout, 0.0f) : coverage;
+        if (passes) {
+          Vec3* p = &pass_sums[i * kPassCount];
+          p[0] += r.direct;
+          p[1] += r.indirect;
+          p[2] += r.caustic;
+          p[3] += r.photon_map;
+        }
+      }
+    }
+    float* out = rgba + static_cast<size_t>(row) * n * 4;
+    for (size_t i = 0; i < n; ++i) {
+      out[4 * i + 0] = finite_average(sums[i].x, inv_spp);
+      out[4 * i + 1] = finite_average(sums[i].y, inv_spp);
+      out[4 * i + 2] = finite_average(sums[i].z, inv_spp);
+      out[4 * i + 3] = alphas[i] * inv_spp;
+    }
+    if (passes) {
+      float* pout = passes + static_cast<size_t>(row) * n * kPassFloats;
+      for (size_t i = 0; i < n * kPassCount; ++i) {
+        pout[3 * i + 0] = finite_average(pass_sums[i].x, inv_spp);
+        pout[3 * i + 1] = finite_average(pass_sums[i].y, inv_spp);
+        pout[3 * i + 2] = finite_average(pass_sums[i].z, inv_spp);
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace photon

@@ -1,0 +1,26 @@
+// The per-pixel sampling loop shared by the render session, the CLI and the benchmarks.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+
+#include "photon/integrators/integrator.h"
+
+namespace photon {
+
+// Renders the pixels [x, x + width) x [y, y + height) of the full frame (y downwards) into
+// `rgba` (width * height * 4 floats, top row first), averaging context.settings->samples
+// samples per pixel. For each row and sample index, the row's camera rays are traced together
+// as one coherent Embree stream; the rest of each path is traced ray by ray.
+// Random numbers depend only on (seed, pixel, sample), never on the block being rendered.
+// Returns false, leaving the block incomplete, as soon as `cancel` is set. Non-finite samples
+// are dropped and counted in `non_finite`.
+// `passes` (optional, width * height * kPassFloats floats) receives the light passes per pixel:
+// Direct RGB, Indirect RGB, Caustics RGB, Photon Map RGB; Combined RGB is their light sum.
+constexpr int kPassCount = 4;
+constexpr int kPassFloats = 3 * kPassCount;
+bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
+                   int width, int height, float* rgba, const std::atomic<bool>& cancel,
+                   uint64_t* non_finite, float* passes = nullptr);
+
+}  // namespace photon

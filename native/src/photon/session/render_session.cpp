@@ -1,0 +1,308 @@
+#include "photon/session/render_session.h"
+
+#include <tbb/global_control.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#include <tbb/task_scheduler_observer.h>
+#include <xmmintrin.h>
+#include <pmmintrin.h>
+
+#include "photon/scene/camera_clip_check.h"
+#include "photon/render/scene_resources.h"
+#include "photon/session/pixel_renderer.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+// Embree recommends flush-to-zero and denormals-are-zero in every thread that traces rays:
+// denormal arithmetic is slow and never changes an image.
+void set_flush_denormals() {
+  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+}
+
+class FlushDenormalsObserver : public tbb::task_scheduler_observer {
+ public:
+  explicit FlushDenormalsObserver(tbb::task_arena& arena) : tbb::task_scheduler_observer(arena) {
+    observe(true);
+  }
+  ~FlushDenormalsObserver() override { observe(false); }
+  void on_scheduler_entry(bool) override { set_flush_denormals(); }
+};
+
+// More render threads than a few per core only add scheduling overhead; far more than TBB's
+// worker limit (65,536 in oneTBB 2021) makes TBB warn and later crashes the process.
+constexpr int kMaxThreadsPerCore = 4;
+
+int machine_cores() { return std::max(1, tbb::info::default_concurrency()); }
+
+int thread_limit() { return kMaxThreadsPerCore * machine_cores(); }
+
+RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
+  s.full_width = std::clamp(s.full_width, 1, 65536);
+  s.full_height = std::clamp(s.full_height, 1, 65536);
+  s.x0 = std::clamp(s.x0, 0, s.full_width - 1);
+  s.y0 = std::clamp(s.y0, 0, s.full_height - 1);
+  s.x1 = std::clamp(s.x1, s.x0 + 1, s.full_width);
+  s.y1 = std::clamp(s.y1, s.y0 + 1, s.full_height);
+  s.samples = std::clamp(s.samples, 1, 1 << 20);
+  s.max_depth = std::clamp(s.max_depth, 0, 1024);
+  s.threads = std::max(s.threads, 0);
+  if (s.threads > thread_limit()) {
+    if (warnings)
+      warnings->push_back("threads = " + std::to_string(s.threads) +
+                          " is more than this machine can use: clamped to " +
+                          std::to_string(thread_limit()) + " (at most " +
+                          std::to_string(kMaxThreadsPerCore) + " per core on " +
+                          std::to_string(machine_cores()) + " cores)");
+    s.threads = thread_limit();
+  }
+  s.tile_size = std::clamp(s.tile_size, 4, 4096);
+  // ~20-60 bytes per emitted photon are stored: 100M photons is already several GB.
+  s.photons = std::min<uint64_t>(s.photons, 100000000ull);
+  s.caustic_photons = std::min<uint64_t>(s.caustic_photons, 100000000ull);
+  s.gather_count = std::clamp(s.gather_count, 1, 1000);
+  s.caustic_gather_count = std::clamp(s.caustic_gather_count, 1, 1000);
+  s.final_gather_rays = std::clamp(s.final_gather_rays, 0, 4096);
+  if (!std::isfinite(s.gather_radius) || s.gather_radius < 0.0f) s.gather_radius = 0.0f;
+  if (!std::isfinite(s.photon_time) || s.photon_time < 0.0f) s.photon_time = 0.0f;
+  s.photon_time = std::min(s.photon_time, 86400.0f);
+  if (!(s.memory_limit > 0.0f)) s.memory_limit = RenderSettings().memory_limit;  // NaN too
+  s.memory_limit = std::clamp(s.memory_limit, 1e-4f, 1.0f);
+  return s;
+}
+
+}  // namespace
+
+RenderSettings sanitized_settings(const RenderSettings& settings,
+                                  std::vector<std::string>* warnings) {
+  return sanitize(settings, warnings);
+}
+
+int arena_threads(int threads) {
+  if (threads <= 0) return tbb::this_task_arena::max_concurrency();
+  // TBB never runs more threads than the host allows (Blender's -t sets this): a bigger arena
+  // would only make TBB print a warning.
+  const auto allowed = static_cast<int>(std::min<size_t>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism), 1 << 20));
+  return std::max(1, std::min({threads, thread_limit(), allowed}));
+}
+
+int run_in_arena(int threads, const std::function<void()>& fn) {
+  set_flush_denormals();
+  const int n = arena_threads(threads);
+  tbb::task_arena arena(n);
+  FlushDenormalsObserver observer(arena);
+  arena.execute(fn);
+  return n;
+}
+
+RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings)
+    : scene_(std::move(scene)) {
+  settings_ = sanitize(settings, &warnings_);
+  image_.assign(static_cast<size_t>(region_width()) * region_height() * 4, 0.0f);
+  const int ts = settings_.tile_size;
+  tile_count_ = static_cast<size_t>((region_width() + ts - 1) / ts) *
+                static_cast<size_t>((region_height() + ts - 1) / ts);
+  status_ = "Waiting";
+}
+
+RenderSession::~RenderSession() {
+  cancel();
+  if (worker_.joinable()) worker_.join();
+}
+
+void RenderSession::start() {
+  if (worker_.joinable() || finished_) return;
+  worker_ = std::thread([this] { run(); });
+}
+
+void RenderSession::wait() {
+  if (worker_.joinable()) worker_.join();
+}
+
+void RenderSession::stop_preparation() { stop_preparation_ = true; }
+
+void RenderSession::cancel() {
+  cancel_ = true;
+  tiles_ready_.notify_all();
+}
+
+std::vector<Tile> RenderSession::take_tiles(double timeout_seconds) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  tiles_ready_.wait_for(lock, std::chrono::duration<double>(std::max(timeout_seconds, 0.0)),
+                        [this] { return !queue_.empty() || finished_; });
+  std::vector<Tile> out(std::make_move_iterator(queue_.begin()),
+                        std::make_move_iterator(queue_.end()));
+  queue_.clear();
+  return out;
+}
+
+float RenderSession::progress() const {
+  if (preparing_) return prepare_fraction_.load();
+  return tile_count_ ? static_cast<float>(tiles_done_.load()) / tile_count_ : 1.0f;
+}
+
+std::string RenderSession::status() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return status_;
+}
+
+std::vector<std::string> RenderSession::warnings() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return warnings_;
+}
+
+RenderStats RenderSession::stats() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return stats_;
+}
+
+std::vector<float> RenderSession::image() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return image_;
+}
+
+void RenderSession::set_status(const std::string& s) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  status_ = s;
+}
+
+void RenderSession::run() {
+  // Nothing may escape the worker thread: an exception there would terminate Blender.
+  try {
+    run_render();
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.push_back(std::string("Render failed: ") + e.what());
+    cancel_ = true;
+  } catch (...) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.push_back("Render failed with an unknown error");
+    cancel_ = true;
+  }
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    status_ = cancel_ ? "Cancelled" : "Done";
+    finished_ = true;
+  }
+  tiles_ready_.notify_all();
+}
+
+void RenderSession::run_render() {
+  set_flush_denormals();
+  const int threads = arena_threads(settings_.threads);
+  tbb::task_arena arena(threads);
+  FlushDenormalsObserver observer(arena);
+
+  std::vector<std::string> warnings;
+  set_status(scene_->textures.empty() ? "Building BVH and lights"
+                                      : "Converting textures, building BVH and lights");
+  auto t0 = Clock::now();
+  std::unique_ptr<SceneResources> resources;
+  arena.execute([&] {
+    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel_);
+  });
+  const double texture_seconds = resources->textures().seconds();
+  const double build_seconds = seconds_since(t0) - texture_seconds;
+  if (cancel_) return;
+  const std::string clip_warning = camera_clip_warning(scene_->camera, resources->accel());
+  if (!clip_warning.empty()) warnings.push_back(clip_warning);
+  const RenderContext& context = resources->context();
+  std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
+
+  set_status("Preparing");
+  t0 = Clock::now();
+  PrepareControl control;
+  control.cancel = &cancel_;
+  control.stop_early = &stop_preparation_;
+  control.progress = [this](const std::string& status, float fraction) {
+    prepare_fraction_ = fraction;
+    set_status(status);
+  };
+  control.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
+  preparing_ = true;
+  arena.execute([&] { integrator->prepare(context, control); });
+  preparing_ = false;
+  const double prepare_seconds = seconds_since(t0);
+  if (cancel_) return;
+
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    warnings_.insert(warnings_.end(), warnings.begin(), warnings.end());
+    stats_.build_seconds = build_seconds;
+    stats_.texture_seconds = texture_seconds;
+    stats_.textures = resources->textures().size();
+    stats_.textures_reused = resources->textures().reused();
+    stats_.prepare_seconds = prepare_seconds;
+    stats_.unique_triangles = resources->accel().triangle_count();
+    stats_.instances = resources->accel().instance_count();
+    stats_.bvh_count = resources->accel().blas_count();
+    stats_.lights = resources->lights().size();
+    stats_.threads = threads;
+    stats_.integrator = integrator->prepare_stats();
+    status_ = "Rendering";
+  }
+
+  const int ts = settings_.tile_size;
+  const int tiles_x = (region_width() + ts - 1) / ts;
+  t0 = Clock::now();
+  // Tiles are handed out in reading order from a shared counter, so they appear top to bottom
+  // in Blender's image editor. Which thread renders a tile does not change its pixels.
+  std::atomic<size_t> next_tile{0};
+  arena.execute([&] {
+    tbb::parallel_for(0, threads, [&](int) {
+      for (size_t i = next_tile++; i < tile_count_ && !cancel_; i = next_tile++) {
+        Tile tile;
+        tile.x = static_cast<int>(i % tiles_x) * ts;
+        tile.y = static_cast<int>(i / tiles_x) * ts;
+        tile.width = std::min(ts, region_width() - tile.x);
+        tile.height = std::min(ts, region_height() - tile.y);
+        render_tile(context, *integrator, &tile);
+        if (cancel_) return;  // a partly rendered tile is not handed over
+        std::lock_guard<std::mutex> lock(mutex_);
+        for (int row = 0; row < tile.height; ++row) {
+          const float* src = &tile.rgba[static_cast<size_t>(row) * tile.width * 4];
+          float* dst = &image_[(static_cast<size_t>(tile.y + row) * region_width() + tile.x) * 4];
+          std::copy(src, src + tile.width * 4, dst);
+        }
+        queue_.push_back(std::move(tile));
+        ++tiles_done_;
+        tiles_ready_.notify_all();
+      }
+    });
+  });
+
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stats_.render_seconds = seconds_since(t0);
+    stats_.camera_samples = static_cast<uint64_t>(tiles_done_.load()) == tile_count_
+                                ? static_cast<uint64_t>(region_width()) * region_height() *
+                                      settings_.samples
+                                : 0;
+  }
+}
+
+void RenderSession::render_tile(const RenderContext& context, const Integrator& integrator,
+                                Tile* tile) {
+  tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
+  if (settings_.light_passes)
+    tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
+  uint64_t bad = 0;
+  render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
+                tile->height, tile->rgba.data(), cancel_, &bad,
+                settings_.light_passes ? tile->passes.data() : nullptr);
+  if (bad) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stats_.non_finite_samples += bad;
+  }
+}
+
+}  // namespace photon
