@@ -382,8 +382,7 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
     const Vec3 wi = frame.to_world(sample_cosine_hemisphere(u));
     if (dot(wi, bsdf.ng()) <= 0.0f) continue;
     Ray ray;
-    ray.origin = offset_ray_origin(x.p, x.ng, wi, context.accel->length_scale());
-    ray.direction = wi;
+    spawn_ray(x, wi, context.accel->length_scale(), &ray);
     float t = INFINITY;
     sum += gather_ray(context, ray, sampler, &scratch, harmonic_distance ? &t : nullptr) / density;
     inverse_distances += 1.0 / std::max(t, 1e-6f * context.accel->length_scale());
