@@ -9,9 +9,9 @@
 #include <cmath>
 #include <string>
 
-#include "photon/scene/camera.h"
 #include "photon/integrators/camera_path.h"
 #include "photon/render/matte.h"
+#include "photon/scene/camera.h"
 
 namespace photon {
 namespace {
@@ -36,8 +36,8 @@ Footprint pixel_footprint(const Camera& camera, float fx, float fy, float dx, fl
   return f;
 }
 
-// The records one candidate pixel adds: at every diffuse point along its camera path through
-// delta lobes that `previous` does not cover.
+// The records one candidate pixel adds: at every candidate point of its camera path that
+// `previous` does not cover.
 void records_at_pixel(const RenderContext& context, const IrradianceCacheSettings& settings,
                       const RecordGather& gather, const IrradianceCache& previous, int level,
                       int px, int py, std::vector<IrradianceRecord>* out, uint64_t* candidates) {
@@ -50,64 +50,41 @@ void records_at_pixel(const RenderContext& context, const IrradianceCacheSetting
   // Chooses between delta lobes (glass reflects or refracts) along the path.
   Sampler path_sampler(s.seed, hash_combine(kCacheStreamTag, pixel * 8 + level), 0);
 
-  Ray ray = generate_camera_ray(camera, fx, fy, Vec2(0.5f, 0.5f));
-  uint32_t mask = kVisibleCamera;
-  float path_length = 0.0f;
-  for (int depth = 0; depth <= s.max_depth; ++depth) {
-    Hit hit;
-    if (!context.accel->intersect(ray, mask, &hit)) return;
-    float t_light;
-    Vec3 lamp;
-    if (context.lights->intersect(ray, hit.t, mask, &t_light, &lamp)) return;
-    path_length += hit.t;
-    const SurfaceInteraction si = context.accel->interaction(hit);
-    const Vec3 wo = -ray.direction;
-    // Mattes as the camera path sees them (matte.h): the render gathers behind a shadow
-    // catcher, and nothing at a held-out surface but what its transparency lets through.
-    const Matte matte = mask == kVisibleCamera ? matte_at(context, hit) : Matte::kNone;
-    if (matte == Matte::kShadowCatcher) {
-      ray.origin = offset_ray_origin(si.p, si.ng, ray.direction, context.accel->length_scale());
-      ray.tmin = 0.0f;
-      ray.tmax = INFINITY;
-      continue;
-    }
-    ShadingPoint sp = shade(context, si, wo);
-    if (matte == Matte::kHoldout) hold_out_object(&sp);
-    const Bsdf& bsdf = sp.bsdf;
-    if (bsdf.empty()) return;
-    if ((bsdf.flags() & kLobeDiffuse) && !is_black(bsdf.diffuse_reflectance())) {
-      ++*candidates;
-      const Vec3 n = bsdf.frame().n;
-      if (!previous.covers(si.p, n, settings.coverage * previous.accuracy())) {
-        Sampler sampler(s.seed, hash_combine(kCacheStreamTag + 1 + depth, pixel * 8 + level), 0);
-        float harmonic = INFINITY;
-        const Vec3 value = gather(si, bsdf, settings.rays, sampler, &harmonic);
-        const float pixel_size = footprint.at(path_length);
-        const float a = previous.accuracy();
-        IrradianceRecord r;
-        r.p = si.p;
-        r.n = n;
-        r.value = value;
-        r.radius = std::clamp(harmonic, settings.min_pixels * pixel_size / a,
-                              settings.max_pixels * pixel_size / a);
-        if (std::isfinite(r.radius) && r.radius > 0.0f && is_finite(value)) out->push_back(r);
-      }
-    }
-    if (!(bsdf.flags() & kLobeSpecular)) return;
-    BsdfSample bs;
-    const float u_lobe = path_sampler.get_1d();
-    const Vec2 u = path_sampler.get_2d();
-    if (!bsdf.sample(wo, u_lobe, u, kLobeSpecular, &bs) || is_black(bs.weight)) return;
-    const bool transparent = !(bs.flags & kLobeReflection) && dot(bs.wi, ray.direction) > 0.9999f;
-    if (!transparent) mask = visibility_after(bs.flags);
-    ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
-    ray.direction = bs.wi;
-    ray.tmin = 0.0f;
-    ray.tmax = INFINITY;
-  }
+  const Ray ray = generate_camera_ray(camera, fx, fy, Vec2(0.5f, 0.5f));
+  visit_cache_candidates(context, ray, path_sampler, [&](const PathVertex& v) {
+    const SurfaceInteraction& si = *v.si;
+    const Bsdf& bsdf = v.shading->bsdf;
+    ++*candidates;
+    const Vec3 n = bsdf.frame().n;
+    if (previous.covers(si.p, n, settings.coverage * previous.accuracy())) return;
+    Sampler sampler(s.seed, hash_combine(kCacheStreamTag + 1 + v.depth, pixel * 8 + level), 0);
+    float harmonic = INFINITY;
+    const Vec3 value = gather(si, bsdf, settings.rays, sampler, &harmonic);
+    const float pixel_size = footprint.at(v.path_length);
+    const float a = previous.accuracy();
+    IrradianceRecord r;
+    r.p = si.p;
+    r.n = n;
+    r.value = value;
+    r.radius = std::clamp(harmonic, settings.min_pixels * pixel_size / a,
+                          settings.max_pixels * pixel_size / a);
+    if (std::isfinite(r.radius) && r.radius > 0.0f && is_finite(value)) out->push_back(r);
+  });
 }
 
 }  // namespace
+
+void visit_cache_candidates(const RenderContext& context, const Ray& camera_ray,
+                            Sampler& path_sampler,
+                            const std::function<void(const PathVertex&)>& candidate) {
+  RadianceSample unused;
+  walk_camera_path(
+      context, camera_ray, nullptr, path_sampler, cache_placement_walk(context),
+      [&](const PathVertex& v, RadianceSample*) {
+        if (!is_black(v.shading->bsdf.diffuse_reflectance())) candidate(v);
+      },
+      &unused);
+}
 
 IrradianceCache build_irradiance_cache(const RenderContext& context,
                                        const IrradianceCacheSettings& settings,

@@ -20,6 +20,7 @@
 
 #include <functional>
 
+#include "photon/integrators/camera_path.h"
 #include "photon/integrators/integrator.h"
 #include "photon/integrators/photon_map/irradiance_cache.h"
 
@@ -28,11 +29,11 @@ namespace photon {
 class Bsdf;
 
 struct IrradianceCacheSettings {
-  float accuracy = 0.25f;    // Ward's a
+  float accuracy = 0.25f;  // Ward's a
   // A candidate is covered when an earlier record has eps < coverage * a: below 1, records
   // overlap more, so each lookup averages several and their noise does not show as blotches.
   float coverage = 0.5f;
-  int rays = 1024;           // final-gather rays per record
+  int rays = 1024;  // final-gather rays per record
   // a R_i clamped to [min_pixels, max_pixels] pixels. The upper clamp matters most: Ward's
   // radius ignores gradients from uneven lighting (a ceiling lit by the bright floor patch
   // below the lamp), which records spanning 10-20 px smear by 5-10% without gradients.
@@ -52,6 +53,14 @@ struct IrradianceCacheBuildStats {
   uint64_t gather_rays = 0;
   double seconds = 0.0;
 };
+
+// Calls `candidate` at every diffuse point (non-black diffuse albedo) where a camera path along
+// `camera_ray` final-gathers: the camera walk itself (walk_camera_path with
+// cache_placement_walk(), camera_path.h), not a copy of it. `path_sampler` chooses between delta
+// lobes (glass reflects or refracts).
+void visit_cache_candidates(const RenderContext& context, const Ray& camera_ray,
+                            Sampler& path_sampler,
+                            const std::function<void(const PathVertex&)>& candidate);
 
 // Builds the cache for the context's camera and frame. Returns an empty cache when cancelled.
 IrradianceCache build_irradiance_cache(const RenderContext& context,

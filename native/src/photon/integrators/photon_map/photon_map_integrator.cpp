@@ -311,52 +311,53 @@ Vec3 PhotonMapIntegrator::gathered_radiance(const Vec3& p, const Vec3& n,
 Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
                                      std::vector<PhotonNeighbor>* scratch,
                                      float* hit_distance) const {
-  const int max_depth = context.settings->max_depth;
-  Vec3 sum(0.0f), throughput(1.0f);
-  uint32_t mask = kVisibleDiffuse;
-  // Light met on the way is direct light (light sampling) or a caustic (the caustic map),
-  // unless a rough glossy lobe was followed: neither of those holds such paths.
-  bool after_glossy = false;
-  for (int depth = 0;; ++depth) {
-    Hit hit;
-    const bool found = context.accel->intersect(ray, mask, &hit);
-    if (after_glossy) {
-      float t_light;
-      Vec3 lamp;
-      if (context.lights->intersect(ray, found ? hit.t : ray.tmax, mask, &t_light, &lamp))
-        return sum + throughput * lamp;
-      if (!found)
-        return sum + throughput * (context.scene->world.color +
-                                   context.lights->distant_radiance(ray.direction, mask));
+  // A final-gather ray reads the precomputed radiance at every diffuse surface it meets and
+  // goes on through glossy and specular lobes (importance_rules, path_walker.h).
+  struct GatherVisitor {
+    const RenderContext& context;
+    const PhotonMapIntegrator& self;
+    std::vector<PhotonNeighbor>* scratch;
+    float* hit_distance;
+    Vec3 sum{0.0f};
+    ShadingPoint sp{};
+
+    // Light met on the way is direct light (light sampling) or a caustic (the caustic map),
+    // unless a rough glossy lobe was followed: neither of those holds such paths.
+    bool segment(const PathState& state, bool found, const Hit& hit) {
+      if (state.after_glossy) {
+        float t_light;
+        Vec3 lamp;
+        if (context.lights->intersect(state.ray, found ? hit.t : state.ray.tmax, state.mask,
+                                      &t_light, &lamp)) {
+          sum = sum + state.throughput * lamp;
+          return false;
+        }
+        if (!found) {
+          sum = sum + state.throughput *
+                          (context.scene->world.color +
+                           context.lights->distant_radiance(state.ray.direction, state.mask));
+          return false;
+        }
+      }
+      if (state.depth == 0 && hit_distance) *hit_distance = found ? hit.t : INFINITY;
+      return found;
     }
-    if (depth == 0 && hit_distance) *hit_distance = found ? hit.t : INFINITY;
-    if (!found) return sum;
-    const SurfaceInteraction y = context.accel->interaction(hit);
-    const Vec3 wo = -ray.direction;
-    const ShadingPoint sp = shade(context, y, wo);
-    if (after_glossy) sum += throughput * sp.emission;
-    const Bsdf& bsdf = sp.bsdf;
-    const Vec3 rd = bsdf.diffuse_reflectance();
-    if (!is_black(rd)) sum += throughput * rd * gathered_radiance(y.p, bsdf.ng(), scratch);
-    if (depth >= max_depth) return sum;
-    BsdfSample s;
-    const float u_lobe = sampler.get_1d();
-    const Vec2 u = sampler.get_2d();
-    if (!bsdf.sample(wo, u_lobe, u, kLobeGlossy | kLobeSpecular, &s) || is_black(s.weight))
-      return sum;
-    throughput *= s.weight;
-    if (depth >= 2) {
-      const float q = std::min(1.0f, max_component(throughput));
-      if (!(sampler.get_1d() < q)) return sum;
-      throughput = throughput / q;
+    VertexStep vertex(PathState& state, const Hit&, const SurfaceInteraction& y) {
+      sp = shade(context, y, -state.ray.direction);
+      if (state.after_glossy) sum += state.throughput * sp.emission;
+      const Vec3 rd = sp.bsdf.diffuse_reflectance();
+      if (!is_black(rd))
+        sum += state.throughput * rd * self.gathered_radiance(y.p, sp.bsdf.ng(), scratch);
+      return VertexStep::scatter(sp.bsdf);
     }
-    after_glossy = after_glossy || !s.is_delta();
-    mask = visibility_after(s.flags);
-    ray.origin = offset_ray_origin(y.p, y.ng, s.wi, context.accel->length_scale());
-    ray.direction = s.wi;
-    ray.tmin = 0.0f;
-    ray.tmax = INFINITY;
-  }
+    void scattered(const PathState&, bool) {}
+  };
+  PathState state;
+  state.ray = ray;
+  state.mask = kVisibleDiffuse;
+  GatherVisitor visitor{context, *this, scratch, hit_distance};
+  walk_path(context, importance_rules(context.settings->max_depth), &state, sampler, visitor);
+  return visitor.sum;
 }
 
 Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const SurfaceInteraction& x,
@@ -381,8 +382,7 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
     const Vec3 wi = frame.to_world(sample_cosine_hemisphere(u));
     if (dot(wi, bsdf.ng()) <= 0.0f) continue;
     Ray ray;
-    ray.origin = offset_ray_origin(x.p, x.ng, wi, context.accel->length_scale());
-    ray.direction = wi;
+    spawn_ray(x, wi, context.accel->length_scale(), &ray);
     float t = INFINITY;
     sum += gather_ray(context, ray, sampler, &scratch, harmonic_distance ? &t : nullptr) / density;
     inverse_distances += 1.0 / std::max(t, 1e-6f * context.accel->length_scale());

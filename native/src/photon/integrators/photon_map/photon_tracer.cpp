@@ -29,70 +29,63 @@ struct PathSetup {
   float power_scale;  // 1 / photons emitted when known up front, else 1 (rescaled later)
 };
 
-// Jensen 2001 sec. 5.2: the BSDF picks a lobe by albedo and samples it; the
-// photon survives with probability q = max channel of the sampled weight (so its power never
-// grows) and carries power * weight / q per channel.
-bool scatter(const Bsdf& bsdf, const Vec3& wo, uint8_t mask, Sampler& sampler, Vec3* power,
-             BsdfSample* s) {
-  const float u_lobe = sampler.get_1d();
-  const Vec2 u = sampler.get_2d();
-  const float u_survive = sampler.get_1d();
-  if (!bsdf.sample(wo, u_lobe, u, mask, s) || is_black(s->weight)) return false;
-  const float q = std::min(1.0f, max_component(s->weight));
-  if (!(u_survive < q)) return false;
-  *power = *power * s->weight / q;
-  return true;
-}
-
 // Where a path stands for the photon maps: at the light's first hit (direct), after perfectly
 // specular bounces only (caustic: L S+ D), or after a diffuse or rough glossy bounce (indirect).
 // Rough glossy paths are not caustics here: final gathering collects them (see
 // photon_map_integrator.cpp), so the two never count the same light twice.
-enum class PathKind : uint8_t { kDirect, kCaustic, kIndirect };
+uint8_t photon_kind(const PathState& state) {
+  if (state.depth == 0) return kPhotonDirect;
+  return state.after_glossy ? kPhotonIndirect : kPhotonCaustic;
+}
+
+// Stores a photon at every diffuse surface the path meets (global pass: every photon; caustic
+// pass: caustic photons only). Scattering and Russian roulette are the walker's power rules
+// (path_walker.h: Jensen 2001 sec. 5.2, survival by the bounce's albedo).
+struct PhotonVisitor {
+  const PathSetup& setup;
+  uint64_t index;
+  ChunkOutput* out;
+  ShadingPoint sp{};
+
+  bool segment(const PathState&, bool found, const Hit&) {
+    ++out->rays;
+    return found;
+  }
+  VertexStep vertex(PathState& state, const Hit&, const SurfaceInteraction& si) {
+    sp = shade(*setup.context, si, -state.ray.direction);
+    const Bsdf& bsdf = sp.bsdf;
+    if (bsdf.flags() & kLobeDiffuse) {
+      const uint8_t kind = photon_kind(state);
+      const Vec3& dir = state.ray.direction;
+      if (!setup.caustic_pass) {
+        out->photons.push_back(Photon::make(si.p, dir, state.throughput, kind, bsdf.ng()));
+        if (hash_combine(index, static_cast<uint64_t>(state.depth)) %
+                setup.settings->gather_point_stride ==
+            0)
+          out->gather_points.push_back({si.p, bsdf.ng()});
+      } else if (kind == kPhotonCaustic) {
+        out->photons.push_back(
+            Photon::make(si.p, dir, state.throughput, kPhotonCaustic, bsdf.ng()));
+      }
+    }
+    return VertexStep::scatter(bsdf);
+  }
+  void scattered(const PathState&, bool) {}
+};
 
 void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emitted,
                 Sampler& sampler, ChunkOutput* out) {
-  const RenderContext& context = *setup.context;
-  Ray ray = emitted.ray;
-  Vec3 power = emitted.power * setup.power_scale;
-  PathKind kind = PathKind::kDirect;
-  uint32_t mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
+  // Vertices 0 .. max_bounces - 1 are stored; none without any bounce.
+  if (setup.settings->max_bounces <= 0) return;
+  PathState state;
+  state.ray = emitted.ray;
+  state.throughput = emitted.power * setup.power_scale;
+  state.mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
   // Caustic photons follow perfectly specular lobes only; global photons every lobe.
-  const uint8_t scatter_mask = setup.caustic_pass ? kLobeSpecular : kLobeAll;
-  for (int bounce = 0; bounce < setup.settings->max_bounces; ++bounce) {
-    Hit hit;
-    ++out->rays;
-    if (!context.accel->intersect(ray, mask, &hit)) return;
-    const SurfaceInteraction si = context.accel->interaction(hit);
-    const Vec3 wo = -ray.direction;
-    const ShadingPoint sp = shade(context, si, wo);
-    const Bsdf& bsdf = sp.bsdf;
-    if (bsdf.flags() & kLobeDiffuse) {
-      if (!setup.caustic_pass) {
-        const uint8_t flags = kind == PathKind::kDirect    ? kPhotonDirect
-                              : kind == PathKind::kCaustic ? kPhotonCaustic
-                                                           : kPhotonIndirect;
-        out->photons.push_back(Photon::make(si.p, ray.direction, power, flags, bsdf.ng()));
-        if (hash_combine(index, static_cast<uint64_t>(bounce)) % setup.settings->gather_point_stride == 0)
-          out->gather_points.push_back({si.p, bsdf.ng()});
-      } else if (kind == PathKind::kCaustic) {
-        out->photons.push_back(
-            Photon::make(si.p, ray.direction, power, kPhotonCaustic, bsdf.ng()));
-      }
-    }
-    BsdfSample s;
-    if (!scatter(bsdf, wo, scatter_mask, sampler, &power, &s)) return;
-    if (s.is_delta()) {
-      if (kind == PathKind::kDirect) kind = PathKind::kCaustic;
-    } else {
-      kind = PathKind::kIndirect;
-    }
-    mask = visibility_after(s.flags);
-    ray.origin = offset_ray_origin(si.p, si.ng, s.wi, context.accel->length_scale());
-    ray.direction = s.wi;
-    ray.tmin = 0.0f;
-    ray.tmax = INFINITY;
-  }
+  const PathRules rules =
+      power_rules(setup.settings->max_bounces - 1, setup.caustic_pass ? kLobeSpecular : kLobeAll);
+  PhotonVisitor visitor{setup, index, out};
+  walk_path(*setup.context, rules, &state, sampler, visitor);
 }
 
 // Traces photons [begin, end) of one pass in parallel chunks; their results, in chunk order,

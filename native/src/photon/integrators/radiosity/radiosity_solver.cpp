@@ -69,61 +69,62 @@ struct StepPlan {
   uint64_t seed = 0;
 };
 
-// Follows one ray to the surfaces it reaches. At each surface with a diffuse lobe, rho_d (read
-// from the BSDF at the hit, textures included) times the arriving power is deposited on the
-// element; the rest continues through the glossy and specular lobes (sampled, with Russian
-// roulette) or is absorbed. Rays that leave the scene escape. The books balance per ray:
-// arriving = deposited + absorbed + continuing.
-void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, Ray ray, const Vec3& power,
-               uint32_t mask, bool from_light, Sampler& sampler, ChunkOutput* out) {
-  out->shot.add(power);
-  const int max_depth = context.settings->max_depth;
-  Vec3 arriving = power;
-  bool specular_only = true;  // only delta lobes since the light (a caustic path)
-  for (int depth = 0;; ++depth) {
-    Hit hit;
-    if (!context.accel->intersect(ray, mask, &hit)) {
-      out->escaped.add(arriving);
-      return;
-    }
-    const SurfaceInteraction si = context.accel->interaction(hit);
-    const Vec3 wo = -ray.direction;
-    const ShadingPoint sp = shade(context, si, wo);
+struct ShootVisitor {
+  const RenderContext& context;
+  const RadiosityMesh& mesh;
+  bool from_light;
+  ChunkOutput* out;
+  ShadingPoint sp{};
+  Vec3 arriving{0.0f}, reflected{0.0f};
+  bool located = false;
+
+  bool segment(const PathState& state, bool found, const Hit&) {
+    if (!found) out->escaped.add(state.throughput);
+    return found;
+  }
+  VertexStep vertex(PathState& state, const Hit& hit, const SurfaceInteraction& si) {
+    arriving = state.throughput;
+    sp = shade(context, si, -state.ray.direction);
     const Bsdf& bsdf = sp.bsdf;
-    Vec3 reflected = arriving * min(bsdf.diffuse_reflectance(), Vec3(1.0f));
+    reflected = arriving * min(bsdf.diffuse_reflectance(), Vec3(1.0f));
     RadiosityLocation where;
-    const bool located = mesh.locate(hit.instance, hit.primitive, hit.u, hit.v, &where);
+    located = mesh.locate(hit.instance, hit.primitive, hit.u, hit.v, &where);
     if (!is_black(reflected) && located) {
       // bsdf.ng() faces the arriving ray: that side receives (and re-emits) the light.
       const uint32_t side = dot(bsdf.ng(), mesh.normal(where.element)) >= 0.0f ? 0u : 1u;
-      const uint8_t kind = from_light ? (depth == 0      ? kDirect
-                                         : specular_only ? kCaustic
-                                                         : kIndirect)
+      const uint8_t kind = from_light ? (state.depth == 0      ? kDirect
+                                         : !state.after_glossy ? kCaustic
+                                                               : kIndirect)
                                       : kIndirect;
       out->deposits.push_back({2 * mesh.patch_of(where.element) + side, kind, reflected});
     } else {
       reflected = Vec3(0.0f);
     }
-    Vec3 next(0.0f);
-    BsdfSample s;
-    const float u_lobe = sampler.get_1d();
-    const Vec2 u = sampler.get_2d();
-    const float u_survive = sampler.get_1d();
-    if (depth < max_depth && bsdf.sample(wo, u_lobe, u, kLobeGlossy | kLobeSpecular, &s)) {
-      const float q = std::min(1.0f, max_component(s.weight));
-      if (u_survive < q) next = arriving * s.weight / q;
-    }
-    // Absorbed by this surface (or lost to the roulette / depth limit); balances on average.
-    (located ? out->absorbed : out->absorbed_specular).add(arriving - reflected - next);
-    if (is_black(next)) return;
-    specular_only = specular_only && s.is_delta();
-    arriving = next;
-    mask = visibility_after(s.flags);
-    ray.origin = offset_ray_origin(si.p, si.ng, s.wi, context.accel->length_scale());
-    ray.direction = s.wi;
-    ray.tmin = 0.0f;
-    ray.tmax = INFINITY;
+    return VertexStep::scatter(bsdf);
   }
+  void scattered(const PathState& state, bool continues) {
+    // Absorbed by this surface (or lost to the roulette / depth limit); balances on average.
+    const Vec3 next = continues ? state.throughput : Vec3(0.0f);
+    (located ? out->absorbed : out->absorbed_specular).add(arriving - reflected - next);
+  }
+};
+
+// Follows one ray to the surfaces it reaches. At each surface with a diffuse lobe, rho_d (read
+// from the BSDF at the hit, textures included) times the arriving power is deposited on the
+// element; the rest continues through the glossy and specular lobes (the walker's power rules,
+// path_walker.h: sampled, with Russian roulette on the bounce's albedo) or is absorbed. Rays
+// that leave the scene escape. The books balance per ray: arriving = deposited + absorbed +
+// continuing.
+void trace_ray(const RenderContext& context, const RadiosityMesh& mesh, Ray ray, const Vec3& power,
+               uint32_t mask, bool from_light, Sampler& sampler, ChunkOutput* out) {
+  out->shot.add(power);
+  PathState state;
+  state.ray = ray;
+  state.mask = mask;
+  state.throughput = power;
+  ShootVisitor visitor{context, mesh, from_light, out};
+  walk_path(context, power_rules(context.settings->max_depth, kLobeGlossy | kLobeSpecular), &state,
+            sampler, visitor);
 }
 
 void shoot_chunk(const RenderContext& context, const RadiosityMesh& mesh,
