@@ -64,7 +64,9 @@ TEST(RenderParams, ClampEnforcesEveryRangeWithAWarning) {
       const ParamSpec& spec = *p.spec;
       if (spec.type == ParamType::kBool || spec.type == ParamType::kEnum) continue;
       SCOPED_TRACE(spec.name);
-      const double step = spec.type == ParamType::kFloat ? std::max(1.0, std::abs(spec.max)) : 1.0;
+      // Far enough out to be representable past the bound (2^53 + 1 is not a double).
+      const double step = spec.type == ParamType::kFloat ? std::max(1.0, std::abs(spec.max))
+                                                         : std::max(1.0, spec.max * 1e-3);
       struct Case {
         double in, out;
       };

@@ -10,7 +10,7 @@ const ParamSchema<SamplingParams>& sampling_schema() {
   using S = SamplingParams;
   static const ParamSchema<S> schema{
       "sampling",
-      "Photon",
+      "Sampling",
       "",
       {
           param(&S::integrator,
