@@ -53,7 +53,6 @@ RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
   s.y0 = std::clamp(s.y0, 0, s.full_height - 1);
   s.x1 = std::clamp(s.x1, s.x0 + 1, s.full_width);
   s.y1 = std::clamp(s.y1, s.y0 + 1, s.full_height);
-  clamp_render_params(&s, warnings);  // every parameter into its schema's range
   if (s.threads > thread_limit()) {
     if (warnings)
       warnings->push_back("threads = " + std::to_string(s.threads) +
@@ -63,6 +62,9 @@ RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
                           std::to_string(machine_cores()) + " cores)");
     s.threads = thread_limit();
   }
+  // Every parameter into its schema's range (after the machine's thread limit, which is the
+  // tighter bound and says why).
+  clamp_render_params(&s, warnings);
   return s;
 }
 
