@@ -7,7 +7,7 @@ import traceback
 import bpy
 import numpy as np
 
-from . import properties, report, sync
+from . import properties, report, schema, sync
 from .sync import camera as sync_camera
 
 POLL_SECONDS = 0.05  # tile poll interval; bounds Esc latency together with the per-row check
@@ -26,26 +26,10 @@ def make_settings(native, scene, full_width, full_height, region):
     settings.full_width = full_width
     settings.full_height = full_height
     settings.x0, settings.y0, settings.x1, settings.y1 = region
-    settings.samples = max(1, int(props.samples))
-    settings.max_depth = max(0, int(props.max_depth))
-    settings.seed = max(0, int(props.seed))
-    settings.threads = max(0, int(props.threads))
-    settings.tile_size = max(8, int(props.tile_size))
     settings.transparent_background = bool(scene.render.film_transparent)
-    settings.integrator = getattr(native.Integrator, props.integrator)
-    settings.photons = max(0, int(props.photons))
-    settings.caustic_photons = max(0, int(props.caustic_photons))
-    settings.gather_count = max(1, int(props.gather_count))
-    settings.gather_radius = max(0.0, float(props.gather_radius))
-    settings.caustic_gather_count = max(1, int(props.caustic_gather_count))
-    settings.final_gather_rays = max(0, int(props.final_gather_rays))
-    settings.photon_time = max(0.0, float(props.photon_time))
-    settings.irradiance_cache = bool(props.irradiance_cache)
-    settings.memory_limit = min(max(float(props.memory_limit), 0.0001), 1.0)
-    settings.radiosity_patch_size = max(0.0, float(props.radiosity_patch_size))
-    settings.radiosity_rays = max(10, int(props.radiosity_rays)) * 1000
-    settings.radiosity_threshold = min(max(float(props.radiosity_threshold), 1e-4), 1.0)
-    settings.radiosity_iterations = min(max(int(props.radiosity_iterations), 0), 100)
+    # Every schema parameter by name; out-of-range values are clamped (with a warning) natively.
+    for p in schema.params():
+        setattr(settings, p["name"], schema.native_value(p, getattr(props, p["name"])))
     return settings
 
 

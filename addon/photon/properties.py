@@ -1,110 +1,14 @@
 """Render settings stored on the scene as scene.photon."""
 
 import bpy
-from bpy.props import (BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty,
-                       StringProperty)
+from bpy.props import BoolProperty, EnumProperty, IntProperty, PointerProperty, StringProperty
+
+from . import schema
 
 
 class PhotonRenderSettings(bpy.types.PropertyGroup):
-    integrator: EnumProperty(
-        name="Integrator",
-        description="Rendering algorithm",
-        items=[
-            ("PHOTON_MAP", "Photon Mapping",
-             "Global illumination and caustics from global and caustic photon maps, with "
-             "final gathering"),
-            ("RAY_TRACE", "Ray Tracing",
-             "Whitted ray tracing: direct light, perfect mirrors and glass"),
-            ("RADIOSITY", "Radiosity",
-             "Diffuse global illumination solved once on a mesh of patches (stochastic "
-             "Jacobi radiosity) and viewed from anywhere; mirrors and glass are ray traced"),
-        ],
-        default="PHOTON_MAP",
-    )
-    samples: IntProperty(
-        name="Samples", description="Camera samples per pixel",
-        default=64, min=1, soft_max=4096, max=1 << 20)
-    max_depth: IntProperty(
-        name="Max Depth", description="Maximum number of mirror and glass bounces",
-        default=8, min=0, soft_max=64, max=1024)
-    seed: IntProperty(
-        name="Seed", description="Random seed; the same seed renders the same image",
-        default=0, min=0)
-    photons: IntProperty(
-        name="Photons", description="Photons emitted for the global photon map (indirect light)",
-        default=200000, min=0, soft_max=10000000, max=100000000)
-    caustic_photons: IntProperty(
-        name="Caustic Photons",
-        description="Photons aimed at mirrors and glass for the caustic photon map",
-        default=100000, min=0, soft_max=10000000, max=100000000)
-    gather_count: IntProperty(
-        name="Gather Count",
-        description="Nearest photons used in a global photon map estimate",
-        default=100, min=1, soft_max=500, max=1000)
-    gather_radius: FloatProperty(
-        name="Gather Radius",
-        description="Largest distance searched for photons (0 = automatic from the scene size)",
-        default=0.0, min=0.0, soft_max=10.0, subtype="DISTANCE", unit="LENGTH")
-    caustic_gather_count: IntProperty(
-        name="Caustic Gather Count",
-        description="Nearest photons used in a caustic estimate",
-        default=50, min=1, soft_max=500, max=1000)
-    final_gather_rays: IntProperty(
-        name="Final Gather Rays",
-        description="Rays gathering indirect light per camera sample "
-                    "(0 = read the global photon map directly: fast, blotchy preview)",
-        default=16, min=0, soft_max=256, max=4096)
-    irradiance_cache: BoolProperty(
-        name="Irradiance Cache",
-        description="Compute the final gather carefully (64 times Final Gather Rays) at sparse "
-                    "points the camera sees before rendering, and interpolate between them "
-                    "(Ward 1988): smooth indirect light at a fraction of the cost. Points the "
-                    "cache does not cover are gathered per sample",
-        default=True)
-    photon_time: FloatProperty(
-        name="Photon Time",
-        description="Trace photons for this many seconds instead of a fixed count "
-                    "(0 = use the counts). Esc during photon tracing renders with the "
-                    "photons traced so far",
-        default=0.0, min=0.0, soft_max=600.0, max=86400.0, subtype="TIME_ABSOLUTE", unit="TIME")
-    memory_limit: FloatProperty(
-        name="Memory Limit",
-        description="Fraction of the memory available when a render starts that the photon "
-                    "maps may use at their peak (estimated before tracing); larger photon "
-                    "counts are scaled down to fit, with a warning",
-        default=0.75, min=0.01, max=1.0, subtype="FACTOR")
-    radiosity_patch_size: FloatProperty(
-        name="Patch Size",
-        description="Edge length of the radiosity patches: larger triangles are split into "
-                    "patches of this size, much smaller ones are grouped into one patch per "
-                    "cell of this size; smaller patches show sharper shadows but need more rays "
-                    "(0 = automatic: about 20000 patches, fewer if the rays are too few for "
-                    "them, at least 256 rays per patch)",
-        default=0.0, min=0.0, soft_max=1.0, max=1e6, subtype="DISTANCE", unit="LENGTH")
-    radiosity_rays: IntProperty(
-        name="Rays",
-        description="Rays the radiosity solve traces in total, in thousands; the solve time is "
-                    "about proportional, and the noise falls as 1 / sqrt(rays). Use more rays "
-                    "for more (smaller) patches",
-        default=8000, min=10, soft_max=200000, max=10000000)
-    radiosity_threshold: FloatProperty(
-        name="Unshot Threshold",
-        description="Light is shot on from patch to patch until the power not yet shot is "
-                    "below this fraction of the emitted power",
-        default=0.01, min=0.0001, max=1.0, soft_max=0.1, precision=4)
-    radiosity_iterations: IntProperty(
-        name="Averaged Iterations",
-        description="Jacobi iterations after shooting, each re-estimating the whole solution "
-                    "with fresh rays, averaged to reduce noise (0 = shooting only)",
-        default=4, min=0, soft_max=16, max=100)
-    threads: IntProperty(
-        name="Threads",
-        description="Render threads (0 = all cores); more than 4 per core are not used",
-        default=0, min=0, soft_max=256, max=4096)
-    tile_size: IntProperty(
-        name="Tile Size", description="Width and height of the render tiles in pixels",
-        default=64, min=8, max=4096, subtype="PIXEL")
-
+    # The render parameters (integrator, samples, photon mapping, radiosity, performance) are
+    # generated from the native schema below the class; the bake settings are the add-on's own.
     # Lighting bake (photon.bake_lighting): view-independent lighting into Blender data.
     bake_source: EnumProperty(
         name="Source",
@@ -190,6 +94,13 @@ def enabled_passes(view_layer):
         return []
     return [(name, index) for name, prop, index in LIGHT_PASSES if getattr(settings, prop)]
 
+
+def _add_schema_properties():
+    for p in schema.params():
+        PhotonRenderSettings.__annotations__[p["name"]] = schema.make_property(p)
+
+
+_add_schema_properties()
 
 classes = (PhotonRenderSettings, PhotonViewLayerSettings)
 

@@ -2,6 +2,8 @@
 
 import bpy
 
+from . import schema
+
 ENGINE = "PHOTON"
 
 # Blender's built-in panels that work for any engine using shader nodes: material slots and
@@ -56,12 +58,9 @@ class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
             box.label(text="The native renderer failed to load:", icon="ERROR")
             for line in NATIVE_IMPORT_ERROR.split(": "):
                 box.label(text=line)
-        props = context.scene.photon
-        layout.prop(props, "integrator")
-        col = layout.column(align=True)
-        col.prop(props, "samples")
-        col.prop(props, "max_depth")
-        layout.prop(props, "seed")
+        if schema.LOAD_ERROR:
+            layout.label(text=f"Parameter schema missing: {schema.LOAD_ERROR}", icon="ERROR")
+        schema.draw(layout, context.scene.photon, "sampling")
 
 
 class PHOTON_PT_photon_mapping(PhotonPanel, bpy.types.Panel):
@@ -70,26 +69,15 @@ class PHOTON_PT_photon_mapping(PhotonPanel, bpy.types.Panel):
 
     @classmethod
     def poll(cls, context):
-        return super().poll(context) and context.scene.photon.integrator == "PHOTON_MAP"
+        group = schema.group("photon_map")
+        return super().poll(context) and group is not None and \
+            context.scene.photon.integrator == group["integrator"]
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        props = context.scene.photon
-        col = layout.column(align=True)
-        col.prop(props, "photons")
-        col.prop(props, "caustic_photons")
-        layout.prop(props, "photon_time")
-        layout.prop(props, "memory_limit")
-        col = layout.column(align=True)
-        col.prop(props, "gather_count")
-        col.prop(props, "caustic_gather_count")
-        col.prop(props, "gather_radius")
-        layout.prop(props, "final_gather_rays")
-        row = layout.row()
-        row.active = props.final_gather_rays > 0
-        row.prop(props, "irradiance_cache")
+        schema.draw(layout, context.scene.photon, "photon_map")
 
 
 class PHOTON_PT_radiosity(PhotonPanel, bpy.types.Panel):
@@ -98,18 +86,15 @@ class PHOTON_PT_radiosity(PhotonPanel, bpy.types.Panel):
 
     @classmethod
     def poll(cls, context):
-        return super().poll(context) and context.scene.photon.integrator == "RADIOSITY"
+        group = schema.group("radiosity")
+        return super().poll(context) and group is not None and \
+            context.scene.photon.integrator == group["integrator"]
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        props = context.scene.photon
-        layout.prop(props, "radiosity_patch_size")
-        layout.prop(props, "radiosity_rays", text="Rays (thousands)")
-        col = layout.column(align=True)
-        col.prop(props, "radiosity_threshold")
-        col.prop(props, "radiosity_iterations")
+        schema.draw(layout, context.scene.photon, "radiosity")
 
 
 class PhotonViewLayerPanel(PhotonPanel):
@@ -153,9 +138,7 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        props = context.scene.photon
-        layout.prop(props, "threads")
-        layout.prop(props, "tile_size")
+        schema.draw(layout, context.scene.photon, "performance")
 
 
 class PHOTON_PT_object_mask(bpy.types.Panel):

@@ -1,11 +1,17 @@
 // photon_cli: renders a built-in scene without Blender, e.g.
 //   photon_cli --scene cornell --width 256 --height 256 --samples 64 --out cornell.exr
+// Every render parameter is an option generated from its schema (render_params.h): --help
+// lists them, --print-schema writes the schema as JSON (staged with the add-on).
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <string>
 
+#include "photon/integrators/render_params.h"
 #include "photon/session/image_io.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
@@ -13,23 +19,84 @@
 
 using namespace photon;
 
-static void usage() {
-  std::printf(
-      "usage: photon_cli [--scene cornell|caustic] [--width N] [--height N] [--samples N]\n"
-      "                  [--max-depth N] [--seed N] [--threads N] [--tile-size N]\n"
-      "                  [--integrator photon_map|ray_trace|radiosity] [--photons N]\n"
-      "                  [--caustic-photons N]\n"
-      "                  [--gather-count N] [--gather-radius R] [--caustic-gather-count N]\n"
-      "                  [--final-gather-rays N] [--photon-time SECONDS] [--no-irradiance-cache]\n"
-      "                  [--patch-size S] [--radiosity-rays N] [--radiosity-threshold F]\n"
-      "                  [--radiosity-iterations N]\n"
-      "                  [--passes PREFIX (writes PREFIX_direct.exr, ...)] --out FILE\n");
+namespace {
+
+// "--gather-count" for the parameter gather_count.
+std::string option_name(const std::string& name) {
+  std::string o = "--" + name;
+  std::replace(o.begin(), o.end(), '_', '-');
+  return o;
 }
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+// Older spellings of generated options.
+const std::map<std::string, std::string> kAliases = {
+    {"--patch-size", "radiosity_patch_size"},
+};
+
+void usage(FILE* out) {
+  std::fprintf(out,
+               "usage: photon_cli [--scene cornell|caustic] [--width N] [--height N]\n"
+               "                  [--passes PREFIX (writes PREFIX_direct.exr, ...)]\n"
+               "                  [--print-schema | --write-schema FILE (the parameter schema\n"
+               "                   as JSON, on stdout or into FILE)]\n"
+               "                  [parameter options] --out FILE\n"
+               "parameter options (out-of-range values are clamped with a warning):\n");
+  for (const RenderParamGroup& group : render_param_groups()) {
+    std::fprintf(out, "  %s:\n", group.label.c_str());
+    for (const RenderParam& p : group.params) {
+      const ParamSpec& spec = *p.spec;
+      std::string arg = " N";
+      if (spec.type == ParamType::kFloat) arg = " X";
+      if (spec.type == ParamType::kBool) arg = " 0|1";
+      if (spec.type == ParamType::kEnum) {
+        arg = " ";
+        for (size_t i = 0; i < spec.items.size(); ++i)
+          arg += (i ? "|" : "") + lower(spec.items[i].id);
+      }
+      char range[128];
+      std::snprintf(range, sizeof range, "default %.10g, range [%.10g, %.10g]", spec.default_value,
+                    spec.min, spec.max);
+      std::string detail = range;
+      if (spec.type == ParamType::kBool)
+        detail = std::string("default ") + (spec.default_value != 0.0 ? "1" : "0") + "; --no-" +
+                 option_name(spec.name).substr(2) + " sets 0";
+      if (spec.type == ParamType::kEnum)
+        for (const ParamEnumItem& item : spec.items)
+          if (item.value == spec.default_value) detail = "default " + lower(item.id);
+      std::fprintf(out, "    %s%s\n        %s: %s (%s)\n", option_name(spec.name).c_str(),
+                   arg.c_str(), spec.label.c_str(), spec.description.c_str(), detail.c_str());
+    }
+  }
+}
+
+// Sets parameter `p` from the command-line text `text`; false when it does not parse.
+bool set_param(RenderSettings* settings, const RenderParam& p, const std::string& text) {
+  const ParamSpec& spec = *p.spec;
+  if (spec.type == ParamType::kEnum) {
+    for (const ParamEnumItem& item : spec.items)
+      if (lower(item.id) == lower(text)) {
+        p.set(*settings, item.value);
+        return true;
+      }
+    return false;
+  }
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0') return false;
+  p.set(*settings, v);
+  return true;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   RenderSettings settings;
   settings.full_width = settings.full_height = 256;
-  settings.samples = 64;  // the add-on's default
   std::string scene_name = "cornell", out, passes_prefix;
   for (int i = 1; i < argc; ++i) {
     auto next = [&](const char* flag) -> const char* {
@@ -39,53 +106,68 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (!std::strcmp(argv[i], "--scene")) scene_name = next("--scene");
-    else if (!std::strcmp(argv[i], "--width")) settings.full_width = std::atoi(next("--width"));
-    else if (!std::strcmp(argv[i], "--height")) settings.full_height = std::atoi(next("--height"));
-    else if (!std::strcmp(argv[i], "--samples")) settings.samples = std::atoi(next("--samples"));
-    else if (!std::strcmp(argv[i], "--max-depth")) settings.max_depth = std::atoi(next("--max-depth"));
-    else if (!std::strcmp(argv[i], "--seed")) settings.seed = std::strtoull(next("--seed"), nullptr, 10);
-    else if (!std::strcmp(argv[i], "--threads")) settings.threads = std::atoi(next("--threads"));
-    else if (!std::strcmp(argv[i], "--tile-size")) settings.tile_size = std::atoi(next("--tile-size"));
-    else if (!std::strcmp(argv[i], "--integrator")) {
-      const std::string name = next("--integrator");
-      if (name == "ray_trace") settings.integrator = IntegratorType::kRayTrace;
-      else if (name == "photon_map") settings.integrator = IntegratorType::kPhotonMap;
-      else if (name == "radiosity") settings.integrator = IntegratorType::kRadiosity;
-      else {
-        usage();
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      usage(stdout);
+      return 0;
+    } else if (arg == "--print-schema") {
+      std::fputs(render_param_schema_json().c_str(), stdout);
+      return 0;
+    } else if (arg == "--write-schema") {
+      const char* path = next("--write-schema");
+      FILE* f = std::fopen(path, "w");
+      if (!f || std::fputs(render_param_schema_json().c_str(), f) < 0 || std::fclose(f) != 0) {
+        std::fprintf(stderr, "cannot write %s\n", path);
+        return 1;
+      }
+      return 0;
+    } else if (arg == "--scene") {
+      scene_name = next("--scene");
+    } else if (arg == "--width") {
+      settings.full_width = std::atoi(next("--width"));
+    } else if (arg == "--height") {
+      settings.full_height = std::atoi(next("--height"));
+    } else if (arg == "--passes") {
+      passes_prefix = next("--passes");
+      settings.light_passes = true;
+    } else if (arg == "--out") {
+      out = next("--out");
+    } else {
+      // A parameter from the schema: --name value, or --no-name for a boolean.
+      const RenderParam* param = nullptr;
+      bool negated = false;
+      for (const RenderParamGroup& group : render_param_groups())
+        for (const RenderParam& p : group.params) {
+          if (option_name(p.spec->name) == arg) param = &p;
+          if (p.spec->type == ParamType::kBool &&
+              "--no-" + option_name(p.spec->name).substr(2) == arg) {
+            param = &p;
+            negated = true;
+          }
+        }
+      if (!param && kAliases.count(arg)) param = find_render_param(kAliases.at(arg));
+      if (!param) {
+        std::fprintf(stderr, "unknown option %s\n", arg.c_str());
+        usage(stderr);
+        return 2;
+      }
+      if (negated) {
+        param->set(settings, 0.0);
+      } else if (!set_param(&settings, *param, next(arg.c_str()))) {
+        std::fprintf(stderr, "%s: cannot read '%s'\n", arg.c_str(), argv[i]);
+        usage(stderr);
         return 2;
       }
     }
-    else if (!std::strcmp(argv[i], "--photons")) settings.photons = std::strtoull(next("--photons"), nullptr, 10);
-    else if (!std::strcmp(argv[i], "--caustic-photons")) settings.caustic_photons = std::strtoull(next("--caustic-photons"), nullptr, 10);
-    else if (!std::strcmp(argv[i], "--gather-count")) settings.gather_count = std::atoi(next("--gather-count"));
-    else if (!std::strcmp(argv[i], "--gather-radius")) settings.gather_radius = std::strtof(next("--gather-radius"), nullptr);
-    else if (!std::strcmp(argv[i], "--caustic-gather-count")) settings.caustic_gather_count = std::atoi(next("--caustic-gather-count"));
-    else if (!std::strcmp(argv[i], "--final-gather-rays")) settings.final_gather_rays = std::atoi(next("--final-gather-rays"));
-    else if (!std::strcmp(argv[i], "--no-irradiance-cache")) settings.irradiance_cache = false;
-    else if (!std::strcmp(argv[i], "--photon-time")) settings.photon_time = std::strtof(next("--photon-time"), nullptr);
-    else if (!std::strcmp(argv[i], "--patch-size")) settings.radiosity_patch_size = std::strtof(next("--patch-size"), nullptr);
-    else if (!std::strcmp(argv[i], "--radiosity-rays")) settings.radiosity_rays = std::strtoull(next("--radiosity-rays"), nullptr, 10);
-    else if (!std::strcmp(argv[i], "--radiosity-threshold")) settings.radiosity_threshold = std::strtof(next("--radiosity-threshold"), nullptr);
-    else if (!std::strcmp(argv[i], "--radiosity-iterations")) settings.radiosity_iterations = std::atoi(next("--radiosity-iterations"));
-    else if (!std::strcmp(argv[i], "--passes")) {
-      passes_prefix = next("--passes");
-      settings.light_passes = true;
-    }
-    else if (!std::strcmp(argv[i], "--out")) out = next("--out");
-    else {
-      usage();
-      return 2;
-    }
   }
   if (out.empty() || (scene_name != "cornell" && scene_name != "caustic")) {
-    usage();
+    usage(stderr);
     return 2;
   }
   settings.x1 = settings.full_width;
   settings.y1 = settings.full_height;
-  auto scene = std::make_shared<Scene>(scene_name == "caustic" ? make_caustic_box() : make_cornell_box());
+  auto scene =
+      std::make_shared<Scene>(scene_name == "caustic" ? make_caustic_box() : make_cornell_box());
   const float aspect = static_cast<float>(settings.full_width) / settings.full_height;
   scene->camera.window_min_x = scene->camera.window_min_y * aspect;
   scene->camera.window_max_x = scene->camera.window_max_y * aspect;

@@ -9,6 +9,7 @@
 
 #include "material_binding.h"
 #include "photon/scene/mesh_import.h"
+#include "photon/integrators/render_params.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
 #include "photon/scene/scene.h"
@@ -111,6 +112,48 @@ py::array_t<float> passes_to_numpy(std::vector<float>&& data, int height, int wi
   std::vector<py::ssize_t> shape{kPassCount, h, w, 3};
   std::vector<py::ssize_t> strides{3 * f, w * kPassFloats * f, kPassFloats * f, f};
   return py::array_t<float>(shape, strides, heap->data(), owner);
+}
+
+// Every schema'd parameter as a property of RenderSettings, typed as in the schema: ints, floats,
+// bools, and the Integrator enum (set from the enum or from an item id such as "RADIOSITY").
+// Values are stored as given; the render session clamps them with a warning.
+void bind_render_params(py::class_<RenderSettings>& cls) {
+  for (const RenderParamGroup& group : render_param_groups()) {
+    for (const RenderParam& p : group.params) {
+      const RenderParam* param = &p;
+      cls.def_property(
+          p.spec->name.c_str(),
+          [param](const RenderSettings& s) -> py::object {
+            const double v = param->get(s);
+            switch (param->spec->type) {
+              case ParamType::kBool:
+                return py::bool_(v != 0.0);
+              case ParamType::kFloat:
+                return py::float_(v);
+              case ParamType::kEnum:
+                return py::cast(static_cast<IntegratorType>(static_cast<int>(v)));
+              case ParamType::kUInt64:
+                return py::int_(static_cast<unsigned long long>(v));
+              case ParamType::kInt:
+                break;
+            }
+            return py::int_(static_cast<long long>(v));
+          },
+          [param](RenderSettings& s, const py::object& value) {
+            const ParamSpec& spec = *param->spec;
+            if (spec.type == ParamType::kEnum) {
+              if (py::isinstance<py::str>(value)) {
+                const std::string id = value.cast<std::string>();
+                for (const ParamEnumItem& item : spec.items)
+                  if (item.id == id) return param->set(s, item.value);
+                throw py::value_error(spec.name + ": no item '" + id + "'");
+              }
+              return param->set(s, static_cast<int>(value.cast<IntegratorType>()));
+            }
+            param->set(s, value.cast<double>());
+          });
+    }
+  }
 }
 
 }  // namespace
@@ -344,35 +387,22 @@ PYBIND11_MODULE(_photon, m) {
   m.attr("PASS_NAMES") = py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics",
                                         "Photon Map");
 
-  py::class_<RenderSettings>(m, "RenderSettings")
-      .def(py::init<>())
+  py::class_<RenderSettings> settings_class(m, "RenderSettings");
+  settings_class.def(py::init<>())
       .def_readwrite("full_width", &RenderSettings::full_width)
       .def_readwrite("full_height", &RenderSettings::full_height)
       .def_readwrite("x0", &RenderSettings::x0)
       .def_readwrite("y0", &RenderSettings::y0)
       .def_readwrite("x1", &RenderSettings::x1)
       .def_readwrite("y1", &RenderSettings::y1)
-      .def_readwrite("samples", &RenderSettings::samples)
-      .def_readwrite("max_depth", &RenderSettings::max_depth)
-      .def_readwrite("seed", &RenderSettings::seed)
-      .def_readwrite("threads", &RenderSettings::threads)
-      .def_readwrite("tile_size", &RenderSettings::tile_size)
       .def_readwrite("transparent_background", &RenderSettings::transparent_background)
-      .def_readwrite("integrator", &RenderSettings::integrator)
-      .def_readwrite("light_passes", &RenderSettings::light_passes)
-      .def_readwrite("photons", &RenderSettings::photons)
-      .def_readwrite("caustic_photons", &RenderSettings::caustic_photons)
-      .def_readwrite("gather_count", &RenderSettings::gather_count)
-      .def_readwrite("gather_radius", &RenderSettings::gather_radius)
-      .def_readwrite("caustic_gather_count", &RenderSettings::caustic_gather_count)
-      .def_readwrite("final_gather_rays", &RenderSettings::final_gather_rays)
-      .def_readwrite("photon_time", &RenderSettings::photon_time)
-      .def_readwrite("irradiance_cache", &RenderSettings::irradiance_cache)
-      .def_readwrite("memory_limit", &RenderSettings::memory_limit)
-      .def_readwrite("radiosity_patch_size", &RenderSettings::radiosity_patch_size)
-      .def_readwrite("radiosity_rays", &RenderSettings::radiosity_rays)
-      .def_readwrite("radiosity_threshold", &RenderSettings::radiosity_threshold)
-      .def_readwrite("radiosity_iterations", &RenderSettings::radiosity_iterations);
+      .def_readwrite("light_passes", &RenderSettings::light_passes);
+  bind_render_params(settings_class);
+  // The schema as plain lists and dicts (render_params.h); the add-on generates its
+  // properties, panels and make_settings from it.
+  m.def("parameter_schema", [] {
+    return py::module_::import("json").attr("loads")(render_param_schema_json());
+  });
 
   py::class_<RenderSession>(m, "RenderSession")
       .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings) {

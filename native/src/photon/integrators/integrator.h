@@ -12,47 +12,27 @@
 #include "photon/render/accel.h"
 #include "photon/lights/lights.h"
 #include "photon/base/math.h"
+#include "photon/integrators/photon_map/photon_map_params.h"
+#include "photon/integrators/radiosity/radiosity_params.h"
+#include "photon/integrators/sampling_params.h"
 #include "photon/base/rng.h"
 #include "photon/scene/scene.h"
 
 namespace photon {
 
-enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity };
-
 class EmissiveMeshes;
 class TextureSet;
 
-struct RenderSettings {
+// What a render is asked to do: the frame, and each algorithm's parameters (declared once in
+// their schemas; render_params.h lists them all and clamps them). The parameter structs are
+// bases so every field keeps its flat name (settings.photons), which is also its name in the
+// schema, the Blender property and the command line.
+struct RenderSettings : SamplingParams, PerformanceParams, PhotonMapParams, RadiosityParams {
   int full_width = 64, full_height = 64;  // whole frame in pixels
   // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
-  int samples = 64;   // camera samples per pixel
-  int max_depth = 8;  // specular bounces after the camera ray
-  uint64_t seed = 0;
-  int threads = 0;  // 0 = all cores
-  int tile_size = 64;
-  bool transparent_background = false;
-  IntegratorType integrator = IntegratorType::kPhotonMap;
+  bool transparent_background = false;  // from the scene's Film > Transparent
   bool light_passes = false;  // also write the Direct / Indirect / Caustics / Photon Map passes
-
-  // Photon mapping (Jensen 2001).
-  uint64_t photons = 200000;          // photon paths emitted for the global map
-  uint64_t caustic_photons = 100000;  // photon paths aimed at specular objects
-  int gather_count = 100;             // k nearest photons in a global-map estimate
-  float gather_radius = 0.0f;         // maximum search radius; 0 = from the scene's size
-  int caustic_gather_count = 50;      // k nearest photons in a caustic estimate
-  int final_gather_rays = 16;         // per camera sample; 0 = read the global map directly
-  float photon_time = 0.0f;           // > 0: trace photons for this many seconds instead
-  bool irradiance_cache = true;       // final gathers at camera-visible points interpolated
-  // Photon counts are scaled down when the photon maps' estimated peak memory would exceed this
-  // fraction of the memory available when tracing starts (MemAvailable; photon_memory.h).
-  float memory_limit = 0.75f;
-
-  // Radiosity (radiosity_solver.h).
-  float radiosity_patch_size = 0.0f;  // element edge length; 0 = automatic (~20k elements)
-  uint64_t radiosity_rays = 8000000;  // rays traced by the whole solve
-  float radiosity_threshold = 0.01f;  // shooting stops below this unshot fraction
-  int radiosity_iterations = 4;       // averaged Jacobi iterations after shooting
 };
 
 // Read-only state shared by all threads during a render.

@@ -8,6 +8,7 @@
 #include <xmmintrin.h>
 #include <pmmintrin.h>
 
+#include "photon/integrators/render_params.h"
 #include "photon/scene/camera_clip_check.h"
 #include "photon/render/scene_resources.h"
 #include "photon/session/pixel_renderer.h"
@@ -52,9 +53,6 @@ RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
   s.y0 = std::clamp(s.y0, 0, s.full_height - 1);
   s.x1 = std::clamp(s.x1, s.x0 + 1, s.full_width);
   s.y1 = std::clamp(s.y1, s.y0 + 1, s.full_height);
-  s.samples = std::clamp(s.samples, 1, 1 << 20);
-  s.max_depth = std::clamp(s.max_depth, 0, 1024);
-  s.threads = std::max(s.threads, 0);
   if (s.threads > thread_limit()) {
     if (warnings)
       warnings->push_back("threads = " + std::to_string(s.threads) +
@@ -64,18 +62,9 @@ RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
                           std::to_string(machine_cores()) + " cores)");
     s.threads = thread_limit();
   }
-  s.tile_size = std::clamp(s.tile_size, 4, 4096);
-  // ~20-60 bytes per emitted photon are stored: 100M photons is already several GB.
-  s.photons = std::min<uint64_t>(s.photons, 100000000ull);
-  s.caustic_photons = std::min<uint64_t>(s.caustic_photons, 100000000ull);
-  s.gather_count = std::clamp(s.gather_count, 1, 1000);
-  s.caustic_gather_count = std::clamp(s.caustic_gather_count, 1, 1000);
-  s.final_gather_rays = std::clamp(s.final_gather_rays, 0, 4096);
-  if (!std::isfinite(s.gather_radius) || s.gather_radius < 0.0f) s.gather_radius = 0.0f;
-  if (!std::isfinite(s.photon_time) || s.photon_time < 0.0f) s.photon_time = 0.0f;
-  s.photon_time = std::min(s.photon_time, 86400.0f);
-  if (!(s.memory_limit > 0.0f)) s.memory_limit = RenderSettings().memory_limit;  // NaN too
-  s.memory_limit = std::clamp(s.memory_limit, 1e-4f, 1.0f);
+  // Every parameter into its schema's range (after the machine's thread limit, which is the
+  // tighter bound and says why).
+  clamp_render_params(&s, warnings);
   return s;
 }
 

@@ -9,31 +9,23 @@
 #include "photon/integrators/radiosity/radiosity_solver.h"
 
 namespace photon {
-namespace {
-
-// Settings outside these ranges are clamped (an absurd value must not hang or crash Blender).
-constexpr uint64_t kMinRays = 10000, kMaxRays = 10000000000ull;
-constexpr float kMinThreshold = 1e-4f, kMaxThreshold = 1.0f;
-constexpr int kMaxIterations = 100;
-
-}  // namespace
 
 void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
   const RenderSettings& s = *context.settings;
   stats_.clear();
   const auto t0 = std::chrono::steady_clock::now();
   control.report("Radiosity: meshing", 0.0f);
+  // Brought into the schema's ranges here too: the integrator is also run without a session.
+  RadiosityParams p = s;
+  clamp_params(p, radiosity_schema(), nullptr);
   RadiosityMeshSettings mesh_settings;
-  mesh_settings.patch_size =
-      std::isfinite(s.radiosity_patch_size) ? std::max(s.radiosity_patch_size, 0.0f) : 0.0f;
+  mesh_settings.patch_size = p.radiosity_patch_size;
   // The automatic patch size keeps enough rays per patch (see RadiosityMeshSettings).
-  mesh_settings.rays = std::clamp<uint64_t>(s.radiosity_rays, kMinRays, kMaxRays);
+  mesh_settings.rays = p.radiosity_rays;
   RadiositySolveSettings solve;
-  solve.rays = std::clamp<uint64_t>(s.radiosity_rays, kMinRays, kMaxRays);
-  solve.threshold = std::isfinite(s.radiosity_threshold)
-                        ? std::clamp(s.radiosity_threshold, kMinThreshold, kMaxThreshold)
-                        : 0.01f;
-  solve.iterations = std::clamp(s.radiosity_iterations, 0, kMaxIterations);
+  solve.rays = p.radiosity_rays;
+  solve.threshold = p.radiosity_threshold;
+  solve.iterations = p.radiosity_iterations;
   solve.seed = s.seed;
   // Meshing, a first solve, refinement where the light changes, and the final solve.
   std::vector<std::string> warnings;

@@ -8,6 +8,7 @@
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/photon_map/photon_sources.h"
 #include "photon/integrators/radiosity/radiosity_material.h"
+#include "photon/integrators/radiosity/radiosity_params.h"
 #include "photon/base/sampling.h"
 
 namespace photon {
@@ -268,10 +269,11 @@ std::vector<RadiosityPower> solve_radiosity(const RenderContext& context, const 
   // Ray budget: the incremental phase and each regular iteration shoot (about) all the light
   // once, so each gets an equal share.
   const uint64_t budget = std::max<uint64_t>(settings.rays, 2 * kMinStepRays);
-  const int iterations = std::clamp(settings.iterations, 0, 1000);
+  const int iterations = std::clamp(settings.iterations, 0, kMaxRadiosityIterations);
   const uint64_t incremental_budget = budget / static_cast<uint64_t>(iterations + 1);
   const uint64_t regular_budget = iterations > 0 ? (budget - incremental_budget) / iterations : 0;
-  const double threshold = std::clamp(static_cast<double>(settings.threshold), 1e-6, 1.0);
+  const double threshold = std::clamp(static_cast<double>(settings.threshold),
+                                      kMinRadiosityThreshold, kMaxRadiosityThreshold);
   uint64_t rays_done = 0;
   auto report = [&](const std::string& what, uint64_t step_rays) {
     control.report(what, static_cast<float>(

@@ -1,0 +1,84 @@
+#include "photon/integrators/sampling_params.h"
+
+// Schema entries name only the fields they set (designated initializers); the rest keep
+// ParamSpec's defaults, which is what -Wmissing-field-initializers would flag.
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+
+namespace photon {
+
+const ParamSchema<SamplingParams>& sampling_schema() {
+  using S = SamplingParams;
+  static const ParamSchema<S> schema{
+      "sampling",
+      "Sampling",
+      "",
+      {
+          param(&S::integrator,
+                {.name = "integrator",
+                 .label = "Integrator",
+                 .description = "Rendering algorithm",
+                 .min = 0,
+                 .max = 2,
+                 .items = {{"PHOTON_MAP", "Photon Mapping",
+                            "Global illumination and caustics from global and caustic photon "
+                            "maps, with final gathering",
+                            static_cast<int>(IntegratorType::kPhotonMap)},
+                           {"RAY_TRACE", "Ray Tracing",
+                            "Whitted ray tracing: direct light, perfect mirrors and glass",
+                            static_cast<int>(IntegratorType::kRayTrace)},
+                           {"RADIOSITY", "Radiosity",
+                            "Diffuse global illumination solved once on a mesh of patches "
+                            "(stochastic Jacobi radiosity) and viewed from anywhere; mirrors and "
+                            "glass are ray traced",
+                            static_cast<int>(IntegratorType::kRadiosity)}}}),
+          param(&S::samples, {.name = "samples",
+                              .label = "Samples",
+                              .description = "Camera samples per pixel",
+                              .min = 1,
+                              .max = 1 << 20,
+                              .soft_max = 4096,
+                              .ui = {.column = 1}}),
+          param(&S::max_depth, {.name = "max_depth",
+                                .label = "Max Depth",
+                                .description = "Maximum number of mirror and glass bounces",
+                                .min = 0,
+                                .max = 1024,
+                                .soft_max = 64,
+                                .ui = {.column = 1}}),
+          // Any 64-bit seed is valid; Blender's integer properties stop at 2^31 - 1.
+          param(&S::seed, {.name = "seed",
+                           .label = "Seed",
+                           .description = "Random seed; the same seed renders the same image",
+                           .min = 0,
+                           .max = 9007199254740992.0}),  // 2^53: exact as a double
+      }};
+  return schema;
+}
+
+const ParamSchema<PerformanceParams>& performance_schema() {
+  using S = PerformanceParams;
+  static const ParamSchema<S> schema{
+      "performance",
+      "Performance",
+      "",
+      {
+          // The machine's own limit (4 threads per core) is applied by the render session.
+          param(&S::threads,
+                {.name = "threads",
+                 .label = "Threads",
+                 .description = "Render threads (0 = all cores); more than 4 per core are not used",
+                 .min = 0,
+                 .max = 4096,
+                 .soft_max = 256}),
+          param(&S::tile_size, {.name = "tile_size",
+                                .label = "Tile Size",
+                                .description = "Width and height of the render tiles in pixels",
+                                .min = 4,
+                                .max = 4096,
+                                .soft_min = 8,
+                                .subtype = "PIXEL"}),
+      }};
+  return schema;
+}
+
+}  // namespace photon

@@ -1,0 +1,28 @@
+// Parameters every integrator shares: which algorithm, camera sampling, and how the work is
+// split over threads and tiles. Declared once in their schemas (sampling_params.cpp).
+#pragma once
+
+#include <cstdint>
+
+#include "photon/base/param_schema.h"
+
+namespace photon {
+
+enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity };
+
+struct SamplingParams {
+  IntegratorType integrator = IntegratorType::kPhotonMap;
+  int samples = 64;   // camera samples per pixel
+  int max_depth = 8;  // specular bounces after the camera ray
+  uint64_t seed = 0;
+};
+
+struct PerformanceParams {
+  int threads = 0;  // 0 = all cores
+  int tile_size = 64;
+};
+
+const ParamSchema<SamplingParams>& sampling_schema();
+const ParamSchema<PerformanceParams>& performance_schema();
+
+}  // namespace photon
