@@ -61,7 +61,7 @@ py::dict result_dict(const BakeResult& r) {
   d["status"] = status;
   d["warnings"] = r.warnings;
   d["cancelled"] = r.cancelled;
-  d["stats"] = bake_stats(r);
+  d["stats"] = photon_python::bake_stats(r);
   return d;
 }
 

@@ -23,7 +23,7 @@ def render(blender, tmp_path, input_name, mode, value):
     blend = tmp_path / f"{mode}.blend"
     result, _ = blender.run_script("tables_clamp_scene.py", input_name, mode, value, blend)
     assert "exception" not in result, result["exception"]
-    assert result["pixel"] == pytest.approx(value, rel=1e-6)  # the image holds the value
+    assert result["pixel"] == pytest.approx(value, rel=1e-3)  # the image holds the value
     proc = blender.run([str(blend), "-E", "PHOTON", "-o", str(tmp_path / f"{mode}_####"),
                         "-F", "OPEN_EXR", "-x", "1", "-f", "1"])
     assert "Photon: rendered frame 1" in proc.stdout, proc.log

@@ -36,9 +36,11 @@ def main(input_name, mode, value, blend):
                                          else value)
         links.new(node.outputs[0], socket)
     elif mode == "texture":
+        # A generated float image (saved with the .blend as its settings, not its pixels) of
+        # linear `value`: Blender takes the fill colour as sRGB.
         image = bpy.data.images.new("Above", 4, 4, float_buffer=True)
-        image.colorspace_settings.name = "Non-Color"
-        image.pixels.foreach_set([value, value, value, 1.0] * 16)
+        c = 1.055 * value ** (1.0 / 2.4) - 0.055
+        image.generated_color = (c, c, c, 1.0)
         tex = nodes.new("ShaderNodeTexImage")
         tex.image = image
         links.new(tex.outputs["Color"], socket)

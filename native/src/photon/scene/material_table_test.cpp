@@ -68,7 +68,7 @@ TEST(MaterialTable, SanitizeClampsEveryEntryToItsRange) {
       } cases[] = {
           {Vec3(2.0f * r.hi + 1.0f), Vec3(r.hi)},
           {Vec3(r.lo - 1.0f), Vec3(r.lo)},
-          {Vec3(-INFINITY), Vec3(r.lo)},
+          {Vec3(-INFINITY), Vec3(spec.default_value)},
           {Vec3(NAN), Vec3(spec.default_value)},
           {Vec3(mid, r.hi * 4.0f, NAN), Vec3(mid, r.hi, spec.default_value)},
       };
