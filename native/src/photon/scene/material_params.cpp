@@ -9,7 +9,7 @@ namespace {
 constexpr float kHuge = 1e6f;
 constexpr ParamRange kUnit{0.0f, 1.0f};
 constexpr ParamRange kEmissive{0.0f, kHuge};
-// IOR stays positive; Blender's socket allows [0, 1000], beyond 100 nothing changes visibly.
+// IOR stays positive and bounded (100 already reflects almost everything).
 constexpr ParamRange kIorRange{1e-3f, 100.0f};
 
 constexpr ParamKind S = ParamKind::kScalar;
@@ -31,7 +31,7 @@ std::vector<ClosureSpec> make_table() {
       {Param::kColor, "color", {"Base Color", nullptr}, C, 0.8f, kUnit},
       {Param::kMetallic, "metallic", {"Metallic", nullptr}, S, 0.0f, kUnit},
       {Param::kRoughness, "roughness", {"Roughness", nullptr}, S, 0.5f, kUnit},
-      // Specular 0.5 is F0 = 0.04; Blender's socket soft maximum is 1, its hard one inf.
+      // Specular 0.5 is F0 = 0.04 (0.08 x specular, Cycles' Principled v1); up to 10 is kept.
       {Param::kSpecular, "specular", {"Specular", "Specular IOR Level"}, S, 0.5f, {0.0f, 10.0f}},
       {Param::kSpecularTint, "specular_tint", {"Specular Tint", nullptr}, S, 0.0f, kUnit},
       {Param::kTransmission,
