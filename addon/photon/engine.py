@@ -42,6 +42,44 @@ def can_stop_early(scene, session):
     return scene.photon.integrator == "RADIOSITY" or session.status.startswith("Tracing photons")
 
 
+def prepare_report(prepared):
+    """Report lines for a PrepareStats (photon maps, irradiance cache, radiosity): one per
+    stage that ran."""
+    lines = []
+    pm = prepared.photon_map
+    if pm is not None:
+        lines.append(
+            f"photons: {pm.photons_emitted:,} global and "
+            f"{pm.caustic_photons_emitted:,} caustic emitted, "
+            f"{pm.global_photons_stored:,} and "
+            f"{pm.caustic_photons_stored:,} stored in "
+            f"{pm.photon_trace_seconds:.3f} s; maps built in "
+            f"{pm.photon_map_build_seconds:.3f} s, radiance precomputed in "
+            f"{pm.radiance_precompute_seconds:.3f} s "
+            f"({pm.photon_map_bytes / 1e6:.1f} MB)")
+    cache = prepared.irradiance_cache
+    if cache is not None:
+        lines.append(
+            f"irradiance cache: {cache.records:,} records, "
+            f"{cache.gather_rays:,} gather rays in "
+            f"{cache.seconds:.3f} s")
+    r = prepared.radiosity
+    if r is not None:
+        lines.append(
+            f"radiosity: {r.patches:,} patches (size {r.patch_size:.4g}, "
+            f"{r.elements:,} elements, {r.clusters:,} clusters, meshed in "
+            f"{r.mesh_seconds:.3f} s, displayed in {r.field_seconds:.3f} s), "
+            f"{r.rays:,} rays in {r.solve_seconds:.3f} s "
+            f"({r.rays_per_second / 1e6:.2f} M rays/s), "
+            f"{r.shooting_iterations} shooting + "
+            f"{r.averaged_iterations} averaged iterations; power: "
+            f"emitted {r.emitted_power:.4g} W, absorbed "
+            f"{r.absorbed_power + r.absorbed_specular_power:.4g}"
+            f" W, escaped {r.escaped_power:.4g} W, unshot "
+            f"{r.unshot_power:.4g} W")
+    return lines
+
+
 class PhotonRenderEngine(bpy.types.RenderEngine):
     bl_idname = "PHOTON"
     bl_label = "Photon"
@@ -127,10 +165,10 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     @staticmethod
     def _texture_stats(stats):
         """'textures 1.234 s (3, 2 cached), ' or '' for a scene without image textures."""
-        if not stats.get("textures"):
+        if not stats.textures:
             return ""
-        return (f"textures {stats['texture_seconds']:.3f} s ({stats['textures']}, "
-                f"{stats['textures_reused']} cached), ")
+        return (f"textures {stats.texture_seconds:.3f} s ({stats.textures}, "
+                f"{stats.textures_reused} cached), ")
 
     def _render_scene(self, native, depsgraph, reporter, native_scene, sync_stats, t_start,
                       view=""):
@@ -189,51 +227,21 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         for message in session.warnings:
             reporter.warning(message)
         stats = session.stats
-        if stats["non_finite_samples"]:
-            reporter.warning(f"{stats['non_finite_samples']} samples were NaN or infinite "
+        if stats.non_finite_samples:
+            reporter.warning(f"{stats.non_finite_samples} samples were NaN or infinite "
                              f"and were dropped")
         elapsed = time.perf_counter() - t_start
         state = "cancelled" if cancelled else "rendered"
         reporter.info(
             f"{state} frame {scene.frame_current} {region_w}x{region_h} "
-            f"({settings.samples} spp, {stats['threads']} threads): sync {sync_stats.seconds:.3f} s "
+            f"({settings.samples} spp, {stats.threads} threads): sync {sync_stats.seconds:.3f} s "
             f"({sync_stats.triangles} triangles, {sync_stats.instances} instances, "
             f"{sync_stats.lights} lights), {self._texture_stats(stats)}"
-            f"BVH {stats['build_seconds']:.3f} s, "
-            f"render {stats['render_seconds']:.3f} s, total {elapsed:.3f} s"
+            f"BVH {stats.build_seconds:.3f} s, "
+            f"render {stats.render_seconds:.3f} s, total {elapsed:.3f} s"
             f"{self._layer_view_label(scene, view)}")
-        if "photons_emitted" in stats:
-            reporter.info(
-                f"photons: {int(stats['photons_emitted']):,} global and "
-                f"{int(stats['caustic_photons_emitted']):,} caustic emitted, "
-                f"{int(stats['global_photons_stored']):,} and "
-                f"{int(stats['caustic_photons_stored']):,} stored in "
-                f"{stats['photon_trace_seconds']:.3f} s; maps built in "
-                f"{stats['photon_map_build_seconds']:.3f} s, radiance precomputed in "
-                f"{stats['radiance_precompute_seconds']:.3f} s "
-                f"({stats['photon_map_bytes'] / 1e6:.1f} MB)")
-        if "irradiance_records" in stats:
-            reporter.info(
-                f"irradiance cache: {int(stats['irradiance_records']):,} records, "
-                f"{int(stats['irradiance_gather_rays']):,} gather rays in "
-                f"{stats['irradiance_cache_seconds']:.3f} s")
-        if "radiosity_elements" in stats:
-            reporter.info(
-                f"radiosity: {int(stats.get('radiosity_patches', stats['radiosity_elements'])):,} "
-                f"patches (size {stats['radiosity_patch_size']:.4g}, "
-                f"{int(stats['radiosity_elements']):,} elements, "
-                f"{int(stats.get('radiosity_clusters', 0)):,} clusters, meshed in "
-                f"{stats.get('radiosity_mesh_seconds', 0.0):.3f} s, displayed in "
-                f"{stats.get('radiosity_field_seconds', 0.0):.3f} s), "
-                f"{int(stats['radiosity_rays']):,} rays in "
-                f"{stats['radiosity_solve_seconds']:.3f} s "
-                f"({stats['radiosity_rays_per_second'] / 1e6:.2f} M rays/s), "
-                f"{int(stats['radiosity_shooting_iterations'])} shooting + "
-                f"{int(stats['radiosity_averaged_iterations'])} averaged iterations; power: "
-                f"emitted {stats['radiosity_emitted_power']:.4g} W, absorbed "
-                f"{stats['radiosity_absorbed_power'] + stats['radiosity_absorbed_specular_power']:.4g}"
-                f" W, escaped {stats['radiosity_escaped_power']:.4g} W, unshot "
-                f"{stats['radiosity_unshot_power']:.4g} W")
+        for line in prepare_report(stats.integrator):
+            reporter.info(line)
         # Free native memory now rather than when Python collects: -a renders many frames.
         del session, native_scene
         return not cancelled

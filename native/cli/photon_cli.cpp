@@ -186,7 +186,20 @@ int main(int argc, char** argv) {
   std::printf("rendered %dx%d, %d spp, %d threads: build %.3f s, prepare %.3f s, render %.3f s\n",
               settings.full_width, settings.full_height, settings.samples, stats.threads,
               stats.build_seconds, stats.prepare_seconds, stats.render_seconds);
-  for (const auto& [name, value] : stats.integrator) std::printf("  %s: %g\n", name.c_str(), value);
+  const PrepareStats& prepared = stats.integrator;
+  using ull = unsigned long long;
+  if (const auto& pm = prepared.photon_map)
+    std::printf("  photons: %llu global and %llu caustic emitted, %llu and %llu stored in %.3f s; "
+                "gather radius %g (caustic %g)\n",
+                ull(pm->photons_emitted), ull(pm->caustic_photons_emitted),
+                ull(pm->global_photons_stored), ull(pm->caustic_photons_stored),
+                pm->photon_trace_seconds, pm->global_gather_radius, pm->caustic_gather_radius);
+  if (const auto& cache = prepared.irradiance_cache)
+    std::printf("  irradiance cache: %llu records, %llu gather rays in %.3f s\n",
+                ull(cache->records), ull(cache->gather_rays), cache->seconds);
+  if (const auto& r = prepared.radiosity)
+    std::printf("  radiosity: %llu patches, %llu elements, %llu rays in %.3f s\n", ull(r->patches),
+                ull(r->elements), ull(r->rays), r->solve_seconds);
   std::string error;
   if (!write_rgba_image(out, session.image(), session.region_width(), session.region_height(),
                         &error)) {

@@ -11,6 +11,7 @@
 
 #include "photon/session/bake.h"
 #include "photon/session/lightmap.h"
+#include "stats_bindings.h"
 
 namespace py = pybind11;
 using namespace photon;
@@ -60,15 +61,7 @@ py::dict result_dict(const BakeResult& r) {
   d["status"] = status;
   d["warnings"] = r.warnings;
   d["cancelled"] = r.cancelled;
-  py::dict stats;
-  stats["build_seconds"] = r.build_seconds;
-  stats["prepare_seconds"] = r.prepare_seconds;
-  stats["bake_seconds"] = r.bake_seconds;
-  stats["locate_seconds"] = r.locate_seconds;
-  stats["share_seconds"] = r.share_seconds;
-  stats["threads"] = r.threads;
-  for (const auto& [name, value] : r.integrator_stats) stats[py::str(name)] = value;
-  d["stats"] = stats;
+  d["stats"] = photon_python::bake_stats(r);
   return d;
 }
 

@@ -11,50 +11,13 @@
 
 #include "photon/session/image_io.h"
 #include "photon/render/texture_convert.h"
+#include "photon/scene/material_params.h"
 
 namespace py = pybind11;
 using namespace photon;
 
 namespace photon_python {
 namespace {
-
-enum class Kind { kScalar, kColor };
-
-// A param's dict key and whether it is a colour; the ranges constants are clamped to live with
-// the core's sanitize_material (param_range), which every scene builder shares.
-struct ParamInfo {
-  const char* key;
-  Param param;
-  Kind kind;
-};
-
-constexpr ParamInfo kParams[] = {
-    {"color", Param::kColor, Kind::kColor},
-    {"roughness", Param::kRoughness, Kind::kScalar},
-    {"metallic", Param::kMetallic, Kind::kScalar},
-    {"specular", Param::kSpecular, Kind::kScalar},
-    {"specular_tint", Param::kSpecularTint, Kind::kScalar},
-    {"transmission", Param::kTransmission, Kind::kScalar},
-    {"ior", Param::kIor, Kind::kScalar},
-    {"emission", Param::kEmission, Kind::kColor},
-    {"strength", Param::kStrength, Kind::kScalar},
-    {"alpha", Param::kAlpha, Kind::kScalar},
-    {"clearcoat", Param::kClearcoat, Kind::kScalar},
-    {"clearcoat_roughness", Param::kClearcoatRoughness, Kind::kScalar},
-};
-static_assert(std::size(kParams) == static_cast<size_t>(Param::kCount), "every Param has a key");
-
-struct TypeName {
-  const char* name;
-  ClosureType type;
-};
-constexpr TypeName kTypes[] = {
-    {"DIFFUSE", ClosureType::kDiffuse},         {"PRINCIPLED", ClosureType::kPrincipled},
-    {"GLOSSY", ClosureType::kGlossy},           {"GLASS", ClosureType::kGlass},
-    {"REFRACTION", ClosureType::kRefraction},   {"TRANSPARENT", ClosureType::kTransparent},
-    {"TRANSLUCENT", ClosureType::kTranslucent}, {"EMISSION", ClosureType::kEmission},
-    {"HOLDOUT", ClosureType::kHoldout},
-};
 
 [[noreturn]] void fail(const std::string& message) {
   throw py::value_error(message);
@@ -81,7 +44,7 @@ bool is_number(const py::handle& h) {
 
 // value = float | [r, g, b] | {"texture": int, "channel": "COLOR" | "ALPHA"}, read as given:
 // sanitize_material clamps constants and drops texture indices with no texture afterwards.
-Input parse_input(const py::handle& value, Kind kind, const Input& fallback,
+Input parse_input(const py::handle& value, ParamKind kind, const Input& fallback,
                   const std::string& what) {
   if (is_number(value)) {
     // A number for a colour is a grey (Blender's float -> colour conversion).
@@ -106,7 +69,7 @@ Input parse_input(const py::handle& value, Kind kind, const Input& fallback,
     return in;
   }
   if (py::isinstance<py::sequence>(value) && !py::isinstance<py::str>(value)) {
-    if (kind == Kind::kScalar) fail(what + " expects a number or a texture, not a colour");
+    if (kind == ParamKind::kScalar) fail(what + " expects a number or a texture, not a colour");
     auto seq = py::reinterpret_borrow<py::sequence>(value);
     if (seq.size() != 3) fail(what + ": a colour needs 3 values");
     for (auto item : seq)
@@ -122,22 +85,21 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   check_keys(d, {"type", "sharp", "params", "normal_map", "weight"}, what);
   if (!d.contains("type")) fail(what + " has no 'type'");
   const std::string type = py::str(d["type"]);
-  const auto* found = std::find_if(std::begin(kTypes), std::end(kTypes),
-                                   [&](const TypeName& t) { return type == t.name; });
-  if (found == std::end(kTypes)) fail(what + ": unknown closure type '" + type + "'");
+  const ClosureSpec* found = find_closure(type.c_str());
+  if (!found) fail(what + ": unknown closure type '" + type + "'");
   Closure closure;
   closure.type = found->type;
+  closure.params = default_params(closure.type);  // inputs the dict leaves out
   if (d.contains("sharp")) closure.sharp = d["sharp"].cast<bool>();
 
   if (d.contains("params")) {
     if (!py::isinstance<py::dict>(d["params"])) fail(what + ": 'params' must be a dict");
     for (auto p : py::reinterpret_borrow<py::dict>(d["params"])) {
       const std::string key = py::str(p.first);
-      const auto* info = std::find_if(std::begin(kParams), std::end(kParams),
-                                      [&](const ParamInfo& i) { return key == i.key; });
-      if (info == std::end(kParams)) fail(what + ": unknown param '" + key + "'");
-      closure[info->param] = parse_input(p.second, info->kind, closure[info->param],
-                                         what + " param '" + key + "'");
+      const ParamSpec* info = find_param(key.c_str());
+      if (!info) fail(what + ": unknown param '" + key + "'");
+      closure[info->param] =
+          parse_input(p.second, info->kind, closure[info->param], what + " param '" + key + "'");
     }
   }
 
@@ -159,7 +121,8 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
       check_keys(f, {"fac", "complement"}, what + " weight");
       if (!f.contains("fac")) fail(what + ": a weight factor needs 'fac'");
       WeightFactor factor;
-      factor.fac = parse_input(f["fac"], Kind::kScalar, Input::constant(0.5f), what + " weight fac");
+      factor.fac = parse_input(f["fac"], ParamKind::kScalar,
+                               Input::constant(kMixFactor.default_value), what + " weight fac");
       if (f.contains("complement")) factor.complement = f["complement"].cast<bool>();
       closure.weight.push_back(factor);
     }
@@ -167,14 +130,14 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   return closure;
 }
 
-py::object describe_input(const Input& in, Kind kind) {
+py::object describe_input(const Input& in, ParamKind kind) {
   if (in.texture >= 0) {
     py::dict d;
     d["texture"] = in.texture;
     d["channel"] = in.channel == TextureChannel::kAlpha ? "ALPHA" : "COLOR";
     return std::move(d);
   }
-  if (kind == Kind::kScalar) return py::float_(in.value.x);
+  if (kind == ParamKind::kScalar) return py::float_(in.value.x);
   py::list rgb;
   for (float c : {in.value.x, in.value.y, in.value.z}) rgb.append(c);
   return std::move(rgb);
@@ -224,12 +187,10 @@ py::dict describe_material(const Material& material) {
   py::list closures;
   for (const Closure& c : material.closures) {
     py::dict d;
-    d["type"] = std::find_if(std::begin(kTypes), std::end(kTypes), [&](const TypeName& t) {
-                  return t.type == c.type;
-                })->name;
+    d["type"] = closure_spec(c.type).name;
     d["sharp"] = c.sharp;
     py::dict params;
-    for (const ParamInfo& info : kParams)
+    for (const ParamSpec& info : closure_spec(ClosureType::kPrincipled).params)
       params[info.key] = describe_input(c[info.param], info.kind);
     d["params"] = params;
     if (c.normal.texture >= 0) {
@@ -241,7 +202,7 @@ py::dict describe_material(const Material& material) {
     py::list weight;
     for (const WeightFactor& f : c.weight) {
       py::dict w;
-      w["fac"] = describe_input(f.fac, Kind::kScalar);
+      w["fac"] = describe_input(f.fac, ParamKind::kScalar);
       w["complement"] = f.complement;
       weight.append(w);
     }
@@ -254,7 +215,53 @@ py::dict describe_material(const Material& material) {
   return out;
 }
 
+namespace {
+
+py::dict scalar_spec(float default_value, ParamRange range) {
+  py::dict d;
+  d["default"] = default_value;
+  d["min"] = range.lo;
+  d["max"] = range.hi;
+  return d;
+}
+
+// The table of material_params.h as plain Python data (the add-on converts node trees with it).
+py::list material_parameters() {
+  py::list closures;
+  for (const ClosureSpec& c : closure_specs()) {
+    py::list params;
+    for (const ParamSpec& p : c.params) {
+      const bool is_color = p.kind == ParamKind::kColor;
+      py::dict d = scalar_spec(p.default_value, p.range);
+      if (is_color)
+        d["default"] = py::make_tuple(p.default_value, p.default_value, p.default_value);
+      d["key"] = p.key;
+      py::list sockets;
+      for (const char* socket : p.sockets)
+        if (socket) sockets.append(socket);
+      d["sockets"] = py::tuple(sockets);
+      d["kind"] = is_color ? "color" : "scalar";
+      params.append(d);
+    }
+    py::dict d;
+    d["closure"] = c.name;
+    d["node"] = c.node;
+    d["params"] = params;
+    closures.append(d);
+  }
+  return closures;
+}
+
+}  // namespace
+
 void register_material_functions(py::module_& m) {
+  m.def("material_parameters", &material_parameters,
+        "Every closure type as {'closure', 'node' (bpy node type), 'params'}: each param "
+        "{'key', 'sockets' (Blender input names), 'kind' ('color' | 'scalar'), 'default', "
+        "'min', 'max'}, the ranges constants and texture values are clamped to.");
+  m.attr("NORMAL_MAP_STRENGTH") =
+      scalar_spec(kNormalMapStrength.default_value, kNormalMapStrength.range);
+  m.attr("MIX_FACTOR") = scalar_spec(kMixFactor.default_value, kMixFactor.range);
   py::class_<TexturePixels, std::shared_ptr<TexturePixels>>(
       m, "TexturePixels",
       "Float RGBA pixels of an image that exists only in memory (a generated image), bottom "

@@ -14,6 +14,7 @@
 #include "photon/session/render_session.h"
 #include "photon/scene/scene.h"
 #include "photon/render/texture_convert.h"
+#include "stats_bindings.h"
 
 namespace py = pybind11;
 using namespace photon;
@@ -49,25 +50,6 @@ Transform transform_from(const FloatArray& m) {
 Vec3 vec3_from(const std::vector<float>& v, const char* what) {
   if (v.size() < 3) throw std::invalid_argument(std::string(what) + " needs 3 values");
   return {v[0], v[1], v[2]};
-}
-
-py::dict stats_dict(const RenderStats& s) {
-  py::dict d;
-  d["build_seconds"] = s.build_seconds;
-  d["texture_seconds"] = s.texture_seconds;
-  d["textures"] = s.textures;
-  d["textures_reused"] = s.textures_reused;
-  d["prepare_seconds"] = s.prepare_seconds;
-  d["render_seconds"] = s.render_seconds;
-  d["camera_samples"] = s.camera_samples;
-  d["non_finite_samples"] = s.non_finite_samples;
-  d["unique_triangles"] = s.unique_triangles;
-  d["instances"] = s.instances;
-  d["bvh_count"] = s.bvh_count;
-  d["lights"] = s.lights;
-  d["threads"] = s.threads;
-  for (const auto& [name, value] : s.integrator) d[py::str(name)] = value;
-  return d;
 }
 
 // Drops invalid triangles (without the GIL) and appends the mesh; returns what happened.
@@ -439,12 +421,13 @@ PYBIND11_MODULE(_photon, m) {
       .def_property_readonly("progress", &RenderSession::progress)
       .def_property_readonly("status", &RenderSession::status)
       .def_property_readonly("warnings", &RenderSession::warnings)
-      .def_property_readonly("stats", [](const RenderSession& s) { return stats_dict(s.stats()); })
+      .def_property_readonly("stats", &RenderSession::stats)
       .def("image", [](const RenderSession& s) {
         return to_numpy(s.image(), s.region_height(), s.region_width());
       });
 
   photon_python::register_material_functions(m);
+  photon_python::register_stats_classes(m);
 
   // Largest lamp power (W, a sun's W/m^2) and world radiance rendered; larger ones are clamped.
   m.attr("MAX_EMISSION") = emitter_range().hi;

@@ -52,7 +52,7 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
                 f"Bake cancelled after {time.perf_counter() - self._started:.2f} s; no lighting "
                 f"was written (meshes and images keep their previous values)")
             return {'CANCELLED'}
-        stats = result["stats"]
+        stats = result["stats"]  # _photon.BakeStats
         written = [t.name for t in job.targets]
         elapsed = time.perf_counter() - self._started
         written_to = []
@@ -64,13 +64,13 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
         self._reporter.info(
             f"baked {job.point_count:,} points into {' and '.join(written_to)} on "
             f"{len(written)} object(s) in {elapsed:.2f} s ({job.point_count / max(elapsed, 1e-9):,.0f}"
-            f" points/s; prepare {stats['prepare_seconds']:.2f} s, locate "
-            f"{stats['locate_seconds']:.2f} s, shared work {stats['share_seconds']:.2f} s, "
-            f"shading {stats['bake_seconds']:.2f} s, {stats['threads']} threads)")
-        records = stats.get("bake_irradiance_records")
-        if records is not None:
-            print(f"Photon: bake: irradiance cache of {records:,.0f} records in "
-                  f"{stats['bake_irradiance_seconds']:.2f} s", flush=True)
+            f" points/s; prepare {stats.prepare_seconds:.2f} s, locate "
+            f"{stats.locate_seconds:.2f} s, shared work {stats.share_seconds:.2f} s, "
+            f"shading {stats.bake_seconds:.2f} s, {stats.threads} threads)")
+        cache = stats.integrator.bake_irradiance_cache
+        if cache is not None:
+            print(f"Photon: bake: irradiance cache of {cache.records:,.0f} records in "
+                  f"{cache.seconds:.2f} s", flush=True)
         return {'FINISHED'}
 
     def execute(self, context):

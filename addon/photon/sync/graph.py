@@ -15,7 +15,7 @@ entries, since the native weight cannot express their sum.
 """
 
 from . import nodes
-from .inputs import Param, read_input
+from .inputs import mix_factor_param, read_input
 
 # Closures per material, as Cycles' MAX_CLOSURE default (kernel/types.h).
 MAX_CLOSURES = 64
@@ -25,7 +25,6 @@ MAX_ENTRIES_PER_NODE = 4 * MAX_CLOSURES
 # A guard against a node group that contains itself (Blender refuses to make one).
 MAX_GROUP_NESTING = 64
 
-FAC = Param("fac", 'scalar', 0.0, 1.0, 0.5)
 MAX_COPIES = 1e15
 _SNAP = 1e-9  # sums of mix weights within this of a whole number are that number
 
@@ -63,7 +62,7 @@ class _Compiler:
         if node.type != 'MIX_SHADER':
             return None
         # Mix Shader: (1 - fac) * first + fac * second. Constant factors of 0 or 1 prune.
-        fac = read_input(node.inputs["Fac"], vertex.stack, FAC, self.ctx)
+        fac = read_input(node.inputs["Fac"], vertex.stack, mix_factor_param(), self.ctx)
         first, second = node.inputs[1], node.inputs[2]
         if isinstance(fac, float):
             return [(s, w, None) for s, w in ((first, 1.0 - fac), (second, fac)) if w > 0.0]

@@ -4,6 +4,7 @@ texture lookup {"texture": index, "channel": "COLOR" | "ALPHA"}.
 Whatever cannot be read (unsupported nodes, missing images, NaN values) is reported once and
 falls back to its nearest meaning, never to silent black or magenta."""
 
+import functools
 import math
 
 from . import nodes
@@ -83,6 +84,47 @@ class Param:
 
     def __init__(self, name, kind, lo, hi, default):
         self.name, self.kind, self.lo, self.hi, self.default = name, kind, lo, hi, default
+
+
+def _native():
+    from .. import _photon, NATIVE_IMPORT_ERROR
+    if _photon is None:
+        raise RuntimeError(f"the native module _photon failed to load: {NATIVE_IMPORT_ERROR}")
+    return _photon
+
+
+def _scalar_param(name, spec):
+    return Param(name, 'scalar', spec["min"], spec["max"], spec["default"])
+
+
+@functools.lru_cache(maxsize=None)
+def closure_table():
+    """{bpy node type: (closure type, [(socket names, Param), ...])}: the core's one table of
+    material inputs (native/src/photon/scene/material_params.cpp), read once."""
+    table = {}
+    for closure in _native().material_parameters():
+        params = []
+        for p in closure["params"]:
+            default = list(p["default"]) if p["kind"] == 'color' else p["default"]
+            params.append((tuple(p["sockets"]),
+                           Param(p["key"], p["kind"], p["min"], p["max"], default)))
+        table[closure["node"]] = (closure["closure"], params)
+    return table
+
+
+def closure_param(node_type, key):
+    """The Param `key` of the closure converted from nodes of `node_type`."""
+    return next(param for _, param in closure_table()[node_type][1] if param.name == key)
+
+
+@functools.lru_cache(maxsize=None)
+def mix_factor_param():
+    return _scalar_param("fac", _native().MIX_FACTOR)
+
+
+@functools.lru_cache(maxsize=None)
+def normal_map_strength_param():
+    return _scalar_param("strength", _native().NORMAL_MAP_STRENGTH)
 
 
 def read_input(socket, stack, param, ctx):
@@ -203,12 +245,9 @@ def read_normal_map(socket, stack, ctx):
     index = ctx.textures.texture(color.node, ctx.where(color.node, color.stack))
     if index is None:
         return None
-    strength = read_input(node.inputs["Strength"], src.stack, STRENGTH_PARAM, ctx)
+    strength = read_input(node.inputs["Strength"], src.stack, normal_map_strength_param(), ctx)
     if not isinstance(strength, float):
         ctx.warn_once(("nstrength", where), f"{where}: a texture driving Strength is not "
                                             f"supported; using 1")
         strength = 1.0
     return {"texture": index, "strength": strength}
-
-
-STRENGTH_PARAM = Param("strength", 'scalar', 0.0, 100.0, 1.0)

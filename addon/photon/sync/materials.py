@@ -13,52 +13,15 @@ fall back to their nearest meaning (a shader: diffuse of its colour), never to s
 import math
 
 from . import graph, nodes
-from .inputs import (DEFAULT_COLOR, MaterialContext, Param, clamp_constant, read_input,
-                          read_normal_map)
+from .inputs import (DEFAULT_COLOR, MaterialContext, clamp_constant, closure_param,
+                     closure_table, read_input, read_normal_map)
 from .textures import TextureTable
 
-INF = 1e6       # bound for "absurd" emission values
 MAX_BSDF_LOBES = 8  # Bsdf::kMaxLobes (native/src/photon/render/bsdf.h): lobes kept per point
 
-# Native params by node input name(s) (3.4 names first, 4.x names after).
-COLOR = Param("color", 'color', 0.0, 1.0, [0.8, 0.8, 0.8])
-WHITE = Param("color", 'color', 0.0, 1.0, [1.0, 1.0, 1.0])
-ROUGHNESS = Param("roughness", 'scalar', 0.0, 1.0, 0.5)
-IOR = Param("ior", 'scalar', 1e-3, 100.0, 1.45)
-PRINCIPLED_PARAMS = [
-    (("Base Color",), COLOR),
-    (("Metallic",), Param("metallic", 'scalar', 0.0, 1.0, 0.0)),
-    (("Roughness",), ROUGHNESS),
-    (("Specular", "Specular IOR Level"), Param("specular", 'scalar', 0.0, 10.0, 0.5)),
-    (("Specular Tint",), Param("specular_tint", 'scalar', 0.0, 1.0, 0.0)),
-    (("Transmission", "Transmission Weight"), Param("transmission", 'scalar', 0.0, 1.0, 0.0)),
-    (("IOR",), IOR),
-    (("Emission", "Emission Color"), Param("emission", 'color', 0.0, INF, [0.0, 0.0, 0.0])),
-    (("Emission Strength",), Param("strength", 'scalar', 0.0, INF, 1.0)),
-    (("Alpha",), Param("alpha", 'scalar', 0.0, 1.0, 1.0)),
-    (("Clearcoat", "Coat Weight"), Param("clearcoat", 'scalar', 0.0, 1.0, 0.0)),
-    (("Clearcoat Roughness", "Coat Roughness"),
-     Param("clearcoat_roughness", 'scalar', 0.0, 1.0, 0.03)),
-]
-# Closure type, input params and whether a Normal input applies, for the other BSDF nodes.
-SIMPLE_NODES = {
-    'BSDF_DIFFUSE': ("DIFFUSE", [(("Color",), COLOR),
-                                 (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0, 0.0))]),
-    'BSDF_GLOSSY': ("GLOSSY", [(("Color",), COLOR), (("Roughness",), ROUGHNESS)]),
-    'BSDF_GLASS': ("GLASS", [(("Color",), WHITE),
-                             (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0, 0.0)),
-                             (("IOR",), IOR)]),
-    'BSDF_REFRACTION': ("REFRACTION", [(("Color",), WHITE),
-                                       (("Roughness",), Param("roughness", 'scalar', 0.0, 1.0,
-                                                              0.0)),
-                                       (("IOR",), IOR)]),
-    'BSDF_TRANSPARENT': ("TRANSPARENT", [(("Color",), WHITE)]),
-    'BSDF_TRANSLUCENT': ("TRANSLUCENT", [(("Color",), COLOR)]),
-    'EMISSION': ("EMISSION", [(("Color",), Param("color", 'color', 0.0, INF, [1.0, 1.0, 1.0])),
-                              (("Strength",), Param("strength", 'scalar', 0.0, INF, 1.0))]),
-    # Cuts a hole in the image where camera rays meet it (native/src/photon/render/matte.h).
-    'HOLDOUT': ("HOLDOUT", []),
-}
+# Which nodes become which closures, and each input's socket names, range and default, come
+# from the core's one table (inputs.closure_table(), _photon.material_parameters()).
+
 # Microfacet distributions rendered as GGX without comment; others warn.
 GGX_LIKE = {'GGX', 'MULTI_GGX'}
 # Principled inputs Photon does not render: (input names, Blender default, whether the input
@@ -114,14 +77,15 @@ def _read_params(node, stack, table, ctx):
 def _bsdf_closure(node, stack, ctx):
     """The closure of a supported BSDF / emission node, or None if the node is unsupported."""
     kind = node.type
+    found = closure_table().get(kind)
+    if found is None:
+        return None
+    closure_type, table = found
+    closure = {"type": closure_type, "sharp": False,
+               "params": _read_params(node, stack, table, ctx)}
     if kind == 'BSDF_PRINCIPLED':
-        closure = {"type": "PRINCIPLED", "sharp": False,
-                   "params": _read_params(node, stack, PRINCIPLED_PARAMS, ctx)}
         _note_ignored_principled(node, stack, ctx)
-    elif kind in SIMPLE_NODES:
-        closure_type, table = SIMPLE_NODES[kind]
-        closure = {"type": closure_type, "sharp": False,
-                   "params": _read_params(node, stack, table, ctx)}
+    else:
         distribution = getattr(node, "distribution", None)
         if distribution == 'SHARP':
             closure["sharp"] = True
@@ -130,8 +94,6 @@ def _bsdf_closure(node, stack, ctx):
             ctx.warn_once(("distribution", where),
                           f"{where}: the {distribution.replace('_', ' ').title()} "
                           f"distribution is rendered as GGX")
-    else:
-        return None
     normal = node.inputs.get("Normal")
     if normal is not None:
         normal_map = read_normal_map(normal, stack, ctx)
@@ -146,8 +108,8 @@ def _fallback_closure(node, stack, ctx):
     ctx.warn_once(("node", path), f"Material '{ctx.name}': node '{path}' ({node.bl_idname}) "
                                   f"is not supported yet; rendering it as diffuse")
     socket = nodes.find_input(node, "Color", "Base Color")
-    color = (read_input(socket, stack, COLOR, ctx) if socket is not None and
-             socket.type == 'RGBA' else list(DEFAULT_COLOR))
+    color = (read_input(socket, stack, closure_param('BSDF_DIFFUSE', "color"), ctx)
+             if socket is not None and socket.type == 'RGBA' else list(DEFAULT_COLOR))
     return {"type": "DIFFUSE", "sharp": False, "params": {"color": color}}
 
 
@@ -198,7 +160,8 @@ def convert_material(material, reporter, textures):
 
 
 def read_constant_color(value, ctx):
-    return clamp_constant([value[0], value[1], value[2]], 'color', 0.0, 1.0,
+    color = closure_param('BSDF_DIFFUSE', "color")
+    return clamp_constant([value[0], value[1], value[2]], color.kind, color.lo, color.hi,
                           list(DEFAULT_COLOR), ctx, "the viewport colour")
 
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "photon/integrators/prepare_stats.h"
 #include "photon/render/accel.h"
 #include "photon/lights/lights.h"
 #include "photon/base/math.h"
@@ -99,8 +100,8 @@ class Integrator {
     (void)context;
     (void)control;
   }
-  // Statistics of the preparation, as "name: value" lines for the UI and logs.
-  virtual std::vector<std::pair<std::string, double>> prepare_stats() const { return {}; }
+  // Statistics of the preparation (and of prepare_bake), for the UI and logs.
+  virtual PrepareStats prepare_stats() const { return {}; }
   // Radiance arriving along a camera ray whose first hit is already known (the renderer traces
   // camera rays in coherent batches). Must be thread-safe and deterministic in `sampler`.
   virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,

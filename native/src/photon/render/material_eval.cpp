@@ -1,5 +1,7 @@
 #include "photon/render/material_eval.h"
 
+#include "photon/scene/material_params.h"
+
 namespace photon {
 namespace {
 
@@ -198,35 +200,7 @@ void add_closure(const Closure& c, float w, const InputReader& reader, ShadingPo
 }  // namespace
 
 const char* input_label(ClosureType type, Param p) {
-  const bool principled = type == ClosureType::kPrincipled;
-  switch (p) {
-    case Param::kColor:
-      return principled ? "Base Color" : "Color";
-    case Param::kRoughness:
-      return "Roughness";
-    case Param::kMetallic:
-      return "Metallic";
-    case Param::kSpecular:
-      return "Specular";
-    case Param::kSpecularTint:
-      return "Specular Tint";
-    case Param::kTransmission:
-      return "Transmission";
-    case Param::kIor:
-      return "IOR";
-    case Param::kEmission:
-      return "Emission";
-    case Param::kStrength:
-      return principled ? "Emission Strength" : "Strength";
-    case Param::kAlpha:
-      return "Alpha";
-    case Param::kClearcoat:
-      return "Clearcoat";
-    case Param::kClearcoatRoughness:
-      return "Clearcoat Roughness";
-    default:
-      return "input";
-  }
+  return param_spec(type, p).sockets[0];
 }
 
 ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const Accel& accel,

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "photon/scene/material_params.h"
+
 namespace photon {
 namespace {
 
@@ -20,8 +22,6 @@ bool weight_is_zero(const Closure& c) {
   return false;
 }
 
-constexpr float kHuge = 1e6f;
-
 float clamp_or(float v, const ParamRange& r, float fallback) {
   return std::isfinite(v) ? std::clamp(v, r.lo, r.hi) : fallback;
 }
@@ -38,56 +38,25 @@ void sanitize_input(Input* in, const ParamRange& r, const Input& fallback, size_
 
 }  // namespace
 
-ParamRange param_range(ClosureType type, Param p) {
-  switch (p) {
-    case Param::kColor:
-      return type == ClosureType::kEmission ? ParamRange{0.0f, kHuge} : ParamRange{0.0f, 1.0f};
-    case Param::kEmission:
-    case Param::kStrength:
-      return {0.0f, kHuge};
-    case Param::kSpecular:
-      return {0.0f, 10.0f};
-    case Param::kIor:
-      return {1e-3f, 100.0f};
-    default:
-      return {0.0f, 1.0f};
-  }
-}
-
-ParamRange emitter_range() {
-  return {0.0f, kHuge * kHuge};
-}
-
 void sanitize_material(Material* material, size_t texture_count) {
-  static const auto kDefaults = Closure::default_params();
   for (Closure& c : material->closures) {
-    for (size_t i = 0; i < kDefaults.size(); ++i)
-      sanitize_input(&c.params[i], param_range(c.type, static_cast<Param>(i)), kDefaults[i],
+    // Ranges and fallbacks from the one table (material_params.cpp): the node's own defaults.
+    const auto defaults = default_params(c.type);
+    for (size_t i = 0; i < defaults.size(); ++i)
+      sanitize_input(&c.params[i], param_range(c.type, static_cast<Param>(i)), defaults[i],
                      texture_count);
     if (c.normal.texture < 0 || static_cast<size_t>(c.normal.texture) >= texture_count)
       c.normal = NormalMap{};
-    c.normal.strength = clamp_or(c.normal.strength, {0.0f, 100.0f}, 1.0f);
+    c.normal.strength =
+        clamp_or(c.normal.strength, kNormalMapStrength.range, kNormalMapStrength.default_value);
     for (WeightFactor& f : c.weight)
-      sanitize_input(&f.fac, {0.0f, 1.0f}, Input::constant(0.5f), texture_count);
+      sanitize_input(&f.fac, kMixFactor.range, Input::constant(kMixFactor.default_value),
+                     texture_count);
   }
 }
 
 std::array<Input, static_cast<size_t>(Param::kCount)> Closure::default_params() {
-  std::array<Input, static_cast<size_t>(Param::kCount)> p;
-  auto set = [&p](Param k, const Vec3& v) { p[static_cast<size_t>(k)] = Input::constant(v); };
-  set(Param::kColor, Vec3(0.8f));
-  set(Param::kRoughness, Vec3(0.5f));
-  set(Param::kMetallic, Vec3(0.0f));
-  set(Param::kSpecular, Vec3(0.5f));
-  set(Param::kSpecularTint, Vec3(0.0f));
-  set(Param::kTransmission, Vec3(0.0f));
-  set(Param::kIor, Vec3(1.45f));
-  set(Param::kEmission, Vec3(0.0f));
-  set(Param::kStrength, Vec3(1.0f));
-  set(Param::kAlpha, Vec3(1.0f));
-  set(Param::kClearcoat, Vec3(0.0f));
-  set(Param::kClearcoatRoughness, Vec3(0.03f));
-  return p;
+  return photon::default_params(ClosureType::kPrincipled);
 }
 
 Material Material::diffuse(const Vec3& color, const std::string& name) {

@@ -121,7 +121,8 @@ struct Material {
 
 // The range a closure input may take: Blender's socket ranges, except that emission colours and
 // strengths may exceed 1 (up to a finite bound) and IOR stays positive. Constants are clamped to
-// it when the material is built (sanitize_material), textured values after each lookup.
+// it when the material is built (sanitize_material), textured values after each lookup. Read
+// from the one table of material inputs (material_params.h).
 struct ParamRange {
   float lo, hi;
 };
@@ -137,7 +138,7 @@ ParamRange emitter_range();
 
 // Makes a material safe to render, whoever built it (the add-on through the Python binding, the
 // CLI, tests): constants outside their Param's range are clamped and non-finite ones replaced by
-// Blender's default; texture indices outside [0, texture_count) become the default constant (a
+// Blender's default for the closure's node; texture indices outside [0, texture_count) become the default constant (a
 // normal map with such an index is dropped); normal-map strength is clamped to [0, 100] and mix
 // factors to [0, 1] (0.5 when not finite).
 void sanitize_material(Material* material, size_t texture_count);

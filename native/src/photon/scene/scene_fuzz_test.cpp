@@ -390,8 +390,13 @@ void run_case(uint64_t seed) {
     if (verbose()) {
       std::fprintf(stderr, "  %s %.2f s:", kIntegratorNames[static_cast<int>(type)],
                    std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-      for (const auto& [name, value] : session.stats().integrator)
-        std::fprintf(stderr, " %s=%g", name.c_str(), value);
+      const PrepareStats& prepared = session.stats().integrator;
+      if (prepared.photon_map)
+        std::fprintf(stderr, " photons_stored=%llu",
+                     static_cast<unsigned long long>(prepared.photon_map->global_photons_stored));
+      if (prepared.radiosity)
+        std::fprintf(stderr, " radiosity_patches=%llu",
+                     static_cast<unsigned long long>(prepared.radiosity->patches));
       std::fprintf(stderr, "\n");
     }
   }

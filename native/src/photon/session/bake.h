@@ -57,7 +57,7 @@ struct BakeResult {
   double locate_seconds = 0.0;  // resolving points and choosing their side
   double share_seconds = 0.0;   // Integrator::prepare_bake (irradiance cache among the points)
   int threads = 0;
-  std::vector<std::pair<std::string, double>> integrator_stats;
+  PrepareStats integrator_stats;
 };
 
 // The bake itself, synchronous. `settings.samples` is the number of samples per point (direct

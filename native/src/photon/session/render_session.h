@@ -51,7 +51,7 @@ struct RenderStats {
   size_t bvh_count = 0;
   size_t lights = 0;
   int threads = 0;
-  std::vector<std::pair<std::string, double>> integrator;  // the integrator's prepare_stats()
+  PrepareStats integrator;  // the integrator's prepare_stats()
 };
 
 class RenderSession {

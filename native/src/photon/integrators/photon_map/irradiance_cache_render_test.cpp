@@ -35,8 +35,8 @@ Output render(const RenderSettings& s) {
   session.start();
   session.wait();
   Output out{session.image()};
-  for (const auto& [name, value] : session.stats().integrator)
-    if (name == "irradiance_records") out.records = value;
+  if (const auto& cache = session.stats().integrator.irradiance_cache)
+    out.records = static_cast<double>(cache->records);
   return out;
 }
 

@@ -95,7 +95,7 @@ std::string thousands(uint64_t n) {
 // own random streams, discarded) measures the photons stored per photon emitted.
 void fit_photon_counts_to_memory(const RenderContext& context, const PhotonSources& sources,
                                  const PrepareControl& control, PhotonTraceSettings* trace,
-                                 std::vector<std::pair<std::string, double>>* stats) {
+                                 std::optional<PhotonMemoryStats>* stats) {
   const RenderSettings& s = *context.settings;
   if (trace->time_budget > 0.0) return;  // counts unknown up front
   const uint64_t global = sources.has_global() ? trace->global_photons : 0;
@@ -129,8 +129,7 @@ void fit_photon_counts_to_memory(const RenderContext& context, const PhotonSourc
   const double available = static_cast<double>(available_memory_bytes());
   const double budget = s.memory_limit * available;
   const PhotonMemoryPlan plan = plan_photon_memory(request, budget);
-  stats->push_back({"memory_estimate_bytes", plan.planned_bytes});
-  stats->push_back({"memory_available_bytes", available});
+  *stats = PhotonMemoryStats{plan.planned_bytes, available};
   if (plan.scale >= 1.0) return;
   trace->global_photons = plan.global_photons;
   trace->caustic_photons = plan.caustic_photons;
@@ -171,8 +170,7 @@ std::string raise_to_photon_density(const PhotonMap& map, size_t k, uint8_t flag
 
 void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
   const RenderSettings& s = *context.settings;
-  stats_.clear();
-  irradiance_stats_.clear();
+  stats_ = PrepareStats{};
   irradiance_ = IrradianceCache();
   const PhotonSources sources(context);
   const float scene_radius = sources.scene_radius();
@@ -184,8 +182,7 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
   trace.caustic_photons = s.caustic_photons;
   trace.time_budget = s.photon_time;
   trace.seed = s.seed;
-  std::vector<std::pair<std::string, double>> memory_stats;
-  fit_photon_counts_to_memory(context, sources, control, &trace, &memory_stats);
+  fit_photon_counts_to_memory(context, sources, control, &trace, &stats_.photon_memory);
   if (control.cancelled()) return;
   PhotonTraceResult traced = trace_photons(context, sources, trace, control);
   if (control.cancelled()) return;
@@ -255,29 +252,24 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
     if (control.cancelled()) return;
   }
 
-  stats_ = {
-      {"photons_emitted", static_cast<double>(traced.global_emitted)},
-      {"caustic_photons_emitted", static_cast<double>(traced.caustic_emitted)},
-      {"global_photons_stored", static_cast<double>(global_stored)},
-      {"caustic_photons_stored", static_cast<double>(caustic_stored)},
-      {"radiance_points", static_cast<double>(radiance_.size())},
-      {"photon_rays", static_cast<double>(traced.rays)},
-      {"photon_trace_seconds", traced.seconds},
-      {"photon_map_build_seconds", build_seconds},
-      {"radiance_precompute_seconds", precompute_seconds},
-      {"photon_map_bytes", static_cast<double>(global_.memory_bytes() + caustic_.memory_bytes() +
-                                               radiance_.memory_bytes())},
-      {"radiance_cell_size", radiance_.cell_size()},
-      {"global_gather_radius", global_radius_},
-      {"caustic_gather_radius", caustic_radius_},
-  };
-  stats_.insert(stats_.end(), irradiance_stats_.begin(), irradiance_stats_.end());
-  stats_.insert(stats_.end(), memory_stats.begin(), memory_stats.end());
+  PhotonMapStats& pm = stats_.photon_map.emplace();
+  pm.photons_emitted = traced.global_emitted;
+  pm.caustic_photons_emitted = traced.caustic_emitted;
+  pm.global_photons_stored = global_stored;
+  pm.caustic_photons_stored = caustic_stored;
+  pm.radiance_points = radiance_.size();
+  pm.photon_rays = traced.rays;
+  pm.photon_trace_seconds = traced.seconds;
+  pm.photon_map_build_seconds = build_seconds;
+  pm.radiance_precompute_seconds = precompute_seconds;
+  pm.photon_map_bytes = global_.memory_bytes() + caustic_.memory_bytes() + radiance_.memory_bytes();
+  pm.radiance_cell_size = radiance_.cell_size();
+  pm.global_gather_radius = global_radius_;
+  pm.caustic_gather_radius = caustic_radius_;
 }
 
 void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
                                            const PrepareControl& control) {
-  irradiance_stats_.clear();
   IrradianceCacheSettings settings;
   settings.rays = std::clamp(kRecordRaysPerGatherRay * context.settings->final_gather_rays,
                              kMinRecordRays, kMaxRecordRays);
@@ -288,16 +280,12 @@ void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
     return final_gather(context, si, bsdf, rays, sampler, harmonic, control.cancel);
   };
   irradiance_ = build_irradiance_cache(context, settings, gather, control, &build);
-  irradiance_stats_ = {
-      {"irradiance_records", static_cast<double>(irradiance_.size())},
-      {"irradiance_candidates", static_cast<double>(build.candidates)},
-      {"irradiance_gather_rays", static_cast<double>(build.gather_rays)},
-      {"irradiance_cache_seconds", build.seconds},
-      {"irradiance_cache_bytes", static_cast<double>(irradiance_.memory_bytes())},
-  };
+  stats_.irradiance_cache =
+      IrradianceCacheStats{irradiance_.size(), build.candidates, build.gather_rays,
+                           irradiance_.memory_bytes(), build.seconds};
 }
 
-std::vector<std::pair<std::string, double>> PhotonMapIntegrator::prepare_stats() const {
+PrepareStats PhotonMapIntegrator::prepare_stats() const {
   return stats_;
 }
 
@@ -533,9 +521,10 @@ void PhotonMapIntegrator::prepare_bake(const RenderContext& context, const BakeP
   };
   PointIrradianceCacheStats build;
   bake_irradiance_ = build_point_irradiance_cache(points, gather, settings, control, &build);
-  stats_.push_back({"bake_irradiance_records", static_cast<double>(bake_irradiance_.size())});
-  stats_.push_back({"bake_irradiance_candidates", static_cast<double>(build.candidates)});
-  stats_.push_back({"bake_irradiance_seconds", build.seconds});
+  IrradianceCacheStats& cache = stats_.bake_irradiance_cache.emplace();
+  cache.records = bake_irradiance_.size();
+  cache.candidates = build.candidates;
+  cache.seconds = build.seconds;
 }
 
 }  // namespace photon

@@ -24,7 +24,7 @@ class PhotonMapIntegrator : public Integrator {
   void prepare(const RenderContext& context, const PrepareControl& control) override;
   RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                    const CameraHit& first, Sampler& sampler) const override;
-  std::vector<std::pair<std::string, double>> prepare_stats() const override;
+  PrepareStats prepare_stats() const override;
   // The light leaving a diffuse point on the side its normal faces, for lighting bakes:
   //   L = Le + albedo / pi * (E_direct + E_caustic + E_indirect)
   // with E_direct by light sampling and E_indirect by final gathering (or, with
@@ -70,7 +70,7 @@ class PhotonMapIntegrator : public Integrator {
   IrradianceCache irradiance_;       // final gathers at camera-visible diffuse points
   IrradianceCache bake_irradiance_;  // final gathers among a bake's points
   float global_radius_ = 0.0f, caustic_radius_ = 0.0f;
-  std::vector<std::pair<std::string, double>> stats_, irradiance_stats_;
+  PrepareStats stats_;
 };
 
 }  // namespace photon

@@ -61,10 +61,8 @@ TEST(PhotonMapIntegrator, EmissiveFurnaceConvergesToLeOverOneMinusAlbedo) {
     const Rendered r = render(scene, s);
     EXPECT_NEAR(mean_channel(r.rgba, 0), 1.0 / (1.0 - 0.6), 0.03 * 2.5)
         << "final gather rays " << final_gather << ", cache " << cache;
-    double records = 0.0;
-    for (const auto& [name, value] : r.stats.integrator)
-      if (name == "irradiance_records") records = value;
-    EXPECT_EQ(records > 0.0, cache);
+    const auto& built = r.stats.integrator.irradiance_cache;
+    EXPECT_EQ(built.has_value() && built->records > 0, cache);
   }
 }
 
@@ -110,15 +108,10 @@ TEST(PhotonMapIntegrator, CausticBoxIsThreadIndependentAndHasACaustic) {
   s.tile_size = 8;
   const Rendered two = render(scene, s);
   EXPECT_EQ(one.rgba, two.rgba);
-  bool caustic_stats = false;
-  for (const auto& [name, value] : two.stats.integrator)
-    if (name == "caustic_photons_stored") {
-      caustic_stats = true;
-      // Aimed photons leave the sphere light's surface; those from its far side carry no
-      // power, so about 40% of the 20000 are stored (isotropic emission: under 10%).
-      EXPECT_GT(value, 6000.0);
-    }
-  EXPECT_TRUE(caustic_stats);
+  ASSERT_TRUE(two.stats.integrator.photon_map.has_value());
+  // Aimed photons leave the sphere light's surface; those from its far side carry no
+  // power, so about 40% of the 20000 are stored (isotropic emission: under 10%).
+  EXPECT_GT(two.stats.integrator.photon_map->caustic_photons_stored, 6000u);
 }
 
 TEST(PhotonMapIntegrator, EmptySceneAndNoLightsRenderBlackWithoutPhotons) {

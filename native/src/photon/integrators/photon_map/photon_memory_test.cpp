@@ -88,12 +88,12 @@ TEST(PhotonMemory, RenderScalesPhotonsDownAndWarns) {
         w.find("tracing ") != std::string::npos)
       warned = true;
   EXPECT_TRUE(warned) << (session.warnings().empty() ? "no warnings" : session.warnings()[0]);
-  double emitted = -1, estimate = -1, available = -1;
-  for (const auto& [name, value] : session.stats().integrator) {
-    if (name == "photons_emitted") emitted = value;
-    if (name == "memory_estimate_bytes") estimate = value;
-    if (name == "memory_available_bytes") available = value;
-  }
+  const PrepareStats& prepared = session.stats().integrator;
+  ASSERT_TRUE(prepared.photon_map.has_value());
+  ASSERT_TRUE(prepared.photon_memory.has_value());
+  const double emitted = static_cast<double>(prepared.photon_map->photons_emitted);
+  const double estimate = prepared.photon_memory->estimate_bytes;
+  const double available = prepared.photon_memory->available_bytes;
   EXPECT_GT(emitted, 0.0);
   EXPECT_LT(emitted, 50000000.0);
   EXPECT_LE(estimate, 1e-4 * available * 1.0001);

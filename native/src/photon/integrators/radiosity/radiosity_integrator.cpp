@@ -12,7 +12,7 @@ namespace photon {
 
 void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
   const RenderSettings& s = *context.settings;
-  stats_.clear();
+  stats_ = PrepareStats{};
   const auto t0 = std::chrono::steady_clock::now();
   control.report("Radiosity: meshing", 0.0f);
   // Brought into the schema's ranges here too: the integrator is also run without a session.
@@ -49,28 +49,27 @@ void RadiosityIntegrator::prepare(const RenderContext& context, const PrepareCon
   const double field_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t_field).count();
 
-  stats_ = {
-      {"radiosity_elements", static_cast<double>(mesh_.element_count())},
-      {"radiosity_patches", static_cast<double>(mesh_.patch_count())},
-      {"radiosity_clusters", static_cast<double>(mesh_.cluster_count())},
-      {"radiosity_split_patches", static_cast<double>(mesh_.split_count())},
-      {"radiosity_first_patches", static_cast<double>(refined.first_patches)},
-      {"radiosity_vertices", static_cast<double>(mesh_.vertex_count())},
-      {"radiosity_patch_size", mesh_.patch_size()},
-      {"radiosity_area", mesh_.total_area()},
-      {"radiosity_mesh_seconds", mesh_seconds},
-      {"radiosity_field_seconds", field_seconds},
-      {"radiosity_rays", static_cast<double>(solved.rays)},
-      {"radiosity_solve_seconds", solved.seconds},
-      {"radiosity_rays_per_second", solved.seconds > 0.0 ? solved.rays / solved.seconds : 0.0},
-      {"radiosity_shooting_iterations", static_cast<double>(solved.incremental_iterations)},
-      {"radiosity_averaged_iterations", static_cast<double>(solved.regular_iterations)},
-      {"radiosity_emitted_power", solved.emitted},
-      {"radiosity_absorbed_power", solved.absorbed},
-      {"radiosity_absorbed_specular_power", solved.absorbed_specular},
-      {"radiosity_escaped_power", solved.escaped},
-      {"radiosity_unshot_power", solved.unshot},
-  };
+  RadiosityStats& r = stats_.radiosity.emplace();
+  r.elements = mesh_.element_count();
+  r.patches = mesh_.patch_count();
+  r.clusters = mesh_.cluster_count();
+  r.split_patches = mesh_.split_count();
+  r.first_patches = refined.first_patches;
+  r.vertices = mesh_.vertex_count();
+  r.patch_size = mesh_.patch_size();
+  r.area = mesh_.total_area();
+  r.mesh_seconds = mesh_seconds;
+  r.field_seconds = field_seconds;
+  r.rays = solved.rays;
+  r.solve_seconds = solved.seconds;
+  r.rays_per_second = solved.seconds > 0.0 ? solved.rays / solved.seconds : 0.0;
+  r.shooting_iterations = solved.incremental_iterations;
+  r.averaged_iterations = solved.regular_iterations;
+  r.emitted_power = solved.emitted;
+  r.absorbed_power = solved.absorbed;
+  r.absorbed_specular_power = solved.absorbed_specular;
+  r.escaped_power = solved.escaped;
+  r.unshot_power = solved.unshot;
 }
 
 bool RadiosityIntegrator::reflected_radiance(const SurfaceInteraction& si, const Vec3& towards,

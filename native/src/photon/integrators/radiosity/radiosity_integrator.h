@@ -16,7 +16,7 @@ namespace photon {
 class RadiosityIntegrator : public Integrator {
  public:
   void prepare(const RenderContext& context, const PrepareControl& control) override;
-  std::vector<std::pair<std::string, double>> prepare_stats() const override { return stats_; }
+  PrepareStats prepare_stats() const override { return stats_; }
   RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                    const CameraHit& first, Sampler& sampler) const override;
   // Emission plus the interpolated radiosity / pi on the side of the surface `si.ng` faces.
@@ -33,7 +33,7 @@ class RadiosityIntegrator : public Integrator {
  private:
   RadiosityMesh mesh_;
   RadiosityField field_;
-  std::vector<std::pair<std::string, double>> stats_;
+  PrepareStats stats_;
 };
 
 }  // namespace photon

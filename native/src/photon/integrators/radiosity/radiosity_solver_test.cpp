@@ -158,10 +158,9 @@ TEST(RadiosityIntegrator, RendersTheClosedBoxValue) {
   for (size_t i = 0; i < rgba.size(); i += 4) mean += rgba[i];
   mean /= rgba.size() / 4;
   EXPECT_NEAR(mean, 1.0 / (1.0 - 0.6), 0.03 * 2.5);
-  bool has_elements = false;
-  for (const auto& [name, value] : session.stats().integrator)
-    if (name == "radiosity_elements") has_elements = value > 0;
-  EXPECT_TRUE(has_elements);
+  const std::optional<RadiosityStats>& radiosity = session.stats().integrator.radiosity;
+  ASSERT_TRUE(radiosity.has_value());
+  EXPECT_GT(radiosity->elements, 0u);
 }
 
 }  // namespace

@@ -1,0 +1,125 @@
+#include "photon/scene/material_params.h"
+
+#include <cstring>
+
+namespace photon {
+namespace {
+
+// Emission colours and strengths may exceed 1, up to a finite bound (see emitter_range()).
+constexpr float kHuge = 1e6f;
+constexpr ParamRange kUnit{0.0f, 1.0f};
+constexpr ParamRange kEmissive{0.0f, kHuge};
+// IOR stays positive and bounded (100 already reflects almost everything).
+constexpr ParamRange kIorRange{1e-3f, 100.0f};
+
+constexpr ParamKind S = ParamKind::kScalar;
+constexpr ParamKind C = ParamKind::kColor;
+
+ParamSpec color(float default_value, ParamRange range = kUnit) {
+  return {Param::kColor, "color", {"Color", nullptr}, C, default_value, range};
+}
+ParamSpec roughness(float default_value) {
+  return {Param::kRoughness, "roughness", {"Roughness", nullptr}, S, default_value, kUnit};
+}
+ParamSpec ior() {
+  return {Param::kIor, "ior", {"IOR", nullptr}, S, 1.45f, kIorRange};
+}
+
+std::vector<ClosureSpec> make_table() {
+  // Blender 3.4's node defaults (nodes/shader/nodes/node_shader_*.cc); 4.x socket names second.
+  std::vector<ParamSpec> principled = {
+      {Param::kColor, "color", {"Base Color", nullptr}, C, 0.8f, kUnit},
+      {Param::kMetallic, "metallic", {"Metallic", nullptr}, S, 0.0f, kUnit},
+      {Param::kRoughness, "roughness", {"Roughness", nullptr}, S, 0.5f, kUnit},
+      // Specular 0.5 is F0 = 0.04 (0.08 x specular, Cycles' Principled v1); up to 10 is kept.
+      {Param::kSpecular, "specular", {"Specular", "Specular IOR Level"}, S, 0.5f, {0.0f, 10.0f}},
+      {Param::kSpecularTint, "specular_tint", {"Specular Tint", nullptr}, S, 0.0f, kUnit},
+      {Param::kTransmission,
+       "transmission",
+       {"Transmission", "Transmission Weight"},
+       S,
+       0.0f,
+       kUnit},
+      {Param::kIor, "ior", {"IOR", nullptr}, S, 1.45f, kIorRange},
+      {Param::kEmission, "emission", {"Emission", "Emission Color"}, C, 0.0f, kEmissive},
+      {Param::kStrength, "strength", {"Emission Strength", nullptr}, S, 1.0f, kEmissive},
+      {Param::kAlpha, "alpha", {"Alpha", nullptr}, S, 1.0f, kUnit},
+      {Param::kClearcoat, "clearcoat", {"Clearcoat", "Coat Weight"}, S, 0.0f, kUnit},
+      {Param::kClearcoatRoughness,
+       "clearcoat_roughness",
+       {"Clearcoat Roughness", "Coat Roughness"},
+       S,
+       0.03f,
+       kUnit},
+  };
+  return {
+      {ClosureType::kDiffuse, "DIFFUSE", "BSDF_DIFFUSE", {color(0.8f), roughness(0.0f)}},
+      {ClosureType::kPrincipled, "PRINCIPLED", "BSDF_PRINCIPLED", principled},
+      {ClosureType::kGlossy, "GLOSSY", "BSDF_GLOSSY", {color(0.8f), roughness(0.5f)}},
+      {ClosureType::kGlass, "GLASS", "BSDF_GLASS", {color(1.0f), roughness(0.0f), ior()}},
+      {ClosureType::kRefraction,
+       "REFRACTION",
+       "BSDF_REFRACTION",
+       {color(1.0f), roughness(0.0f), ior()}},
+      {ClosureType::kTransparent, "TRANSPARENT", "BSDF_TRANSPARENT", {color(1.0f)}},
+      {ClosureType::kTranslucent, "TRANSLUCENT", "BSDF_TRANSLUCENT", {color(0.8f)}},
+      {ClosureType::kEmission,
+       "EMISSION",
+       "EMISSION",
+       {color(1.0f, kEmissive),
+        {Param::kStrength, "strength", {"Strength", nullptr}, S, 1.0f, kEmissive}}},
+      // Cuts a hole in the image where camera rays meet it (render/matte.h); no inputs.
+      {ClosureType::kHoldout, "HOLDOUT", "HOLDOUT", {}},
+  };
+}
+
+const ParamSpec* find_in(const ClosureSpec& closure, Param p) {
+  for (const ParamSpec& spec : closure.params)
+    if (spec.param == p) return &spec;
+  return nullptr;
+}
+
+}  // namespace
+
+const std::vector<ClosureSpec>& closure_specs() {
+  static const std::vector<ClosureSpec> table = make_table();
+  return table;
+}
+
+const ClosureSpec& closure_spec(ClosureType type) {
+  return closure_specs()[static_cast<size_t>(type)];
+}
+
+const ClosureSpec* find_closure(const char* name) {
+  for (const ClosureSpec& c : closure_specs())
+    if (std::strcmp(c.name, name) == 0) return &c;
+  return nullptr;
+}
+
+const ParamSpec& param_spec(ClosureType type, Param p) {
+  if (const ParamSpec* own = find_in(closure_spec(type), p)) return *own;
+  return *find_in(closure_spec(ClosureType::kPrincipled), p);
+}
+
+const ParamSpec* find_param(const char* key) {
+  for (const ParamSpec& spec : closure_spec(ClosureType::kPrincipled).params)
+    if (std::strcmp(spec.key, key) == 0) return &spec;
+  return nullptr;
+}
+
+ParamRange param_range(ClosureType type, Param p) {
+  return param_spec(type, p).range;
+}
+
+ParamRange emitter_range() {
+  return {0.0f, kHuge * kHuge};
+}
+
+std::array<Input, static_cast<size_t>(Param::kCount)> default_params(ClosureType type) {
+  std::array<Input, static_cast<size_t>(Param::kCount)> p;
+  for (size_t i = 0; i < p.size(); ++i)
+    p[i] = Input::constant(param_spec(type, static_cast<Param>(i)).default_value);
+  return p;
+}
+
+}  // namespace photon
