@@ -63,6 +63,7 @@ py::dict stats_dict(const RenderStats& s) {
   d["unique_triangles"] = s.unique_triangles;
   d["instances"] = s.instances;
   d["bvh_count"] = s.bvh_count;
+  d["bvh_reused"] = s.bvh_reused;
   d["lights"] = s.lights;
   d["threads"] = s.threads;
   for (const auto& [name, value] : s.integrator) d[py::str(name)] = value;
@@ -374,11 +375,20 @@ PYBIND11_MODULE(_photon, m) {
       .def_readwrite("radiosity_threshold", &RenderSettings::radiosity_threshold)
       .def_readwrite("radiosity_iterations", &RenderSettings::radiosity_iterations);
 
+  // Mesh BVHs kept between the frames of an animation (Persistent Data); begin_frame() drops
+  // those the previous frame did not use.
+  py::class_<BlasCache, std::shared_ptr<BlasCache>>(m, "BlasCache")
+      .def(py::init<>())
+      .def("begin_frame", &BlasCache::begin_frame)
+      .def_property_readonly("size", &BlasCache::size);
+
   py::class_<RenderSession>(m, "RenderSession")
-      .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings) {
-             return std::make_unique<RenderSession>(std::move(scene), settings);
+      .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings,
+                       std::shared_ptr<BlasCache> blas_cache) {
+             return std::make_unique<RenderSession>(std::move(scene), settings,
+                                                    std::move(blas_cache));
            }),
-           py::arg("scene"), py::arg("settings"))
+           py::arg("scene"), py::arg("settings"), py::arg("blas_cache") = nullptr)
       .def("start", &RenderSession::start)
       .def("cancel", &RenderSession::cancel)
       .def("stop_preparation", &RenderSession::stop_preparation)
