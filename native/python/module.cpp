@@ -18,6 +18,7 @@ namespace py = pybind11;
 using namespace photon;
 
 void bind_bake(py::module_& m);  // bake_bindings.cpp
+void bind_persistent(py::module_& m);  // persistent_bindings.cpp
 
 namespace {
 
@@ -375,12 +376,7 @@ PYBIND11_MODULE(_photon, m) {
       .def_readwrite("radiosity_threshold", &RenderSettings::radiosity_threshold)
       .def_readwrite("radiosity_iterations", &RenderSettings::radiosity_iterations);
 
-  // Mesh BVHs kept between the frames of an animation (Persistent Data); begin_frame() drops
-  // those the previous frame did not use.
-  py::class_<BlasCache, std::shared_ptr<BlasCache>>(m, "BlasCache")
-      .def(py::init<>())
-      .def("begin_frame", &BlasCache::begin_frame)
-      .def_property_readonly("size", &BlasCache::size);
+  bind_persistent(m);  // before RenderSession, whose blas_cache argument is a BlasCache
 
   py::class_<RenderSession>(m, "RenderSession")
       .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings,

@@ -1,5 +1,6 @@
-"""Persistent Data (Render Properties > Performance): mesh arrays kept between the frames of an
-animation, so meshes whose data did not change skip Blender's foreach_get reads.
+"""Persistent Data (Render Properties > Performance): finished native meshes kept between the
+frames of an animation, so meshes whose data did not change skip Blender's foreach_get reads and
+the native gather and cleanup (their BVHs are kept natively, by BlasCache).
 
 Blender keeps the engine and its depsgraph between frames when `render.use_persistent_data` is
 on (checked in Blender 3.4.1: render() runs on the same engine object with the same depsgraph,
@@ -7,8 +8,8 @@ and `depsgraph.updates` then lists only what changed since the previous frame: a
 is `is_updated_transform` only; a shape key or an animated modifier makes its object
 `is_updated_geometry`). A cached mesh is replayed only when neither its object's geometry nor
 its mesh data block was updated AND its fingerprint (element counts and a hash of the vertex
-positions) is unchanged, so a missed update cannot serve stale geometry. Replaying hands the
-native Scene the same arrays a fresh sync would read, so the frame is the same bit for bit.
+positions) is unchanged, so a missed update cannot serve stale geometry. A replayed mesh is a
+copy of the native mesh the same arrays made, so the frame is the same bit for bit.
 """
 
 import hashlib
@@ -17,6 +18,7 @@ import bpy
 import numpy as np
 
 from . import mesh as sync_mesh
+from .origin import local_bounds
 
 
 def _fingerprint(mesh):
@@ -25,7 +27,7 @@ def _fingerprint(mesh):
     count = len(mesh.vertices)
     positions = np.empty(count * 3, dtype=np.float32)
     mesh.vertices.foreach_get("co", positions)
-    digest = hashlib.blake2b(positions.tobytes(), digest_size=16).digest()
+    digest = hashlib.blake2b(positions, digest_size=16).digest()
     return (count, len(mesh.loops), len(mesh.polygons), len(mesh.materials), digest)
 
 
@@ -34,7 +36,9 @@ class MeshCache:
     sync_mesh.export_object_mesh, end() after it."""
 
     def __init__(self):
-        self._entries = {}  # (object name, data name, data pointer) -> (fingerprint, arrays)
+        # (object name, data name, data pointer) -> (fingerprint, native KeptMesh, add_mesh
+        # info, object-space bounds)
+        self._entries = {}
         self._owner = None  # (depsgraph pointer, view layer name) the entries came from
         self._used = set()
         self.reused = 0     # meshes of the current sync replayed from the cache
@@ -66,17 +70,23 @@ class MeshCache:
         fingerprint = _fingerprint(data)
         entry = self._entries.get(key)
         if entry is not None and entry[0] == fingerprint:
-            arrays = entry[1]
+            _, kept, info, bounds = entry
             self.reused += 1
+            # The native mesh as the first sync left it: the same a fresh sync would make.
+            info = dict(info, index=native_scene.add_kept_mesh(kept))
         else:
             arrays = sync_mesh.object_mesh_arrays(obj, reporter)
             if arrays is None:
                 self._entries.pop(key, None)
                 return None, 0, (None, None)
-            self._entries[key] = (fingerprint, arrays)
+            method, kwargs = arrays
+            info = getattr(native_scene, method)(obj.name, **kwargs)
+            bounds = local_bounds(kwargs["positions"])
+            self._entries[key] = (fingerprint, native_scene.keep_mesh(info["index"]), info,
+                                  bounds)
             self.exported += 1
         self._used.add(key)
-        return sync_mesh.add_mesh_arrays(native_scene, obj.name, arrays, reporter)
+        return sync_mesh.mesh_result(obj.name, info, bounds, reporter)
 
     def end(self):
         """Drops meshes this sync did not use (deleted or hidden objects): memory stays that of

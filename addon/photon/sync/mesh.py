@@ -109,6 +109,12 @@ def add_mesh_arrays(native_scene, name, arrays, reporter):
     """Adds mesh_arrays() output to the native scene; returns as export_object_mesh."""
     method, kwargs = arrays
     info = getattr(native_scene, method)(name, **kwargs)
+    return mesh_result(name, info, local_bounds(kwargs["positions"]), reporter)
+
+
+def mesh_result(name, info, bounds, reporter):
+    """Reports what the native cleanup dropped (`info` from add_mesh / add_loop_mesh); returns
+    (mesh index or None, triangle count, `bounds`)."""
     if info["non_finite_vertices"]:
         reporter.warning(f"Object '{name}': {info['non_finite_vertices']} vertices with "
                          f"NaN or infinite coordinates")
@@ -117,4 +123,4 @@ def add_mesh_arrays(native_scene, name, arrays, reporter):
                          f"or invalid triangles")
     if info["triangles"] == 0:
         return None, 0, (None, None)
-    return info["index"], info["triangles"], local_bounds(kwargs["positions"])
+    return info["index"], info["triangles"], bounds
