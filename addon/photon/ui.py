@@ -156,6 +156,8 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
         props = context.scene.photon
         layout.prop(props, "threads")
         layout.prop(props, "tile_size")
+        # Blender's own setting (Cycles shows it too): keeps unchanged meshes between frames.
+        layout.prop(context.scene.render, "use_persistent_data", text="Persistent Data")
 
 
 class PHOTON_PT_object_mask(bpy.types.Panel):
