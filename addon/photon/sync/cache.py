@@ -31,13 +31,18 @@ def _fingerprint(mesh):
     return (count, len(mesh.loops), len(mesh.polygons), len(mesh.materials), digest)
 
 
+# The entry of a mesh whose data changed since the previous frame (animated geometry): not kept
+# (copying it would be wasted work if it changes again) until a frame finds it unchanged.
+_CHANGED = "changed"
+
+
 class MeshCache:
     """Per-engine cache: begin(depsgraph) before a sync, export() in place of
     sync_mesh.export_object_mesh, end() after it."""
 
     def __init__(self):
         # (object name, data name, data pointer) -> (fingerprint, native KeptMesh, add_mesh
-        # info, object-space bounds)
+        # info, object-space bounds), or _CHANGED
         self._entries = {}
         self._owner = None  # (depsgraph pointer, view layer name) the entries came from
         self._used = set()
@@ -58,8 +63,14 @@ class MeshCache:
                     changed_objects.add(data.name)
             elif isinstance(data, bpy.types.Mesh):
                 changed_data.add(data.name)  # any update of the data block: normals, UVs ...
-        self._entries = {key: entry for key, entry in self._entries.items()
-                         if key[0] not in changed_objects and key[1] not in changed_data}
+        entries = {}
+        for key, entry in self._entries.items():
+            if key[0] in changed_objects or key[1] in changed_data:
+                entries[key] = _CHANGED
+            elif entry is not _CHANGED:
+                # (A _CHANGED mesh that did not change again is dropped: this frame keeps it.)
+                entries[key] = entry
+        self._entries = entries
         self._used = set()
         self.reused = self.exported = 0
 
@@ -67,9 +78,9 @@ class MeshCache:
         """As sync_mesh.export_object_mesh, from the cache when the mesh did not change."""
         data = obj.data
         key = (obj.name, data.name, data.as_pointer())
-        fingerprint = _fingerprint(data)
         entry = self._entries.get(key)
-        if entry is not None and entry[0] == fingerprint:
+        fingerprint = None if entry is _CHANGED else _fingerprint(data)
+        if entry is not None and entry is not _CHANGED and entry[0] == fingerprint:
             _, kept, info, bounds = entry
             self.reused += 1
             # The native mesh as the first sync left it: the same a fresh sync would make.
@@ -82,8 +93,9 @@ class MeshCache:
             method, kwargs = arrays
             info = getattr(native_scene, method)(obj.name, **kwargs)
             bounds = local_bounds(kwargs["positions"])
-            self._entries[key] = (fingerprint, native_scene.keep_mesh(info["index"]), info,
-                                  bounds)
+            if entry is not _CHANGED:
+                self._entries[key] = (fingerprint, native_scene.keep_mesh(info["index"]), info,
+                                      bounds)
             self.exported += 1
         self._used.add(key)
         return sync_mesh.mesh_result(obj.name, info, bounds, reporter)
