@@ -133,6 +133,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                                           t_start, view):
                     break
         finally:
+            if mesh_cache is not None:
+                mesh_cache.reclaim(native_scene)  # the kept meshes it borrowed, for next frame
             # Packed and generated images were written for this render only.
             sync_stats.release()
 

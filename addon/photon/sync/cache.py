@@ -38,7 +38,8 @@ _CHANGED = "changed"
 
 class MeshCache:
     """Per-engine cache: begin(depsgraph) before a sync, export() in place of
-    sync_mesh.export_object_mesh, end() after it."""
+    sync_mesh.export_object_mesh, end() after it, and reclaim(scene) once the scene's renders
+    are over."""
 
     def __init__(self):
         # (object name, data name, data pointer) -> (fingerprint, native KeptMesh, add_mesh
@@ -46,6 +47,7 @@ class MeshCache:
         self._entries = {}
         self._owner = None  # (depsgraph pointer, view layer name) the entries came from
         self._used = set()
+        self._lent = []     # KeptMeshes in the scene of the current sync
         self.reused = 0     # meshes of the current sync replayed from the cache
         self.exported = 0   # meshes of the current sync read from Blender
 
@@ -72,6 +74,7 @@ class MeshCache:
                 entries[key] = entry
         self._entries = entries
         self._used = set()
+        self._lent = []
         self.reused = self.exported = 0
 
     def export(self, native_scene, obj, reporter):
@@ -80,11 +83,15 @@ class MeshCache:
         key = (obj.name, data.name, data.as_pointer())
         entry = self._entries.get(key)
         fingerprint = None if entry is _CHANGED else _fingerprint(data)
-        if entry is not None and entry is not _CHANGED and entry[0] == fingerprint:
+        # A kept mesh still lent to an earlier scene (its render never handed it back) is read
+        # again.
+        if (entry is not None and entry is not _CHANGED and entry[0] == fingerprint
+                and not entry[1].lent):
             _, kept, info, bounds = entry
             self.reused += 1
             # The native mesh as the first sync left it: the same a fresh sync would make.
             info = dict(info, index=native_scene.add_kept_mesh(kept))
+            self._lent.append(kept)
         else:
             arrays = sync_mesh.object_mesh_arrays(obj, reporter)
             if arrays is None:
@@ -94,8 +101,9 @@ class MeshCache:
             info = getattr(native_scene, method)(obj.name, **kwargs)
             bounds = local_bounds(kwargs["positions"])
             if entry is not _CHANGED:
-                self._entries[key] = (fingerprint, native_scene.keep_mesh(info["index"]), info,
-                                      bounds)
+                kept = native_scene.keep_mesh(info["index"])
+                self._entries[key] = (fingerprint, kept, info, bounds)
+                self._lent.append(kept)
             self.exported += 1
         self._used.add(key)
         return sync_mesh.mesh_result(obj.name, info, bounds, reporter)
@@ -106,6 +114,13 @@ class MeshCache:
         self._entries = {key: entry for key, entry in self._entries.items()
                          if key in self._used}
         self._used = set()
+
+    def reclaim(self, native_scene):
+        """Takes the kept meshes back from `native_scene` once no render uses it (they are moved
+        into a frame's scene, not copied)."""
+        for kept in self._lent:
+            native_scene.return_kept_mesh(kept)
+        self._lent = []
 
     def __len__(self):
         return len(self._entries)
