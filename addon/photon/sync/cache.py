@@ -8,8 +8,9 @@ and `depsgraph.updates` then lists only what changed since the previous frame: a
 is `is_updated_transform` only; a shape key or an animated modifier makes its object
 `is_updated_geometry`). A cached mesh is replayed only when neither its object's geometry nor
 its mesh data block was updated AND its fingerprint (element counts and a hash of the vertex
-positions) is unchanged, so a missed update cannot serve stale geometry. A replayed mesh is a
-copy of the native mesh the same arrays made, so the frame is the same bit for bit.
+positions) is unchanged, so a missed update cannot serve stale geometry. A replayed mesh is the
+native mesh the same arrays made (moved into each frame's scene and back out after its render),
+so the frame is the same bit for bit.
 """
 
 import hashlib
@@ -32,7 +33,7 @@ def _fingerprint(mesh):
 
 
 # The entry of a mesh whose data changed since the previous frame (animated geometry): not kept
-# (copying it would be wasted work if it changes again) until a frame finds it unchanged.
+# (its memory would be held for nothing if it changes again) until a frame finds it unchanged.
 _CHANGED = "changed"
 
 
