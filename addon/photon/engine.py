@@ -8,6 +8,7 @@ import bpy
 import numpy as np
 
 from . import properties, report, schema, sync
+from .sync import cache as sync_cache
 from .sync import camera as sync_camera
 
 POLL_SECONDS = 0.05  # tile poll interval; bounds Esc latency together with the per-row check
@@ -90,6 +91,12 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     _passes = ()
     _layer = ""  # the view layer being rendered
     _view = ""   # the multiview view being rendered ("": every view of a mono render)
+    # Persistent Data: Blender keeps this engine object between the frames of an animation;
+    # these caches keep unchanged meshes (their arrays and their BVHs) between them.
+    _mesh_cache = None
+    _blas_cache = None
+    _cache_frame = None
+    _session_blas_cache = None  # the BlasCache of the render in progress, or None
 
     def update_render_passes(self, scene=None, renderlayer=None):
         # Registering makes the passes exist in the compositor's Render Layers node.
@@ -134,7 +141,9 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                              "Motion Blur is on); the frame is rendered without blur at its "
                              "current time")
         self.update_stats("", "Photon | Syncing scene")
-        native_scene, sync_stats = sync.sync_scene(native, depsgraph, reporter)
+        mesh_cache, self._session_blas_cache = self._persistent_caches(native, scene)
+        native_scene, sync_stats = sync.sync_scene(native, depsgraph, reporter,
+                                                   mesh_cache=mesh_cache)
         try:
             for view in views:
                 if view:
@@ -146,8 +155,25 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                                           t_start, view):
                     break
         finally:
+            if mesh_cache is not None:
+                mesh_cache.reclaim(native_scene)  # the kept meshes it borrowed, for next frame
             # Packed and generated images were written for this render only.
             sync_stats.release()
+
+    def _persistent_caches(self, native, scene):
+        """(MeshCache, BlasCache) under Render > Performance > Persistent Data, else (None,
+        None), which also frees what earlier frames kept."""
+        if not scene.render.use_persistent_data or not hasattr(native, "BlasCache"):
+            self._mesh_cache = self._blas_cache = self._cache_frame = None
+            return None, None
+        if self._mesh_cache is None:
+            self._mesh_cache = sync_cache.MeshCache()
+            self._blas_cache = native.BlasCache()
+        if scene.frame_current != self._cache_frame:
+            # BVHs the previous frame did not use go (every view layer of a frame shares them).
+            self._blas_cache.begin_frame()
+            self._cache_frame = scene.frame_current
+        return self._mesh_cache, self._blas_cache
 
     def _views(self, scene):
         """Names of the views to render: [""] (all of the result's views, one) without
@@ -184,7 +210,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         region_w, region_h = region[2] - region[0], region[3] - region[1]
         settings.light_passes = bool(self._passes)
 
-        session = native.RenderSession(native_scene, settings)
+        session = native.RenderSession(native_scene, settings,
+                                       blas_cache=self._session_blas_cache)
         session.start()
         tiles_total = ((region_w + settings.tile_size - 1) // settings.tile_size) * (
             (region_h + settings.tile_size - 1) // settings.tile_size)
@@ -242,6 +269,10 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             f"{self._layer_view_label(scene, view)}")
         for line in prepare_report(stats.integrator):
             reporter.info(line)
+        if sync_stats.meshes_reused is not None:
+            meshes = sync_stats.meshes_reused + sync_stats.meshes_exported
+            reporter.info(f"persistent data: reused {sync_stats.meshes_reused} of {meshes} "
+                          f"meshes, {stats.bvh_reused} of {stats.bvh_count} BVHs")
         # Free native memory now rather than when Python collects: -a renders many frames.
         del session, native_scene
         return not cancelled

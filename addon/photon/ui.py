@@ -139,6 +139,8 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         schema.draw(layout, context.scene.photon, "performance")
+        # Blender's own setting (Cycles shows it too): keeps unchanged meshes between frames.
+        layout.prop(context.scene.render, "use_persistent_data", text="Persistent Data")
 
 
 class PHOTON_PT_object_mask(bpy.types.Panel):

@@ -20,6 +20,7 @@ namespace py = pybind11;
 using namespace photon;
 
 void bind_bake(py::module_& m);  // bake_bindings.cpp
+void bind_persistent(py::module_& m);  // persistent_bindings.cpp
 
 namespace {
 
@@ -386,11 +387,15 @@ PYBIND11_MODULE(_photon, m) {
     return py::module_::import("json").attr("loads")(render_param_schema_json());
   });
 
+  bind_persistent(m);  // before RenderSession, whose blas_cache argument is a BlasCache
+
   py::class_<RenderSession>(m, "RenderSession")
-      .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings) {
-             return std::make_unique<RenderSession>(std::move(scene), settings);
+      .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings,
+                       std::shared_ptr<BlasCache> blas_cache) {
+             return std::make_unique<RenderSession>(std::move(scene), settings,
+                                                    std::move(blas_cache));
            }),
-           py::arg("scene"), py::arg("settings"))
+           py::arg("scene"), py::arg("settings"), py::arg("blas_cache") = nullptr)
       .def("start", &RenderSession::start)
       .def("cancel", &RenderSession::cancel)
       .def("stop_preparation", &RenderSession::stop_preparation)

@@ -79,6 +79,7 @@ void register_stats_classes(py::module_& m) {
       .def_readonly("unique_triangles", &RenderStats::unique_triangles)
       .def_readonly("instances", &RenderStats::instances)
       .def_readonly("bvh_count", &RenderStats::bvh_count)
+      .def_readonly("bvh_reused", &RenderStats::bvh_reused)
       .def_readonly("lights", &RenderStats::lights)
       .def_readonly("threads", &RenderStats::threads)
       .def_readonly("integrator", &RenderStats::integrator);

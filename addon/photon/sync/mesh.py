@@ -84,27 +84,43 @@ def mesh_arrays(mesh):
 def export_object_mesh(native_scene, obj, reporter):
     """Converts an evaluated object's geometry; returns (mesh index or None, triangle count,
     (lo, hi) object-space bounds of its vertices in float64)."""
+    arrays = object_mesh_arrays(obj, reporter)
+    if arrays is None:
+        return None, 0, (None, None)
+    return add_mesh_arrays(native_scene, obj.name, arrays, reporter)
+
+
+def object_mesh_arrays(obj, reporter):
+    """mesh_arrays() of an evaluated object's geometry, or None (no faces, no mesh)."""
     try:
         mesh = obj.to_mesh()
     except RuntimeError as exc:
         reporter.warning(f"Object '{obj.name}': cannot convert to a mesh ({exc}); skipped")
-        return None, 0, (None, None)
+        return None
     if mesh is None:
-        return None, 0, (None, None)
+        return None
     try:
-        arrays = mesh_arrays(mesh)
+        return mesh_arrays(mesh)
     finally:
         obj.to_mesh_clear()
-    if arrays is None:
-        return None, 0, (None, None)
+
+
+def add_mesh_arrays(native_scene, name, arrays, reporter):
+    """Adds mesh_arrays() output to the native scene; returns as export_object_mesh."""
     method, kwargs = arrays
-    info = getattr(native_scene, method)(obj.name, **kwargs)
+    info = getattr(native_scene, method)(name, **kwargs)
+    return mesh_result(name, info, local_bounds(kwargs["positions"]), reporter)
+
+
+def mesh_result(name, info, bounds, reporter):
+    """Reports what the native cleanup dropped (`info` from add_mesh / add_loop_mesh); returns
+    (mesh index or None, triangle count, `bounds`)."""
     if info["non_finite_vertices"]:
-        reporter.warning(f"Object '{obj.name}': {info['non_finite_vertices']} vertices with "
+        reporter.warning(f"Object '{name}': {info['non_finite_vertices']} vertices with "
                          f"NaN or infinite coordinates")
     if info["dropped_triangles"]:
-        reporter.warning(f"Object '{obj.name}': dropped {info['dropped_triangles']} degenerate "
+        reporter.warning(f"Object '{name}': dropped {info['dropped_triangles']} degenerate "
                          f"or invalid triangles")
     if info["triangles"] == 0:
         return None, 0, (None, None)
-    return info["index"], info["triangles"], local_bounds(kwargs["positions"])
+    return info["index"], info["triangles"], bounds

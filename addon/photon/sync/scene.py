@@ -21,6 +21,10 @@ class SyncStats:
         self.triangles = 0
         self.lights = 0
         self.seconds = 0.0
+        # With Persistent Data (a sync_cache.MeshCache): meshes replayed from the cache and
+        # meshes read from Blender; None without it.
+        self.meshes_reused = None
+        self.meshes_exported = None
         # World origin offset (float64) the native scene is built around (sync_origin): world
         # positions of the native scene plus this are Blender's.
         self.origin = np.zeros(3, dtype=np.float64)
@@ -33,8 +37,11 @@ class SyncStats:
         self._release = []
 
 
-def sync_scene(native, depsgraph, reporter, object_instances=None):
+def sync_scene(native, depsgraph, reporter, object_instances=None, mesh_cache=None):
     """Returns (native Scene, SyncStats); call stats.release() once the render has ended.
+
+    With a `mesh_cache` (sync_cache.MeshCache, kept by the engine under Persistent Data),
+    meshes unchanged since the previous sync with it are replayed from it.
 
     When `object_instances` is a dict it is filled with object name -> list of native instance
     indices (Scene.instances) of the object's own geometry, not of instances it generates
@@ -42,14 +49,18 @@ def sync_scene(native, depsgraph, reporter, object_instances=None):
     """
     stats = SyncStats()
     try:
-        return _sync(native, depsgraph, reporter, stats, object_instances), stats
+        return _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache), stats
     except BaseException:
         stats.release()
         raise
 
 
-def _sync(native, depsgraph, reporter, stats, object_instances):
+def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None):
     t0 = time.perf_counter()
+    export_mesh = sync_mesh.export_object_mesh
+    if mesh_cache is not None:
+        mesh_cache.begin(depsgraph)
+        export_mesh = mesh_cache.export
     scene = depsgraph.scene
     native_scene = native.Scene()
     materials = sync_materials.MaterialTable(native_scene, reporter,
@@ -130,7 +141,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
         # (particles, geometry nodes, linked duplicates) maps to one native mesh and one BVH.
         key = obj.data.as_pointer()
         if key not in mesh_index:
-            index, triangles, local = sync_mesh.export_object_mesh(native_scene, obj, reporter)
+            index, triangles, local = export_mesh(native_scene, obj, reporter)
             mesh_index[key] = index
             if index is not None:
                 mesh_bounds[index] = local
@@ -148,6 +159,10 @@ def _sync(native, depsgraph, reporter, stats, object_instances):
         matte = mattes.of(obj, inst.parent if inst.is_instance else None)
         pending.setdefault((index, slots, visibility, matte), []).append(
             (np.array(inst.matrix_world, dtype=np.float64), owner))
+
+    if mesh_cache is not None:
+        mesh_cache.end()
+        stats.meshes_reused, stats.meshes_exported = mesh_cache.reused, mesh_cache.exported
 
     # The world origin offset, once every world-space quantity is known in double precision.
     stacked = {key: np.stack([matrix for matrix, _ in entries])

@@ -83,16 +83,22 @@ void Accel::clear_after_cancel() {
     if (s) rtcReleaseScene(s), s = nullptr;
   instances_.clear();
   embree_instance_.assign(scene_.instances.size(), UINT32_MAX);
-  blas_count_ = triangle_count_ = 0;
+  blas_count_ = blas_reused_ = triangle_count_ = 0;
   top_ = rtcNewScene(device_);
   rtcCommitScene(top_);  // empty: instant, and every query on it misses
 }
 
 Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
-             const std::atomic<bool>* cancel)
+             const std::atomic<bool>* cancel, BlasCache* blas_cache)
     : scene_(scene), warnings_(warnings), cancel_(cancel) {
-  device_ = rtcNewDevice(nullptr);
-  rtcSetDeviceErrorFunction(device_, &Accel::on_embree_error, this);
+  if (blas_cache) {
+    // Instanced BVHs must live on the top level's device; the cache reports its own errors.
+    device_ = blas_cache->device();
+    rtcRetainDevice(device_);
+  } else {
+    device_ = rtcNewDevice(nullptr);
+    rtcSetDeviceErrorFunction(device_, &Accel::on_embree_error, this);
+  }
 
   // Bottom level: one scene per mesh that has triangles and is used by an instance.
   std::vector<uint8_t> used(scene.meshes.size(), 0);
@@ -102,6 +108,18 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
   for (size_t m = 0; m < scene.meshes.size(); ++m) {
     const Mesh& mesh = scene.meshes[m];
     if (!used[m] || mesh.triangle_count() == 0) continue;
+    if (blas_cache) {
+      bool reused = false;
+      if (!blas_cache->acquire(
+              mesh, [this](RTCScene s) { return commit(s); }, &mesh_scenes_[m], &reused)) {
+        clear_after_cancel();
+        return;
+      }
+      blas_reused_ += reused ? 1 : 0;
+      ++blas_count_;
+      triangle_count_ += mesh.triangle_count();
+      continue;
+    }
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it:
     // copy into a padded buffer owned by Embree instead of sharing the std::vector.
@@ -197,6 +215,8 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
   if (skipped && warnings_)
     warnings_->push_back("Skipped " + std::to_string(skipped) +
                          " instance(s) with a non-finite or singular transform");
+  if (blas_cache && warnings_)
+    for (std::string& w : blas_cache->take_warnings()) warnings_->push_back(std::move(w));
 
   if (!instances_.empty()) {
     RTCBounds b;

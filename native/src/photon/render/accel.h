@@ -12,6 +12,7 @@
 
 #include "photon/base/math.h"
 #include "photon/base/ray_offset.h"
+#include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 
 namespace photon {
@@ -42,9 +43,10 @@ class Accel {
   // Builds the BVHs. `scene` must outlive the Accel. Warnings (Embree errors, skipped instances)
   // are appended to `warnings`. When `cancel` becomes true during the build, Embree abandons it
   // within a few ms and the Accel holds an empty scene instead (every ray misses); cancelled()
-  // tells.
+  // tells. With a `blas_cache` (Persistent Data), mesh BVHs come from it and are built into it,
+  // on its device; it must outlive the Accel.
   Accel(const Scene& scene, std::vector<std::string>* warnings,
-        const std::atomic<bool>* cancel = nullptr);
+        const std::atomic<bool>* cancel = nullptr, BlasCache* blas_cache = nullptr);
   ~Accel();
   Accel(const Accel&) = delete;
   Accel& operator=(const Accel&) = delete;
@@ -73,6 +75,7 @@ class Accel {
 
   size_t instance_count() const { return instances_.size(); }
   size_t blas_count() const { return blas_count_; }
+  size_t blas_reused() const { return blas_reused_; }        // of blas_count(), found in the cache
   size_t triangle_count() const { return triangle_count_; }  // unique (not instanced) triangles
   bool cancelled() const { return cancelled_; }  // the build was abandoned: the scene is empty
   // Bounding box of all instanced geometry in world space (empty scene: min > max).
@@ -100,6 +103,7 @@ class Accel {
   std::vector<InstanceData> instances_;    // indexed by Embree instance geometry id
   std::vector<uint32_t> embree_instance_;  // Scene::instances index -> Embree id (UINT32_MAX)
   size_t blas_count_ = 0;
+  size_t blas_reused_ = 0;
   size_t triangle_count_ = 0;
   Vec3 bounds_min_{INFINITY, INFINITY, INFINITY};
   Vec3 bounds_max_{-INFINITY, -INFINITY, -INFINITY};

@@ -44,9 +44,10 @@ const Scene& nothing() {
 }  // namespace
 
 SceneResources::SceneResources(const Scene& scene, const RenderSettings& settings,
-                               std::vector<std::string>* warnings, const std::atomic<bool>* cancel)
+                               std::vector<std::string>* warnings, const std::atomic<bool>* cancel,
+                               BlasCache* blas_cache)
     : textures_(scene.textures, warnings, cancel),
-      accel_(textures_.cancelled() ? nothing() : scene, warnings, cancel),
+      accel_(textures_.cancelled() ? nothing() : scene, warnings, cancel, blas_cache),
       lights_(textures_.cancelled() || accel_.cancelled() ? nothing().lights : scene.lights,
               warnings),
       emissive_(textures_.cancelled() || accel_.cancelled() ? nothing() : scene, accel_,

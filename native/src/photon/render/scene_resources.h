@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "photon/render/accel.h"
-#include "photon/lights/emissive_mesh.h"
 #include "photon/integrators/integrator.h"
+#include "photon/lights/emissive_mesh.h"
 #include "photon/lights/lights.h"
+#include "photon/render/accel.h"
 #include "photon/render/textures.h"
 
 namespace photon {
@@ -23,8 +23,10 @@ class SceneResources {
   // render, so the BVH build uses the same threads. Warnings go to `warnings` (may be null).
   // Textures are prepared first; when `cancel` becomes true meanwhile, they stop within
   // ~100 ms and textures().cancelled() is true (the rest is then built without textures).
+  // Mesh BVHs come from `blas_cache` when given (Persistent Data; see Accel).
   SceneResources(const Scene& scene, const RenderSettings& settings,
-                 std::vector<std::string>* warnings, const std::atomic<bool>* cancel = nullptr);
+                 std::vector<std::string>* warnings, const std::atomic<bool>* cancel = nullptr,
+                 BlasCache* blas_cache = nullptr);
   SceneResources(const SceneResources&) = delete;
   SceneResources& operator=(const SceneResources&) = delete;
 

@@ -93,8 +93,9 @@ int run_in_arena(int threads, const std::function<void()>& fn) {
   return n;
 }
 
-RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings)
-    : scene_(std::move(scene)) {
+RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
+                             std::shared_ptr<BlasCache> blas_cache)
+    : scene_(std::move(scene)), blas_cache_(std::move(blas_cache)) {
   settings_ = sanitize(settings, &warnings_);
   image_.assign(static_cast<size_t>(region_width()) * region_height() * 4, 0.0f);
   const int ts = settings_.tile_size;
@@ -197,7 +198,8 @@ void RenderSession::run_render() {
   auto t0 = Clock::now();
   std::unique_ptr<SceneResources> resources;
   arena.execute([&] {
-    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel_);
+    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel_,
+                                                 blas_cache_.get());
   });
   const double texture_seconds = resources->textures().seconds();
   const double build_seconds = seconds_since(t0) - texture_seconds;
@@ -234,6 +236,7 @@ void RenderSession::run_render() {
     stats_.unique_triangles = resources->accel().triangle_count();
     stats_.instances = resources->accel().instance_count();
     stats_.bvh_count = resources->accel().blas_count();
+    stats_.bvh_reused = resources->accel().blas_reused();
     stats_.lights = resources->lights().size();
     stats_.threads = threads;
     stats_.integrator = integrator->prepare_stats();

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "photon/integrators/integrator.h"
+#include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 
 namespace photon {
@@ -40,8 +41,8 @@ int run_in_arena(int threads, const std::function<void()>& fn);
 struct RenderStats {
   double texture_seconds = 0.0;  // converting images (or finding them converted)
   size_t textures = 0;
-  size_t textures_reused = 0;     // found in the persistent texture cache
-  double build_seconds = 0.0;     // BVH, lights and emissive triangles (textures excluded)
+  size_t textures_reused = 0;  // found in the persistent texture cache
+  double build_seconds = 0.0;  // BVH, lights and emissive triangles (textures excluded)
   double prepare_seconds = 0.0;
   double render_seconds = 0.0;
   uint64_t camera_samples = 0;
@@ -49,6 +50,7 @@ struct RenderStats {
   size_t unique_triangles = 0;
   size_t instances = 0;
   size_t bvh_count = 0;
+  size_t bvh_reused = 0;  // of bvh_count, taken from the BlasCache (Persistent Data)
   size_t lights = 0;
   int threads = 0;
   PrepareStats integrator;  // the integrator's prepare_stats()
@@ -56,7 +58,9 @@ struct RenderStats {
 
 class RenderSession {
  public:
-  RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings);
+  // With a `blas_cache`, unchanged meshes keep their BVH from earlier renders (Persistent Data).
+  RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
+                std::shared_ptr<BlasCache> blas_cache = nullptr);
   ~RenderSession();  // cancels and waits for the worker thread
   RenderSession(const RenderSession&) = delete;
   RenderSession& operator=(const RenderSession&) = delete;
@@ -90,6 +94,7 @@ class RenderSession {
   void set_status(const std::string& s);
 
   std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<BlasCache> blas_cache_;  // may be null
   RenderSettings settings_;
   std::thread worker_;
   std::atomic<bool> cancel_{false};
