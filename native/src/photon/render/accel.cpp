@@ -1,5 +1,7 @@
 #include "photon/render/accel.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -89,20 +91,31 @@ void Accel::clear_after_cancel() {
 }
 
 Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
-             const std::atomic<bool>* cancel)
+             const std::atomic<bool>* cancel, BvhQuality quality)
     : scene_(scene), warnings_(warnings), cancel_(cancel) {
   device_ = rtcNewDevice(nullptr);
   rtcSetDeviceErrorFunction(device_, &Accel::on_embree_error, this);
 
-  // Bottom level: one scene per mesh that has triangles and is used by an instance.
+  // Bottom level: one scene per mesh that has triangles and is used by an instance. The meshes
+  // are built concurrently (Embree allows rtcCommitScene on different scenes from TBB worker
+  // threads, each build nesting its own parallel loops), so a scene of many small meshes keeps
+  // every thread busy instead of building them one after another.
   std::vector<uint8_t> used(scene.meshes.size(), 0);
   for (const Instance& inst : scene.instances)
     if (inst.mesh < used.size()) used[inst.mesh] = 1;
+  std::vector<size_t> to_build;
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (used[m] && scene.meshes[m].triangle_count() > 0) to_build.push_back(m);
   mesh_scenes_.assign(scene.meshes.size(), nullptr);
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+  const RTCBuildQuality rtc_quality =
+      quality == BvhQuality::kFastBuild ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM;
+  std::atomic<bool> abandoned{false};
+  tbb::parallel_for(size_t{0}, to_build.size(), [&](size_t i) {
+    if (abandoned.load(std::memory_order_relaxed)) return;
+    const size_t m = to_build[i];
     const Mesh& mesh = scene.meshes[m];
-    if (!used[m] || mesh.triangle_count() == 0) continue;
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryBuildQuality(geom, rtc_quality);
     // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it:
     // copy into a padded buffer owned by Embree instead of sharing the std::vector.
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -113,17 +126,22 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
                                mesh.indices.data(), 0, 3 * sizeof(uint32_t), mesh.triangle_count());
     rtcCommitGeometry(geom);
     RTCScene blas = rtcNewScene(device_);
+    // Robust triangle tests: with them a ray hits the same triangle at the same t whatever the
+    // BVH's shape (only exact ties can resolve differently), so the build quality is free to
+    // change.
     rtcSetSceneFlags(blas, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(blas, rtc_quality);
     rtcAttachGeometryByID(blas, geom, 0);
     rtcReleaseGeometry(geom);
     mesh_scenes_[m] = blas;
-    if (!commit(blas)) {
-      clear_after_cancel();
-      return;
-    }
-    ++blas_count_;
-    triangle_count_ += mesh.triangle_count();
+    if (!commit(blas)) abandoned = true;
+  });
+  if (abandoned) {
+    clear_after_cancel();
+    return;
   }
+  blas_count_ = to_build.size();
+  for (size_t m : to_build) triangle_count_ += scene.meshes[m].triangle_count();
 
   // Top level: one instance geometry per Instance; geometry id = index into instances_.
   top_ = rtcNewScene(device_);

@@ -9,13 +9,18 @@
 #include <string>
 #include <vector>
 
-#include "photon/render/accel.h"
-#include "photon/lights/emissive_mesh.h"
 #include "photon/integrators/integrator.h"
+#include "photon/lights/emissive_mesh.h"
 #include "photon/lights/lights.h"
+#include "photon/render/accel.h"
 #include "photon/render/textures.h"
 
 namespace photon {
+
+// The BVH quality that renders `scene` with `settings` soonest: the fast (LOW) build when the
+// render traces too few rays per triangle to repay a MEDIUM build (a small preview of a big
+// mesh), else the fast-tracing one. Either gives the same image.
+BvhQuality bvh_quality_for(const Scene& scene, const RenderSettings& settings);
 
 class SceneResources {
  public:
