@@ -10,7 +10,8 @@
 (b) Memory per million triangles: peak RSS (/usr/bin/time) of a Photon render of a 1M-triangle
     grid minus that of the same Blender process building the grid without rendering, with the
     same difference for an empty scene taken off, so Blender's own copy of the mesh is excluded.
-(c) Memory per million photons: peak RSS of build/photon_cli --photons N for N = 0, 1M, 2M.
+(c) Memory per million photons: peak RSS of build/photon_cli --photons N for N = 0, 1M, 2M,
+    beside the size of the maps the CLI reports (photon_map_bytes).
 """
 
 import argparse
@@ -129,11 +130,12 @@ def photon_memory(args):
                    "--samples", "1", "--photons", str(count), "--caustic-photons", "0",
                    "--out", f"{tmp}/p.exr"]
             rss[count], out = min(peak_rss_mb(cmd) for _ in range(args.runs))
-            found = re.search(r"estimated peak ([\d.]+ [MG]B)", out)
-            estimate[count] = found.group(1) if found else None
+            found = re.search(r"photon_map_bytes: (\d+)", out)
+            estimate[count] = int(found.group(1)) / 1e6 if found else None
     for count in (1_000_000, 2_000_000):
         per_million = (rss[count] - rss[0]) / (count / 1e6)
-        note = f", photon_memory estimate {estimate[count]}" if estimate[count] else ""
+        note = (f"; the photon maps themselves: {estimate[count]:.0f} MB (photon_map_bytes)"
+                if estimate[count] else "")
         print(f"BENCH photon_cli --photons {count:,}: peak RSS {rss[count]:.0f} MB "
               f"(0 photons: {rss[0]:.0f} MB) -> {per_million:.0f} MB per million photons{note}")
 

@@ -30,10 +30,13 @@ def parse_args():
     parser.add_argument("--runs", type=int, default=5, help="runs per engine (minimum reported)")
     parser.add_argument("--threads", type=int, default=0, help="render threads (0: all cores)")
     parser.add_argument("--no-cycles", action="store_true", help="time Photon only")
+    parser.add_argument("--integrator", default="RAY_TRACE",
+                        help="Photon integrator (RAY_TRACE compares like with like: Cycles has "
+                             "no photon pre-pass; PHOTON_MAP adds its photon tracing)")
     return parser.parse_args(argv)
 
 
-def build_scene(threads):
+def build_scene(threads, integrator):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     bpy.ops.mesh.primitive_grid_add(x_subdivisions=SUBDIVISIONS, y_subdivisions=SUBDIVISIONS,
                                     size=4.0, calc_uvs=True)
@@ -55,6 +58,7 @@ def build_scene(threads):
     if threads > 0:
         scene.render.threads = threads
     scene.photon.samples = 1
+    scene.photon.integrator = integrator
     scene.cycles.samples = 1
     scene.cycles.device = 'CPU'
     scene.cycles.use_denoising = False
@@ -63,12 +67,16 @@ def build_scene(threads):
 
 
 class PhotonSummary:
-    """Captures the engine's summary line (Reporter.info) during one render."""
+    """Captures the engine's summary line (Reporter.info) and its RenderSession's stats during
+    one render."""
 
     def __init__(self):
-        from photon import report
+        from photon import _photon, report
         self._report = report
         self._info = report.Reporter.info
+        self._native = _photon
+        self._session_type = _photon.RenderSession
+        self.sessions = []
         self.line = ""
 
     def __enter__(self):
@@ -79,11 +87,18 @@ class PhotonSummary:
                 self.line = message
             original(reporter, message)
 
+        def session(*args, **kwargs):
+            made = self._session_type(*args, **kwargs)
+            self.sessions.append(made)
+            return made
+
         self._report.Reporter.info = info
+        self._native.RenderSession = session
         return self
 
     def __exit__(self, *exc):
         self._report.Reporter.info = self._info
+        self._native.RenderSession = self._session_type
 
 
 def render_once(scene, engine):
@@ -95,12 +110,13 @@ def render_once(scene, engine):
 
 def main():
     args = parse_args()
-    scene, triangles = build_scene(args.threads)
+    scene, triangles = build_scene(args.threads, args.integrator)
     engines = ['PHOTON'] + ([] if args.no_cycles else ['CYCLES'])
     for engine in engines:  # warm-up: kernels, add-on import, caches; not timed
         render_once(scene, engine)
 
-    photon = {"sync": [], "bvh": [], "sample": [], "engine total": [], "wall": []}
+    photon = {"sync": [], "bvh": [], "prepare": [], "sample": [], "engine total": [],
+              "wall": []}
     cycles = []
     for _ in range(args.runs):
         with PhotonSummary() as summary:
@@ -111,13 +127,15 @@ def main():
         for key, value in zip(("sync", "bvh", "sample", "engine total"), match.groups()):
             photon[key].append(float(value))
         photon["wall"].append(wall)
+        photon["prepare"].append(summary.sessions[-1].stats["prepare_seconds"])
         if 'CYCLES' in engines:
             cycles.append(render_once(scene, 'CYCLES'))
 
     print(f"BENCH mesh triangles: {triangles:,}; min of {args.runs} runs, "
-          f"threads {args.threads or 'all'}")
+          f"threads {args.threads or 'all'}, Photon integrator {args.integrator}")
     print(f"BENCH Photon sync (depsgraph -> native scene): {min(photon['sync']):.3f} s")
     print(f"BENCH Photon BVH (+ lights, emitters):        {min(photon['bvh']):.3f} s")
+    print(f"BENCH Photon prepare (photon pre-pass):       {min(photon['prepare']):.3f} s")
     print(f"BENCH Photon first sample (1x1 px, 1 spp):    {min(photon['sample']):.3f} s")
     print(f"BENCH Photon total in engine.render():        {min(photon['engine total']):.3f} s")
     print(f"BENCH Photon time to first pixel (render op): {min(photon['wall']):.3f} s")
