@@ -116,12 +116,18 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
     const Mesh& mesh = scene.meshes[m];
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     rtcSetGeometryBuildQuality(geom, rtc_quality);
-    // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it:
-    // copy into a padded buffer owned by Embree instead of sharing the std::vector.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), mesh.positions.size()));
-    if (vertices)
-      std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it.
+    // Meshes imported with spare capacity (Scene's add_mesh reserves one vertex more) are
+    // shared as they are; others are copied into a padded buffer owned by Embree.
+    if (mesh.positions.capacity() > mesh.positions.size()) {
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                 mesh.positions.data(), 0, sizeof(Vec3), mesh.positions.size());
+    } else {
+      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), mesh.positions.size()));
+      if (vertices)
+        std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    }
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh.indices.data(), 0, 3 * sizeof(uint32_t), mesh.triangle_count());
     rtcCommitGeometry(geom);

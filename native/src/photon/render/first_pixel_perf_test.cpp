@@ -64,6 +64,21 @@ TEST(FirstPixelPerf, FastBuildBvhHitsExactlyWhatTheFastTraceBvhHits) {
   EXPECT_GT(hits, 15000u);
 }
 
+TEST(FirstPixelPerf, SharedAndCopiedVertexArraysHitTheSame) {
+  Scene shared = many_mesh_scene();
+  Scene copied = shared;
+  for (Mesh& mesh : shared.meshes) mesh.positions.reserve(mesh.positions.size() + 1);
+  for (Mesh& mesh : copied.meshes) mesh.positions.shrink_to_fit();
+  const Accel a(shared, nullptr), b(copied, nullptr);
+  for (const Ray& ray : random_rays(5000)) {
+    Hit ha, hb;
+    ASSERT_EQ(a.intersect(ray, kVisibleAll, &ha), b.intersect(ray, kVisibleAll, &hb));
+    EXPECT_EQ(ha.t, hb.t);
+    EXPECT_EQ(ha.primitive, hb.primitive);
+  }
+  EXPECT_EQ(a.triangle_count(), b.triangle_count());
+}
+
 TEST(FirstPixelPerf, ConcurrentBottomLevelBuildsMatchBruteForce) {
   const Scene scene = many_mesh_scene();
   const Accel accel(scene, nullptr);
