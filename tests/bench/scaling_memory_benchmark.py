@@ -7,9 +7,9 @@
     Blender's -t 1 against -t 2): the engine's own render time (after sync and BVH) and the
     whole render, min of --runs runs each. On a machine shared with other jobs the figure is
     only indicative: rerun it on a quiet one.
-(b) Memory per million triangles: peak RSS (/usr/bin/time) of a Photon render of a 1M-triangle
-    grid minus that of the same Blender process building the grid without rendering, with the
-    same difference for an empty scene taken off, so Blender's own copy of the mesh is excluded.
+(b) Memory per million triangles: the peak RSS Photon adds over the built scene (sync, BVH and
+    a 1-pixel render, run in Blender as the engine runs them) for a 1M-triangle grid, minus the
+    same for an empty scene; Blender's own copies of the mesh are not counted.
 (c) Memory per million photons: peak RSS of build/photon_cli --photons N for N = 0, 1M, 2M,
     beside the size of the maps the CLI reports (photon_map_bytes).
 """
@@ -25,12 +25,14 @@ from pathlib import Path
 REPO = Path(__file__).resolve().parents[2]
 SUMMARY = re.compile(r"sync ([\d.]+) s .*BVH ([\d.]+) s, render ([\d.]+) s, total ([\d.]+) s")
 
-# Builds a grid of about N triangles (N from argv after --), optionally renders it with Photon
-# (RAY_TRACE, 1 sample, 1x1 pixel): the scene Blender holds is the same either way.
+# Builds a grid of about N triangles (N from argv after --), then measures the peak RSS that
+# Photon adds on top of the built scene: the peak is reset (Linux: "5" > /proc/self/clear_refs)
+# and Photon's own steps run as the engine runs them (sync, then a RenderSession: BVH and a 1x1
+# pixel, 1-sample RAY_TRACE render), so Blender's own copies of the mesh are not counted.
 GRID_SCRIPT = r'''
 import sys, bpy
 args = sys.argv[sys.argv.index("--") + 1:]
-triangles, render = int(args[0]), args[1] == "render"
+triangles = int(args[0])
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
 if triangles:
@@ -41,13 +43,28 @@ cam.location = (0, 0, 5)
 scene.collection.objects.link(cam)
 scene.camera = cam
 scene.render.resolution_x = scene.render.resolution_y = 1
-scene.render.use_compositing = False
-scene.render.engine = 'PHOTON'
+scene.render.resolution_percentage = 100
 scene.photon.integrator = 'RAY_TRACE'
 scene.photon.samples = 1
-bpy.context.evaluated_depsgraph_get()
-if render:
-    bpy.ops.render.render()
+depsgraph = bpy.context.evaluated_depsgraph_get()
+from photon import _photon, engine, report, sync
+from photon.sync import camera as sync_camera
+
+def status(key):
+    for line in open("/proc/self/status"):
+        if line.startswith(key + ":"):
+            return int(line.split()[1]) / 1024.0
+
+with open("/proc/self/clear_refs", "w") as f:
+    f.write("5")
+before = status("VmRSS")
+native_scene, stats = sync.sync_scene(_photon, depsgraph, report.Reporter())
+region = sync_camera.render_region(scene.render, 1, 1)
+session = _photon.RenderSession(native_scene, engine.make_settings(_photon, scene, 1, 1, region))
+session.start()
+session.wait()
+print(f"PHOTON_PEAK_MB {status('VmHWM') - before:.1f} triangles {native_scene.triangle_count}")
+stats.release()
 '''
 
 
@@ -92,32 +109,28 @@ def scaling(args):
           f"(load average now {os.getloadavg()[0]:.1f} on {os.cpu_count()} cores)")
 
 
-def grid_rss(args, triangles, render):
+def photon_peak_mb(args, triangles):
+    """(peak MB Photon adds over the built scene, triangles synced)."""
     with tempfile.NamedTemporaryFile("w", suffix=".py") as script:
         script.write(GRID_SCRIPT)
         script.flush()
         cmd = [args.blender, "-b", "--factory-startup", "--addons", "photon", "-P", script.name,
-               "--", str(triangles), "render" if render else "none"]
-        rss, out = peak_rss_mb(cmd, env=blender_env(args.build))
-        if render and not SUMMARY.search(out):
-            sys.exit(f"Photon did not render the {triangles}-triangle grid:\n{out[-2000:]}")
-        return rss
+               "--", str(triangles)]
+        proc = subprocess.run(cmd, env=blender_env(args.build), capture_output=True, text=True)
+        found = re.search(r"PHOTON_PEAK_MB ([\d.]+) triangles (\d+)", proc.stdout)
+        if not found:
+            sys.exit(f"the {triangles}-triangle memory run failed:\n{proc.stdout[-2000:]}"
+                     f"\n{proc.stderr[-2000:]}")
+        return float(found.group(1)), int(found.group(2))
 
 
 def triangle_memory(args):
-    million = 1_000_000
-    rows = {}
-    for triangles in (0, million):
-        rows[triangles] = [min(grid_rss(args, triangles, render) for _ in range(args.runs))
-                           for render in (False, True)]
-    photon_0 = rows[0][1] - rows[0][0]
-    photon_1m = rows[million][1] - rows[million][0]
-    print(f"BENCH peak RSS, empty scene: Blender {rows[0][0]:.0f} MB, with a Photon render "
-          f"{rows[0][1]:.0f} MB")
-    print(f"BENCH peak RSS, 1M-triangle grid: Blender {rows[million][0]:.0f} MB, with a Photon "
-          f"render {rows[million][1]:.0f} MB")
-    print(f"BENCH Photon memory per million triangles: {photon_1m - photon_0:.0f} MB "
-          f"(render minus no render, 1M grid minus empty scene)")
+    empty, _ = min(photon_peak_mb(args, 0) for _ in range(args.runs))
+    grid, synced = min(photon_peak_mb(args, 1_000_000) for _ in range(args.runs))
+    per_million = (grid - empty) / (synced / 1e6)
+    print(f"BENCH Photon peak memory over the built scene (sync + BVH + 1 px): empty scene "
+          f"{empty:.0f} MB, {synced:,}-triangle grid {grid:.0f} MB -> {per_million:.0f} MB per "
+          f"million triangles")
 
 
 def photon_memory(args):
