@@ -47,7 +47,8 @@ class Accel {
   // Builds the BVHs. `scene` must outlive the Accel. Warnings (Embree errors, skipped instances)
   // are appended to `warnings`. When `cancel` becomes true during the build, Embree abandons it
   // within a few ms and the Accel holds an empty scene instead (every ray misses); cancelled()
-  // tells. The quality changes build and trace speed, never what a ray hits (robust mode).
+  // tells. The quality changes build and trace speed, not what a ray hits (robust mode: only
+  // exact ties between triangles could resolve differently).
   Accel(const Scene& scene, std::vector<std::string>* warnings,
         const std::atomic<bool>* cancel = nullptr, BvhQuality quality = BvhQuality::kFastTrace);
   ~Accel();
@@ -117,7 +118,8 @@ class Accel {
   static void on_embree_error(void* user, RTCError code, const char* message);
   // Embree's build progress callback: false (stop) once the render is cancelled.
   static bool on_build_progress(void* cancel, double);
-  // Commits `scene`, abandoning the build when cancelled; false when it was abandoned.
+  // Commits `scene`, abandoning the build when cancelled; false when it was abandoned. Called
+  // concurrently for different bottom-level scenes from TBB tasks.
   bool commit(RTCScene scene);
   // Releases every BVH and leaves an empty, committed top level.
   void clear_after_cancel();
