@@ -11,7 +11,7 @@
     a 1-pixel render, run in Blender as the engine runs them) for a 1M-triangle grid, minus the
     same for an empty scene; Blender's own copies of the mesh are not counted.
 (c) Memory per million photons: peak RSS of build/photon_cli --photons N for N = 0, 1M, 2M,
-    beside the size of the maps the CLI reports (photon_map_bytes).
+    beside the CLI's photon_map_bytes and memory_estimate_bytes (photon_memory.h's model).
 """
 
 import argparse
@@ -143,12 +143,16 @@ def photon_memory(args):
                    "--samples", "1", "--photons", str(count), "--caustic-photons", "0",
                    "--out", f"{tmp}/p.exr"]
             rss[count], out = min(peak_rss_mb(cmd) for _ in range(args.runs))
-            found = re.search(r"photon_map_bytes: (\d+)", out)
-            estimate[count] = int(found.group(1)) / 1e6 if found else None
+            maps = re.search(r"photon_map_bytes: ([\d.e+]+)", out)
+            model = re.search(r"memory_estimate_bytes: ([\d.e+]+)", out)
+            estimate[count] = (float(maps.group(1)) / 1e6 if maps else None,
+                               float(model.group(1)) / 1e6 if model else None)
     for count in (1_000_000, 2_000_000):
         per_million = (rss[count] - rss[0]) / (count / 1e6)
-        note = (f"; the photon maps themselves: {estimate[count]:.0f} MB (photon_map_bytes)"
-                if estimate[count] else "")
+        maps, model = estimate[count]
+        note = f"; photon maps {maps:.0f} MB" if maps is not None else ""
+        note += (f", photon_memory model estimate {model:.0f} MB"
+                 if model is not None else "")
         print(f"BENCH photon_cli --photons {count:,}: peak RSS {rss[count]:.0f} MB "
               f"(0 photons: {rss[0]:.0f} MB) -> {per_million:.0f} MB per million photons{note}")
 
