@@ -38,6 +38,9 @@ void copy_rows(const Array& a, size_t group, std::vector<T>* out, const char* wh
   if (n % group != 0 || n % kPerElement != 0)
     throw std::invalid_argument(std::string(what) + ": size is not a multiple of " +
                                 std::to_string(group));
+  // One spare element: Embree may then share a mesh's vertex array instead of copying it
+  // (its 16-byte loads read 4 bytes past the last vertex; accel.cpp).
+  out->reserve(n / kPerElement + 1);
   out->resize(n / kPerElement);
   if (n) std::memcpy(out->data(), a.data(), n * sizeof(Value));
 }

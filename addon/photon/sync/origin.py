@@ -85,7 +85,9 @@ class SceneBounds:
 def local_bounds(positions):
     """(lo, hi) float64 of finite object-space positions (flat or (N, 3)), or (None, None)."""
     points = np.asarray(positions).reshape(-1, 3)
-    points = points[np.isfinite(points).all(axis=1)]
+    finite = np.isfinite(points).all(axis=1)
+    if not finite.all():  # the usual all-finite mesh skips a copy of its vertices
+        points = points[finite]
     if len(points) == 0:
         return None, None
     return points.min(axis=0).astype(np.float64), points.max(axis=0).astype(np.float64)

@@ -1,5 +1,7 @@
 #include "photon/render/accel.h"
 
+#include <tbb/parallel_for.h>
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -89,7 +91,7 @@ void Accel::clear_after_cancel() {
 }
 
 Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
-             const std::atomic<bool>* cancel, BlasCache* blas_cache)
+             const std::atomic<bool>* cancel, BvhQuality quality, BlasCache* blas_cache)
     : scene_(scene), warnings_(warnings), cancel_(cancel) {
   if (blas_cache) {
     // Instanced BVHs must live on the top level's device; the cache reports its own errors.
@@ -100,48 +102,72 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
     rtcSetDeviceErrorFunction(device_, &Accel::on_embree_error, this);
   }
 
-  // Bottom level: one scene per mesh that has triangles and is used by an instance.
+  // Bottom level: one scene per mesh that has triangles and is used by an instance. The meshes
+  // are built concurrently (Embree allows rtcCommitScene on different scenes from TBB worker
+  // threads, each build nesting its own parallel loops), so a scene of many small meshes keeps
+  // every thread busy instead of building them one after another.
   std::vector<uint8_t> used(scene.meshes.size(), 0);
   for (const Instance& inst : scene.instances)
     if (inst.mesh < used.size()) used[inst.mesh] = 1;
+  std::vector<size_t> to_build;
+  for (size_t m = 0; m < scene.meshes.size(); ++m)
+    if (used[m] && scene.meshes[m].triangle_count() > 0) to_build.push_back(m);
   mesh_scenes_.assign(scene.meshes.size(), nullptr);
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
-    if (!used[m] || mesh.triangle_count() == 0) continue;
-    if (blas_cache) {
+  const RTCBuildQuality rtc_quality =
+      quality == BvhQuality::kFastBuild ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM;
+  if (blas_cache) {
+    // Persistent Data: the cache builds what it lacks, one mesh at a time under its lock, into
+    // buffers of its own (the BVHs outlive this frame's meshes).
+    for (size_t m : to_build) {
       bool reused = false;
       if (!blas_cache->acquire(
-              mesh, [this](RTCScene s) { return commit(s); }, &mesh_scenes_[m], &reused)) {
+              scene.meshes[m], [this](RTCScene s) { return commit(s); }, &mesh_scenes_[m],
+              &reused)) {
         clear_after_cancel();
         return;
       }
       blas_reused_ += reused ? 1 : 0;
-      ++blas_count_;
-      triangle_count_ += mesh.triangle_count();
-      continue;
     }
+  }
+  std::atomic<bool> abandoned{false};
+  tbb::parallel_for(size_t{0}, blas_cache ? size_t{0} : to_build.size(), [&](size_t i) {
+    if (abandoned.load(std::memory_order_relaxed)) return;
+    const size_t m = to_build[i];
+    const Mesh& mesh = scene.meshes[m];
     RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
-    // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it:
-    // copy into a padded buffer owned by Embree instead of sharing the std::vector.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), mesh.positions.size()));
-    if (vertices)
-      std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    rtcSetGeometryBuildQuality(geom, rtc_quality);
+    // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it.
+    // Meshes imported with spare capacity (Scene's add_mesh reserves one vertex more) are
+    // shared as they are; others are copied into a padded buffer owned by Embree.
+    if (mesh.positions.capacity() > mesh.positions.size()) {
+      rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                 mesh.positions.data(), 0, sizeof(Vec3), mesh.positions.size());
+    } else {
+      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+          geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, sizeof(Vec3), mesh.positions.size()));
+      if (vertices)
+        std::memcpy(vertices, mesh.positions.data(), mesh.positions.size() * sizeof(Vec3));
+    }
     rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                mesh.indices.data(), 0, 3 * sizeof(uint32_t), mesh.triangle_count());
     rtcCommitGeometry(geom);
     RTCScene blas = rtcNewScene(device_);
+    // Robust triangle tests: with them a ray hits the same triangle at the same t whatever the
+    // BVH's shape (only exact ties can resolve differently), so the build quality is free to
+    // change.
     rtcSetSceneFlags(blas, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(blas, rtc_quality);
     rtcAttachGeometryByID(blas, geom, 0);
     rtcReleaseGeometry(geom);
     mesh_scenes_[m] = blas;
-    if (!commit(blas)) {
-      clear_after_cancel();
-      return;
-    }
-    ++blas_count_;
-    triangle_count_ += mesh.triangle_count();
+    if (!commit(blas)) abandoned = true;
+  });
+  if (abandoned) {
+    clear_after_cancel();
+    return;
   }
+  blas_count_ = to_build.size();
+  for (size_t m : to_build) triangle_count_ += scene.meshes[m].triangle_count();
 
   // Top level: one instance geometry per Instance; geometry id = index into instances_.
   top_ = rtcNewScene(device_);

@@ -52,7 +52,7 @@ TEST(BlasCache, SecondAccelReusesEveryBvhAndTracesBitIdentically) {
   std::vector<std::string> warnings;
   const Accel fresh(scene, &warnings);
   BlasCache cache;
-  const Accel first(scene, &warnings, nullptr, &cache);
+  const Accel first(scene, &warnings, nullptr, BvhQuality::kFastTrace, &cache);
   EXPECT_EQ(first.blas_reused(), 0u);
   EXPECT_EQ(first.blas_count(), fresh.blas_count());
   EXPECT_EQ(cache.size(), fresh.blas_count());
@@ -61,7 +61,7 @@ TEST(BlasCache, SecondAccelReusesEveryBvhAndTracesBitIdentically) {
   Scene next = make_cornell_box();
   next.instances.back().object_to_world.m[0][3] += 0.05f;
   cache.begin_frame();
-  const Accel second(next, &warnings, nullptr, &cache);
+  const Accel second(next, &warnings, nullptr, BvhQuality::kFastTrace, &cache);
   EXPECT_EQ(second.blas_reused(), second.blas_count());
   EXPECT_EQ(cache.size(), fresh.blas_count());
   EXPECT_TRUE(warnings.empty());
@@ -76,7 +76,7 @@ TEST(BlasCache, ChangedMeshGetsItsOwnBvh) {
   const Scene scene = make_cornell_box();
   BlasCache cache;
   std::vector<std::string> warnings;
-  { const Accel first(scene, &warnings, nullptr, &cache); }
+  { const Accel first(scene, &warnings, nullptr, BvhQuality::kFastTrace, &cache); }
   Scene edited = make_cornell_box();
   // The last bit of one vertex: content, not names or sizes, decides reuse.
   Mesh& mesh = edited.meshes.back();
@@ -85,7 +85,7 @@ TEST(BlasCache, ChangedMeshGetsItsOwnBvh) {
   ++x;
   std::memcpy(&mesh.positions[0].x, &x, 4);
   cache.begin_frame();
-  const Accel second(edited, &warnings, nullptr, &cache);
+  const Accel second(edited, &warnings, nullptr, BvhQuality::kFastTrace, &cache);
   EXPECT_EQ(second.blas_reused(), second.blas_count() - 1);
   const Accel edited_fresh(edited, &warnings);
   EXPECT_EQ(hit_bits(second), hit_bits(edited_fresh));
@@ -104,10 +104,10 @@ TEST(BlasCache, CancelledBuildCachesNothing) {
   BlasCache cache;
   std::vector<std::string> warnings;
   std::atomic<bool> cancel{true};
-  const Accel cancelled(scene, &warnings, &cancel, &cache);
+  const Accel cancelled(scene, &warnings, &cancel, BvhQuality::kFastTrace, &cache);
   EXPECT_TRUE(cancelled.cancelled());
   EXPECT_EQ(cache.size(), 0u);
-  const Accel after(scene, &warnings, nullptr, &cache);
+  const Accel after(scene, &warnings, nullptr, BvhQuality::kFastTrace, &cache);
   EXPECT_EQ(after.blas_reused(), 0u);
   EXPECT_EQ(hit_bits(after), hit_bits(Accel(scene, &warnings)));
 }

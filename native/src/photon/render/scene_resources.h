@@ -17,6 +17,11 @@
 
 namespace photon {
 
+// The BVH quality that renders `scene` with `settings` soonest: the fast (LOW) build when the
+// render traces too few rays per triangle to repay a MEDIUM build (a small preview of a big
+// mesh), else the fast-tracing one. Either gives the same image.
+BvhQuality bvh_quality_for(const Scene& scene, const RenderSettings& settings);
+
 class SceneResources {
  public:
   // `scene` and `settings` must outlive this object. Build it inside the task arena that will
