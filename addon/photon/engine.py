@@ -34,13 +34,19 @@ def make_settings(native, scene, full_width, full_height, region):
     return settings
 
 
-def can_stop_early(scene, session):
-    """Esc while photons are traced (or radiosity is solved) ends that stage and renders with
-    what it has; in any other stage, and for Ctrl-C in background mode (which Blender turns
-    into test_break()), the render is cancelled."""
+def integrator_capabilities(native, scene):
+    """What the scene's integrator can do (bake, stop_early, ...), as the native factory says."""
+    return native.integrator_capabilities(getattr(native.Integrator, scene.photon.integrator))
+
+
+def can_stop_early(capabilities, session):
+    """Esc while the integrator's preparation can stop early (photons traced, radiosity solved)
+    ends that stage and renders with what it has; in any other stage, and for Ctrl-C in
+    background mode (which Blender turns into test_break()), the render is cancelled."""
     if bpy.app.background:
         return False
-    return scene.photon.integrator == "RADIOSITY" or session.status.startswith("Tracing photons")
+    return (capabilities["stop_early"]
+            and session.status.startswith(capabilities["stop_early_status"]))
 
 
 def prepare_report(prepared):
@@ -210,6 +216,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         region_w, region_h = region[2] - region[0], region[3] - region[1]
         settings.light_passes = bool(self._passes)
 
+        capabilities = integrator_capabilities(native, scene)
         session = native.RenderSession(native_scene, settings,
                                        blas_cache=self._session_blas_cache)
         session.start()
@@ -224,18 +231,13 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                     self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
                     tiles_done += 1
                 if not cancelled and not photons_stopped and self.test_break():
-                    if session.preparing and can_stop_early(scene, session):
+                    if session.preparing and can_stop_early(capabilities, session):
                         # Esc while photons are traced ends the tracing; the image is rendered
                         # with the photons traced so far (Blender keeps test_break() set from
                         # here on, so the rest of this render cannot be cancelled).
                         session.stop_preparation()
                         photons_stopped = True
-                        if scene.photon.integrator == "RADIOSITY":
-                            reporter.warning("Esc: radiosity solve stopped, rendering the "
-                                             "solution so far")
-                        else:
-                            reporter.warning("Esc: photon tracing stopped, rendering with the "
-                                             "photons traced so far")
+                        reporter.warning(f"Esc: {capabilities['stop_early_effect']}")
                     else:
                         session.cancel()
                         cancelled = True

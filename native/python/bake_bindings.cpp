@@ -158,6 +158,8 @@ void bind_bake(py::module_& m) {
       .def_property_readonly("preparing", &BakeSession::preparing)
       .def_property_readonly("progress", &BakeSession::progress)
       .def_property_readonly("status", &BakeSession::status)
+      .def_property_readonly("error", &BakeSession::error,
+                             "Why the bake failed (status 'Failed'); empty otherwise.")
       .def(
           "result", [](const BakeSession& s) { return result_dict(s.result()); },
           "Once finished: dict of radiance/position/normal (N, 3) float32, status (N,) uint8 "

@@ -370,6 +370,24 @@ PYBIND11_MODULE(_photon, m) {
       .value("RAY_TRACE", IntegratorType::kRayTrace)
       .value("PHOTON_MAP", IntegratorType::kPhotonMap)
       .value("RADIOSITY", IntegratorType::kRadiosity);
+
+  m.def(
+      "integrator_capabilities",
+      [](IntegratorType type) {
+        const IntegratorCapabilities c = integrator_capabilities(type);
+        py::dict d;
+        d["name"] = c.name;
+        d["bake"] = c.bake;
+        d["no_bake_reason"] = c.no_bake_reason;
+        d["stop_early"] = c.stop_early;
+        d["stop_early_status"] = c.stop_early_status;
+        d["stop_early_effect"] = c.stop_early_effect;
+        return d;
+      },
+      py::arg("integrator"),
+      "What an Integrator can do: bake (a view-independent solution for lighting bakes; "
+      "no_bake_reason otherwise), stop_early (Esc ends its preparation while the status starts "
+      "with stop_early_status, and the render goes on as stop_early_effect says).");
   m.attr("PASS_NAMES") = py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics",
                                         "Photon Map");
 
@@ -429,6 +447,8 @@ PYBIND11_MODULE(_photon, m) {
       .def_property_readonly("progress", &RenderSession::progress)
       .def_property_readonly("status", &RenderSession::status)
       .def_property_readonly("warnings", &RenderSession::warnings)
+      .def_property_readonly("error", &RenderSession::error,
+                             "Why the render failed (status 'Failed'); empty otherwise.")
       .def_property_readonly("stats", &RenderSession::stats)
       .def("image", [](const RenderSession& s) {
         return to_numpy(s.image(), s.region_height(), s.region_width());

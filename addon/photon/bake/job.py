@@ -36,6 +36,9 @@ def bake_settings(native, scene):
     integrator = getattr(native.Integrator, props.bake_source, None)
     if integrator is None:
         raise BakeError(f"this build of Photon has no {props.bake_source} integrator to bake from")
+    capabilities = native.integrator_capabilities(integrator)
+    if not capabilities["bake"]:
+        raise BakeError(capabilities["no_bake_reason"])
     settings.integrator = integrator
     settings.samples = max(1, int(props.bake_samples))
     return settings

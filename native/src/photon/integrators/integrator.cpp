@@ -18,4 +18,33 @@ std::unique_ptr<Integrator> make_integrator(IntegratorType type) {
   return std::make_unique<PhotonMapIntegrator>();
 }
 
+IntegratorCapabilities integrator_capabilities(IntegratorType type) {
+  IntegratorCapabilities c;
+  switch (type) {
+    case IntegratorType::kRayTrace:
+      c.name = "RAY_TRACE";
+      c.no_bake_reason =
+          "the RAY_TRACE integrator has no view-independent lighting solution to bake; "
+          "bake from the photon maps or the radiosity solution";
+      break;
+    case IntegratorType::kPhotonMap:
+      c.name = "PHOTON_MAP";
+      c.bake = true;
+      // Only photon tracing (photon_tracer.cpp) polls stop_early; the maps are then built from
+      // the photons stored so far.
+      c.stop_early = true;
+      c.stop_early_status = "Tracing photons";
+      c.stop_early_effect = "photon tracing stopped, rendering with the photons traced so far";
+      break;
+    case IntegratorType::kRadiosity:
+      c.name = "RADIOSITY";
+      c.bake = true;
+      // The solver (radiosity_solver.cpp, radiosity_refine.cpp) keeps the solution so far.
+      c.stop_early = true;
+      c.stop_early_effect = "radiosity solve stopped, rendering the solution so far";
+      break;
+  }
+  return c;
+}
+
 }  // namespace photon

@@ -10,13 +10,13 @@
 #include <vector>
 
 #include "photon/integrators/prepare_stats.h"
-#include "photon/render/accel.h"
-#include "photon/lights/lights.h"
 #include "photon/base/math.h"
 #include "photon/integrators/photon_map/photon_map_params.h"
 #include "photon/integrators/radiosity/radiosity_params.h"
 #include "photon/integrators/sampling_params.h"
 #include "photon/base/rng.h"
+#include "photon/lights/lights.h"
+#include "photon/render/accel.h"
 #include "photon/scene/scene.h"
 
 namespace photon {
@@ -130,5 +130,21 @@ class Integrator {
 };
 
 std::unique_ptr<Integrator> make_integrator(IntegratorType type);
+
+// What an integrator type can do, asked of the factory by the sessions and the add-on instead of
+// testing for particular types.
+struct IntegratorCapabilities {
+  const char* name = "";  // as the Python enum names it: "PHOTON_MAP"
+  // baked_radiance gives a view-independent solution that lighting bakes read.
+  bool bake = false;
+  const char* no_bake_reason = "";  // for the user, when bake is false
+  // prepare() ends early on PrepareControl::stop_early and the render goes on with what was
+  // prepared, while the preparation's status starts with stop_early_status ("" = all of it).
+  bool stop_early = false;
+  const char* stop_early_status = "";
+  const char* stop_early_effect = "";  // for the user: what the render goes on with
+};
+
+IntegratorCapabilities integrator_capabilities(IntegratorType type);
 
 }  // namespace photon

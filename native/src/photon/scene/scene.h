@@ -108,7 +108,6 @@ struct Scene {
   std::vector<Light> lights;
   Camera camera;
   World world;
-  std::vector<std::string> warnings;
 
   // Material used when a triangle's slot does not map to a valid material.
   static const Material& default_material();

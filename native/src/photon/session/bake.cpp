@@ -5,8 +5,8 @@
 
 #include <chrono>
 
-#include "photon/session/render_session.h"
 #include "photon/render/scene_resources.h"
+#include "photon/session/render_session.h"
 
 namespace photon {
 namespace {
@@ -56,10 +56,9 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
   result.position.assign(n, Vec3(0.0f));
   result.normal.assign(n, Vec3(0.0f));
   result.status.assign(n, kBakeNotDone);
-  if (settings.integrator == IntegratorType::kRayTrace) {
-    result.error =
-        "the RAY_TRACE integrator has no view-independent lighting solution to bake; "
-        "bake from the photon maps or the radiosity solution";
+  const IntegratorCapabilities capabilities = integrator_capabilities(settings.integrator);
+  if (!capabilities.bake) {
+    result.error = capabilities.no_bake_reason;
     return result;
   }
 
@@ -231,76 +230,38 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& input_settings,
 
 BakeSession::BakeSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
                          const BakeOptions& options, std::vector<BakePoint> points)
-    : scene_(std::move(scene)),
+    : Job("Bake"),
+      scene_(std::move(scene)),
       settings_(settings),
       options_(options),
-      points_(std::move(points)) {}
+      points_(std::move(points)) {
+  set_work_total(points_.size());
+}
 
 BakeSession::~BakeSession() {
-  cancel();
-  if (worker_.joinable()) worker_.join();
-}
-
-void BakeSession::start() {
-  if (worker_.joinable() || finished_) return;
-  worker_ = std::thread([this] { run(); });
-}
-
-void BakeSession::wait() {
-  if (worker_.joinable()) worker_.join();
-}
-
-void BakeSession::cancel() {
-  cancel_ = true;
-}
-
-void BakeSession::stop_preparation() {
-  stop_preparation_ = true;
-}
-
-float BakeSession::progress() const {
-  if (preparing_) return prepare_fraction_.load();
-  return points_.empty()
-             ? 1.0f
-             : static_cast<float>(points_done_.load()) / static_cast<float>(points_.size());
-}
-
-std::string BakeSession::status() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return status_;
+  stop_worker();
 }
 
 BakeResult BakeSession::result() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return result_;
+  BakeResult result;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    result = result_;
+  }
+  const std::string failure = error();
+  if (!failure.empty() && result.error.empty()) result.error = "bake failed: " + failure;
+  return result;
 }
 
 void BakeSession::run() {
-  PrepareControl control;
-  control.cancel = &cancel_;
-  control.stop_early = &stop_preparation_;
-  control.progress = [this](const std::string& status, float fraction) {
-    prepare_fraction_ = fraction;
-    std::lock_guard<std::mutex> lock(mutex_);
-    status_ = status;
-  };
-  BakeResult result;
-  preparing_ = true;
-  // Nothing may escape the worker thread: an exception there would terminate Blender.
-  try {
-    result = bake_points(
-        *scene_, settings_, options_, points_, control, [this] { preparing_ = false; },
-        &points_done_);
-  } catch (const std::exception& e) {
-    result.error = std::string("bake failed: ") + e.what();
-  } catch (...) {
-    result.error = "bake failed with an unknown error";
-  }
-  preparing_ = false;
+  // The bake's warnings go into its result (bake_points collects them).
+  const PrepareControl control = prepare_control();
+  set_preparing(true);
+  BakeResult result = bake_points(
+      *scene_, settings_, options_, points_, control, [this] { set_preparing(false); },
+      &work_done());
   std::lock_guard<std::mutex> lock(mutex_);
   result_ = std::move(result);
-  status_ = cancel_ ? "Cancelled" : "Done";
-  finished_ = true;
 }
 
 }  // namespace photon

@@ -1,9 +1,9 @@
 // Lighting bakes: the view-independent radiance of given surface points, computed
 // once by an integrator that has such a solution (photon maps, radiosity) and written by the
 // add-on into Blender data (colour attributes, lightmaps) for real-time viewing.
-// Runs on a background thread like RenderSession: prepare the integrator once (progress,
-// cancel, stop early), then shade every point in parallel. Results do not depend on the thread
-// count: point i always draws from the sampler streams (seed, 3i + {0, 1, 2}).
+// A BakeSession runs it on a background thread (a Job, like RenderSession): prepare the integrator
+// once (progress, cancel, stop early), then shade every point in parallel. Results do not depend on
+// the thread count: point i always draws from the sampler streams (seed, 3i + {0, 1, 2}).
 #pragma once
 
 #include <atomic>
@@ -11,11 +11,11 @@
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "photon/integrators/integrator.h"
 #include "photon/scene/scene.h"
+#include "photon/session/job.h"
 
 namespace photon {
 
@@ -70,40 +70,27 @@ BakeResult bake_points(const Scene& scene, const RenderSettings& settings,
                        const std::function<void()>& on_prepared = nullptr,
                        std::atomic<size_t>* points_done = nullptr);
 
-class BakeSession {
+class BakeSession : public Job {
  public:
   BakeSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
               const BakeOptions& options, std::vector<BakePoint> points);
-  ~BakeSession();  // cancels and waits
-  BakeSession(const BakeSession&) = delete;
-  BakeSession& operator=(const BakeSession&) = delete;
+  ~BakeSession() override;  // cancels and waits
 
-  void start();
-  void wait();
-  void cancel();
-  void stop_preparation();  // end photon tracing early and bake with what was traced
+  // start(), wait(), cancel(), stop_preparation() (end photon tracing early and bake with what
+  // was traced), progress (of the preparation, then of the points shaded) and status come
+  // from Job.
 
-  bool finished() const { return finished_.load(); }
-  bool cancelled() const { return cancel_.load(); }
-  bool preparing() const { return preparing_.load(); }
-  float progress() const;  // fraction of the current phase
-  std::string status() const;
-  // The result; valid once finished() (empty before).
+  // The result; valid once finished() (empty before). A failure of the work is its error.
   BakeResult result() const;
 
  private:
-  void run();
+  void run() override;
 
   std::shared_ptr<const Scene> scene_;
   RenderSettings settings_;
   BakeOptions options_;
   std::vector<BakePoint> points_;
-  std::thread worker_;
-  std::atomic<bool> cancel_{false}, stop_preparation_{false}, preparing_{false}, finished_{false};
-  std::atomic<float> prepare_fraction_{0.0f};
-  std::atomic<size_t> points_done_{0};
-  mutable std::mutex mutex_;
-  std::string status_ = "Waiting";
+  mutable std::mutex mutex_;  // result_
   BakeResult result_;
 };
 

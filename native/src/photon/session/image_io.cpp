@@ -25,29 +25,4 @@ bool write_rgba_image(const std::string& path, const std::vector<float>& rgba, i
   return ok;
 }
 
-bool read_rgba_image(const std::string& path, std::vector<float>* rgba, int* width, int* height,
-                     std::string* error) {
-  OIIO::ImageBuf buf(path);
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) {
-    if (error) *error = buf.geterror();
-    return false;
-  }
-  const OIIO::ImageSpec& spec = buf.spec();
-  *width = spec.width;
-  *height = spec.height;
-  rgba->assign(static_cast<size_t>(spec.width) * spec.height * 4, 1.0f);
-  const int channels = std::min(spec.nchannels, 4);
-  OIIO::ROI roi = buf.roi();
-  roi.chbegin = 0;
-  roi.chend = channels;
-  std::vector<float> tmp(static_cast<size_t>(spec.width) * spec.height * channels);
-  if (!buf.get_pixels(roi, OIIO::TypeDesc::FLOAT, tmp.data())) {
-    if (error) *error = buf.geterror();
-    return false;
-  }
-  for (size_t i = 0; i < static_cast<size_t>(spec.width) * spec.height; ++i)
-    for (int c = 0; c < channels; ++c) (*rgba)[i * 4 + c] = tmp[i * channels + c];
-  return true;
-}
-
 }  // namespace photon

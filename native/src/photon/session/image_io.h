@@ -1,4 +1,4 @@
-// Writing and reading RGBA float images through OpenImageIO (EXR stays linear float).
+// Writing RGBA float images through OpenImageIO (EXR stays linear float).
 #pragma once
 
 #include <string>
@@ -8,8 +8,5 @@ namespace photon {
 
 bool write_rgba_image(const std::string& path, const std::vector<float>& rgba, int width,
                       int height, std::string* error);
-
-bool read_rgba_image(const std::string& path, std::vector<float>* rgba, int* width, int* height,
-                     std::string* error);
 
 }  // namespace photon

@@ -1,16 +1,16 @@
 #include "photon/session/render_session.h"
 
+#include <pmmintrin.h>
 #include <tbb/global_control.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 #include <tbb/task_scheduler_observer.h>
 #include <xmmintrin.h>
-#include <pmmintrin.h>
 
 #include "photon/integrators/render_params.h"
-#include "photon/scene/camera_clip_check.h"
 #include "photon/render/scene_resources.h"
+#include "photon/scene/camera_clip_check.h"
 #include "photon/session/pixel_renderer.h"
 
 namespace photon {
@@ -42,9 +42,13 @@ class FlushDenormalsObserver : public tbb::task_scheduler_observer {
 // worker limit (65,536 in oneTBB 2021) makes TBB warn and later crashes the process.
 constexpr int kMaxThreadsPerCore = 4;
 
-int machine_cores() { return std::max(1, tbb::info::default_concurrency()); }
+int machine_cores() {
+  return std::max(1, tbb::info::default_concurrency());
+}
 
-int thread_limit() { return kMaxThreadsPerCore * machine_cores(); }
+int thread_limit() {
+  return kMaxThreadsPerCore * machine_cores();
+}
 
 RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
   s.full_width = std::clamp(s.full_width, 1, 65536);
@@ -95,59 +99,29 @@ int run_in_arena(int threads, const std::function<void()>& fn) {
 
 RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
                              std::shared_ptr<BlasCache> blas_cache)
-    : scene_(std::move(scene)), blas_cache_(std::move(blas_cache)) {
-  settings_ = sanitize(settings, &warnings_);
+    : Job("Render"), scene_(std::move(scene)), blas_cache_(std::move(blas_cache)) {
+  std::vector<std::string> warnings;
+  settings_ = sanitize(settings, &warnings);
+  add_warnings(warnings);
   image_.assign(static_cast<size_t>(region_width()) * region_height() * 4, 0.0f);
   const int ts = settings_.tile_size;
   tile_count_ = static_cast<size_t>((region_width() + ts - 1) / ts) *
                 static_cast<size_t>((region_height() + ts - 1) / ts);
-  status_ = "Waiting";
+  set_work_total(tile_count_);
 }
 
 RenderSession::~RenderSession() {
-  cancel();
-  if (worker_.joinable()) worker_.join();
-}
-
-void RenderSession::start() {
-  if (worker_.joinable() || finished_) return;
-  worker_ = std::thread([this] { run(); });
-}
-
-void RenderSession::wait() {
-  if (worker_.joinable()) worker_.join();
-}
-
-void RenderSession::stop_preparation() { stop_preparation_ = true; }
-
-void RenderSession::cancel() {
-  cancel_ = true;
-  tiles_ready_.notify_all();
+  stop_worker();
 }
 
 std::vector<Tile> RenderSession::take_tiles(double timeout_seconds) {
   std::unique_lock<std::mutex> lock(mutex_);
   tiles_ready_.wait_for(lock, std::chrono::duration<double>(std::max(timeout_seconds, 0.0)),
-                        [this] { return !queue_.empty() || finished_; });
+                        [this] { return !queue_.empty() || finished(); });
   std::vector<Tile> out(std::make_move_iterator(queue_.begin()),
                         std::make_move_iterator(queue_.end()));
   queue_.clear();
   return out;
-}
-
-float RenderSession::progress() const {
-  if (preparing_) return prepare_fraction_.load();
-  return tile_count_ ? static_cast<float>(tiles_done_.load()) / tile_count_ : 1.0f;
-}
-
-std::string RenderSession::status() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return status_;
-}
-
-std::vector<std::string> RenderSession::warnings() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return warnings_;
 }
 
 RenderStats RenderSession::stats() const {
@@ -160,33 +134,14 @@ std::vector<float> RenderSession::image() const {
   return image_;
 }
 
-void RenderSession::set_status(const std::string& s) {
+void RenderSession::on_finished() {
+  // Under the lock, so a take_tiles() between its check of finished() and its wait still wakes.
   std::lock_guard<std::mutex> lock(mutex_);
-  status_ = s;
-}
-
-void RenderSession::run() {
-  // Nothing may escape the worker thread: an exception there would terminate Blender.
-  try {
-    run_render();
-  } catch (const std::exception& e) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    warnings_.push_back(std::string("Render failed: ") + e.what());
-    cancel_ = true;
-  } catch (...) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    warnings_.push_back("Render failed with an unknown error");
-    cancel_ = true;
-  }
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    status_ = cancel_ ? "Cancelled" : "Done";
-    finished_ = true;
-  }
   tiles_ready_.notify_all();
 }
 
-void RenderSession::run_render() {
+void RenderSession::run() {
+  const std::atomic<bool>& cancel = cancel_flag();
   set_flush_denormals();
   const int threads = arena_threads(settings_.threads);
   tbb::task_arena arena(threads);
@@ -198,12 +153,12 @@ void RenderSession::run_render() {
   auto t0 = Clock::now();
   std::unique_ptr<SceneResources> resources;
   arena.execute([&] {
-    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel_,
+    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel,
                                                  blas_cache_.get());
   });
   const double texture_seconds = resources->textures().seconds();
   const double build_seconds = seconds_since(t0) - texture_seconds;
-  if (cancel_) return;
+  if (cancel) return;
   const std::string clip_warning = camera_clip_warning(scene_->camera, resources->accel());
   if (!clip_warning.empty()) warnings.push_back(clip_warning);
   const RenderContext& context = resources->context();
@@ -211,23 +166,18 @@ void RenderSession::run_render() {
 
   set_status("Preparing");
   t0 = Clock::now();
-  PrepareControl control;
-  control.cancel = &cancel_;
-  control.stop_early = &stop_preparation_;
-  control.progress = [this](const std::string& status, float fraction) {
-    prepare_fraction_ = fraction;
-    set_status(status);
-  };
+  PrepareControl control = prepare_control();
+  // Kept in order after the scene's warnings; added to the session's once prepared.
   control.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
-  preparing_ = true;
+  set_preparing(true);
   arena.execute([&] { integrator->prepare(context, control); });
-  preparing_ = false;
+  set_preparing(false);
   const double prepare_seconds = seconds_since(t0);
-  if (cancel_) return;
+  if (cancel) return;
 
+  add_warnings(warnings);
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    warnings_.insert(warnings_.end(), warnings.begin(), warnings.end());
     stats_.build_seconds = build_seconds;
     stats_.texture_seconds = texture_seconds;
     stats_.textures = resources->textures().size();
@@ -240,25 +190,26 @@ void RenderSession::run_render() {
     stats_.lights = resources->lights().size();
     stats_.threads = threads;
     stats_.integrator = integrator->prepare_stats();
-    status_ = "Rendering";
   }
+  set_status("Rendering");
 
   const int ts = settings_.tile_size;
   const int tiles_x = (region_width() + ts - 1) / ts;
+  std::atomic<size_t>& tiles_done = work_done();
   t0 = Clock::now();
   // Tiles are handed out in reading order from a shared counter, so they appear top to bottom
   // in Blender's image editor. Which thread renders a tile does not change its pixels.
   std::atomic<size_t> next_tile{0};
   arena.execute([&] {
     tbb::parallel_for(0, threads, [&](int) {
-      for (size_t i = next_tile++; i < tile_count_ && !cancel_; i = next_tile++) {
+      for (size_t i = next_tile++; i < tile_count_ && !cancel; i = next_tile++) {
         Tile tile;
         tile.x = static_cast<int>(i % tiles_x) * ts;
         tile.y = static_cast<int>(i / tiles_x) * ts;
         tile.width = std::min(ts, region_width() - tile.x);
         tile.height = std::min(ts, region_height() - tile.y);
         render_tile(context, *integrator, &tile);
-        if (cancel_) return;  // a partly rendered tile is not handed over
+        if (cancel) return;  // a partly rendered tile is not handed over
         std::lock_guard<std::mutex> lock(mutex_);
         for (int row = 0; row < tile.height; ++row) {
           const float* src = &tile.rgba[static_cast<size_t>(row) * tile.width * 4];
@@ -266,7 +217,7 @@ void RenderSession::run_render() {
           std::copy(src, src + tile.width * 4, dst);
         }
         queue_.push_back(std::move(tile));
-        ++tiles_done_;
+        ++tiles_done;
         tiles_ready_.notify_all();
       }
     });
@@ -275,10 +226,10 @@ void RenderSession::run_render() {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     stats_.render_seconds = seconds_since(t0);
-    stats_.camera_samples = static_cast<uint64_t>(tiles_done_.load()) == tile_count_
-                                ? static_cast<uint64_t>(region_width()) * region_height() *
-                                      settings_.samples
-                                : 0;
+    stats_.camera_samples =
+        static_cast<uint64_t>(tiles_done.load()) == tile_count_
+            ? static_cast<uint64_t>(region_width()) * region_height() * settings_.samples
+            : 0;
   }
 }
 
@@ -289,7 +240,7 @@ void RenderSession::render_tile(const RenderContext& context, const Integrator& 
     tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
   uint64_t bad = 0;
   render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
-                tile->height, tile->rgba.data(), cancel_, &bad,
+                tile->height, tile->rgba.data(), cancel_flag(), &bad,
                 settings_.light_passes ? tile->passes.data() : nullptr);
   if (bad) {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -2,20 +2,18 @@
 // in parallel with TBB and hands finished tiles to whoever polls (the Blender add-on, the CLI).
 #pragma once
 
-#include <atomic>
-#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "photon/integrators/integrator.h"
 #include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
+#include "photon/session/job.h"
 
 namespace photon {
 
@@ -56,31 +54,19 @@ struct RenderStats {
   PrepareStats integrator;  // the integrator's prepare_stats()
 };
 
-class RenderSession {
+class RenderSession : public Job {
  public:
   // With a `blas_cache`, unchanged meshes keep their BVH from earlier renders (Persistent Data).
   RenderSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
                 std::shared_ptr<BlasCache> blas_cache = nullptr);
-  ~RenderSession();  // cancels and waits for the worker thread
-  RenderSession(const RenderSession&) = delete;
-  RenderSession& operator=(const RenderSession&) = delete;
+  ~RenderSession() override;  // cancels and waits for the worker thread
 
-  void start();  // returns at once; the render runs on its own thread
-  void wait();   // blocks until the render has finished or been cancelled
-  void cancel();
-  // Ends the integrator's preparation (photon tracing) early; the render then goes on with
-  // what was prepared so far (Esc during photon tracing).
-  void stop_preparation();
+  // start(), wait(), cancel(), stop_preparation() (Esc during photon tracing), progress (of
+  // photon tracing, then of the tiles), status and warnings come from Job.
 
   // Finished tiles since the last call; waits up to `timeout_seconds` for at least one.
   std::vector<Tile> take_tiles(double timeout_seconds);
 
-  bool finished() const { return finished_.load(); }
-  bool cancelled() const { return cancel_.load(); }
-  float progress() const;  // fraction of the current phase (photon tracing, then tiles) done
-  bool preparing() const { return preparing_.load(); }
-  std::string status() const;
-  std::vector<std::string> warnings() const;
   RenderStats stats() const;
   int region_width() const { return settings_.x1 - settings_.x0; }
   int region_height() const { return settings_.y1 - settings_.y0; }
@@ -88,29 +74,19 @@ class RenderSession {
   std::vector<float> image() const;
 
  private:
-  void run();
-  void run_render();
+  void run() override;
+  void on_finished() override;
   void render_tile(const RenderContext& context, const Integrator& integrator, Tile* tile);
-  void set_status(const std::string& s);
 
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<BlasCache> blas_cache_;  // may be null
   RenderSettings settings_;
-  std::thread worker_;
-  std::atomic<bool> cancel_{false};
-  std::atomic<bool> stop_preparation_{false};
-  std::atomic<float> prepare_fraction_{0.0f};
-  std::atomic<bool> preparing_{false};
-  std::atomic<bool> finished_{false};
-  std::atomic<size_t> tiles_done_{0};
   size_t tile_count_ = 0;
 
-  mutable std::mutex mutex_;
+  mutable std::mutex mutex_;  // queue_, image_, stats_
   std::condition_variable tiles_ready_;
   std::deque<Tile> queue_;
   std::vector<float> image_;
-  std::vector<std::string> warnings_;
-  std::string status_;
   RenderStats stats_;
 };
 

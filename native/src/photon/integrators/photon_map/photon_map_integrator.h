@@ -41,11 +41,6 @@ class PhotonMapIntegrator : public Integrator {
   void prepare_bake(const RenderContext& context, const BakePointSet& points,
                     const PrepareControl& control) override;
 
-  const PhotonMap& global_map() const { return global_; }
-  const PhotonMap& caustic_map() const { return caustic_; }
-  float global_radius() const { return global_radius_; }
-  float caustic_radius() const { return caustic_radius_; }
-
  private:
   // Radiance (for albedo 1) leaving a diffuse point p with normal n: the nearest precomputed
   // record, else a small global-map estimate.

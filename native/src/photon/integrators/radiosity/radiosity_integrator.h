@@ -23,8 +23,6 @@ class RadiosityIntegrator : public Integrator {
   bool baked_radiance(const RenderContext& context, const Hit& hit, const SurfaceInteraction& si,
                       Sampler& sampler, Vec3* radiance) const override;
 
-  const RadiosityMesh& mesh() const { return mesh_; }
-  const RadiosityField& field() const { return field_; }
   // Reflected radiance (B / pi) at a hit, seen from side `towards` of the surface; false when
   // the hit is not on a diffuse element.
   bool reflected_radiance(const SurfaceInteraction& si, const Vec3& towards,
