@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "photon/render/accel.h"
-#include "photon/lights/lights.h"
 #include "photon/base/math.h"
 #include "photon/base/rng.h"
+#include "photon/lights/lights.h"
+#include "photon/render/accel.h"
 #include "photon/scene/scene.h"
 
 namespace photon {
@@ -20,6 +20,7 @@ namespace photon {
 enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity };
 
 class EmissiveMeshes;
+class EmitterSet;
 class TextureSet;
 
 struct RenderSettings {
@@ -63,6 +64,7 @@ struct RenderContext {
   const RenderSettings* settings = nullptr;
   const EmissiveMeshes* emissive = nullptr;  // emissive triangles as lights (may be empty)
   const TextureSet* textures = nullptr;      // the scene's image textures (may be null)
+  const EmitterSet* emitters = nullptr;      // lamps, emissive triangles and world as emitters
 };
 
 // What one camera sample sees, split into light passes whose sum is the Combined image.
