@@ -11,7 +11,7 @@ def test_light_tree_image_matches_every_light_sum(blender, integrator):
     result, proc = blender.run_script("many_lights.py", blender.out_dir / f"many_lights_{integrator}",
                                       40, 8, 64, integrator, timeout=900)
     assert "exception" not in result, result.get("exception")
-    assert proc.stdout.count("Photon: rendered frame") == result["renders"], proc.log
+    assert proc.stdout.count("Photon: rendered frame") >= result["renders"], proc.log
     report = str(result)
     for tree, every in zip(result["mean_tree"], result["mean_every"]):
         assert every > 0.01, report  # the room is lit
