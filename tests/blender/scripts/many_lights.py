@@ -6,7 +6,7 @@ Args: OUT_DIR N_LIGHTS GROUP SAMPLES [INTEGRATOR]
 Renders the room with all N lights at once (Photon picks among them with its light tree when
 there are more than 8), then again in groups of at most GROUP lights (Photon samples every light
 when there are at most 8), and reports the means of both images and the relative RMSE of
-their 4 x 4-pixel block means: light adds up, so the sum of the group renders is the image the
+their 8 x 8-pixel block means: light adds up, so the sum of the group renders is the image the
 every-light estimator gives for the whole room.
 """
 
@@ -73,7 +73,7 @@ def render(scene, path):
     return harness.read_image(path)[:, :, :3].astype(np.float64)
 
 
-def block_means(pixels, size=4):
+def block_means(pixels, size=8):
     h, w = pixels.shape[0] // size * size, pixels.shape[1] // size * size
     p = pixels[:h, :w]
     return p.reshape(h // size, size, w // size, size, 3).mean(axis=(1, 3))
