@@ -68,14 +68,26 @@ float LightTree::importance(const Vec3& p, const LightBounds& b) {
                       p.y <= b.hi.y && p.z <= b.hi.z;
   if (inside || dist2 <= r2) return b.power / d2;  // every direction is possible
   // theta: axis to the direction from the centre to p; theta_u: the box's half angle from p
-  // (the bounding sphere of the box, conservative).
-  const float theta = safe_acos(dot(b.axis, to_p) / std::sqrt(dist2));
-  const float theta_u = std::asin(std::min(1.0f, std::sqrt(r2 / dist2)));
-  const float theta_o = safe_acos(b.cos_theta_o);
-  const float theta_e = safe_acos(b.cos_theta_e);
-  const float theta_p = std::max(0.0f, theta - theta_o - theta_u);
-  if (theta_p >= theta_e) return 0.0f;
-  return b.power * std::cos(theta_p) / d2;
+  // (the bounding sphere of the box, conservative). The angle differences are taken on cosines
+  // and sines, clamped at 0 (as in pbrt-v4's CompactLightBounds::Importance), without acos.
+  const float cos_theta = std::clamp(dot(b.axis, to_p) / std::sqrt(dist2), -1.0f, 1.0f);
+  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+  const float sin2_u = std::min(1.0f, r2 / dist2);
+  const float sin_u = std::sqrt(sin2_u), cos_u = std::sqrt(1.0f - sin2_u);
+  const float cos_o = std::clamp(b.cos_theta_o, -1.0f, 1.0f);
+  const float sin_o = std::sqrt(std::max(0.0f, 1.0f - cos_o * cos_o));
+  // cos and sin of max(0, a - b) from those of a and b.
+  auto cos_sub = [](float sin_a, float cos_a, float sin_b, float cos_b) {
+    return cos_a > cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
+  };
+  auto sin_sub = [](float sin_a, float cos_a, float sin_b, float cos_b) {
+    return cos_a > cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
+  };
+  const float cos_x = cos_sub(sin_theta, cos_theta, sin_o, cos_o);
+  const float sin_x = sin_sub(sin_theta, cos_theta, sin_o, cos_o);
+  const float cos_p = cos_sub(sin_x, cos_x, sin_u, cos_u);  // theta' = max(0, theta_x - theta_u)
+  if (cos_p <= b.cos_theta_e) return 0.0f;
+  return b.power * cos_p / d2;
 }
 
 LightTree::LightTree(const std::vector<LightBounds>& bounds, const std::vector<bool>& hittable) {
