@@ -157,23 +157,40 @@ Vec3 tree_radiance(const RenderContext& context, const SurfaceInteraction& si, c
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) {
-      // Lamps along the ray (they do not occlude each other, as with every-light sampling).
+      // One scene ray: it finds the emissive triangle the sample hits and bounds the lamps
+      // that can be seen along it (lamps do not occlude each other, as with every-light
+      // sampling; the geometry does).
       Ray ray;
-      ray.origin = si.p;
+      ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
       ray.direction = bs.wi;
-      tree.for_each_hit(ray, [&](uint32_t i) {
+      Hit hit;
+      const bool found = context.accel->intersect(ray, kVisibleShadow, &hit);
+      const float t_geo = found ? hit.t : INFINITY;
+      Ray lamp_ray;
+      lamp_ray.origin = si.p;
+      lamp_ray.direction = bs.wi;
+      lamp_ray.tmax =
+          found ? t_geo / (1.0f - 1e-4f) + 1e-4f * context.accel->length_scale() : INFINITY;
+      tree.for_each_hit(lamp_ray, [&](uint32_t i) {
+        Vec3 le;
+        float distance, pdf_lamp;
+        if (!set.tree_emitter(i).eval(si.p, bs.wi, &le, &distance, &pdf_lamp)) return;
+        if (found && t_geo < distance * (1.0f - 1e-4f)) return;  // behind the geometry
         const float pmf_i = tree.pmf(si.p, i);
-        if (pmf_i > 0.0f) l += bsdf_sample_term(context, si, set.tree_emitter(i), bs, pmf_i);
+        if (pmf_i > 0.0f) l += le * bs.weight * power_heuristic(bs.pdf, pmf_i * pdf_lamp);
       });
       const EmissiveMeshes* emissive = set.emissive();
-      if (emissive && !emissive->empty())
-        l += emissive_hit_term(context, si, bs, [&](const Hit& hit, const SurfaceInteraction& h) {
-          const long t = emissive->find(hit.instance, hit.primitive);
-          if (t < 0) return 0.0f;
-          const uint32_t i = set.triangle_entry(static_cast<size_t>(t));
-          return tree.pmf(si.p, i) * set.tree_emitter(i).surface_pdf(hit.instance, hit.primitive,
-                                                                     hit.t, dot(bs.wi, h.ng));
-        });
+      const long t = found && emissive ? emissive->find(hit.instance, hit.primitive) : -1;
+      if (t >= 0) {
+        const SurfaceInteraction light_si = context.accel->interaction(hit);
+        const uint32_t i = set.triangle_entry(static_cast<size_t>(t));
+        const float pdf_light =
+            tree.pmf(si.p, i) * set.tree_emitter(i).surface_pdf(hit.instance, hit.primitive, hit.t,
+                                                                dot(bs.wi, light_si.ng));
+        if (pdf_light > 0.0f)
+          l += emitted_radiance(*light_si.mat, light_si, context.textures) * bs.weight *
+               power_heuristic(bs.pdf, pdf_light);
+      }
     }
   }
   if (const Emitter* world = set.world()) {
