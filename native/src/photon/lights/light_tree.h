@@ -6,7 +6,9 @@
 // sampling needs when a BSDF-sampled ray hits a light.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "photon/base/math.h"
