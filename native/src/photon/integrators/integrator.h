@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "photon/integrators/prepare_stats.h"
 #include "photon/base/math.h"
+#include "photon/base/rng.h"
 #include "photon/integrators/photon_map/photon_map_params.h"
+#include "photon/integrators/prepare_stats.h"
 #include "photon/integrators/radiosity/radiosity_params.h"
 #include "photon/integrators/sampling_params.h"
-#include "photon/base/rng.h"
 #include "photon/lights/lights.h"
 #include "photon/render/accel.h"
 #include "photon/scene/scene.h"
@@ -22,6 +22,7 @@
 namespace photon {
 
 class EmissiveMeshes;
+class EmitterSet;
 class TextureSet;
 
 // What a render is asked to do: the frame, and each algorithm's parameters (declared once in
@@ -44,6 +45,7 @@ struct RenderContext {
   const RenderSettings* settings = nullptr;
   const EmissiveMeshes* emissive = nullptr;  // emissive triangles as lights (may be empty)
   const TextureSet* textures = nullptr;      // the scene's image textures (may be null)
+  const EmitterSet* emitters = nullptr;      // lamps, emissive triangles and world as emitters
 };
 
 // What one camera sample sees, split into light passes whose sum is the Combined image.

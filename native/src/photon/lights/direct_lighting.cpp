@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "photon/lights/emissive_mesh.h"
+#include "photon/lights/emitter_set.h"
 #include "photon/render/material_eval.h"
 
 namespace photon {
@@ -57,65 +58,160 @@ Vec3 light_sample_term(const RenderContext& context, const SurfaceInteraction& s
   return f_cos * ls.weight * w;
 }
 
-}  // namespace
+// One BSDF sample's light, weighted against light sampling of the emitter(s) it can reach:
+// a lamp, found analytically. `light_pmf` is the probability that light sampling picks it (1
+// when every emitter is sampled).
+Vec3 bsdf_sample_term(const RenderContext& context, const SurfaceInteraction& si, const Emitter& e,
+                      const BsdfSample& bs, float light_pmf) {
+  switch (e.kind()) {
+    case EmitterKind::kLamp: {
+      Vec3 le;
+      float distance, pdf_light;
+      if (!e.eval(si.p, bs.wi, &le, &distance, &pdf_light)) return Vec3(0.0f);
+      if (!unoccluded(context, si, bs.wi, distance)) return Vec3(0.0f);
+      return le * bs.weight * power_heuristic(bs.pdf, light_pmf * pdf_light);
+    }
+    case EmitterKind::kSurface:  // found by the scene's BVH: emissive_hit_term
+    case EmitterKind::kWorld:    // found by rays leaving the scene
+      break;
+  }
+  return Vec3(0.0f);
+}
 
-Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
-                     const Vec3& wo, Sampler& sampler, uint8_t lobes) {
+// The emissive surface a BSDF-sampled ray hits (if any), weighted against light sampling with
+// density `surface_pdf(hit, light_si)`.
+template <class SurfacePdf>
+Vec3 emissive_hit_term(const RenderContext& context, const SurfaceInteraction& si,
+                       const BsdfSample& bs, SurfacePdf&& surface_pdf) {
+  Ray ray;
+  ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
+  ray.direction = bs.wi;
+  Hit hit;
+  if (!context.accel->intersect(ray, kVisibleShadow, &hit)) return Vec3(0.0f);
+  const SurfaceInteraction light_si = context.accel->interaction(hit);
+  const float pdf_light = surface_pdf(hit, light_si);
+  if (!(pdf_light > 0.0f)) return Vec3(0.0f);
+  return emitted_radiance(*light_si.mat, light_si, context.textures) * bs.weight *
+         power_heuristic(bs.pdf, pdf_light);
+}
+
+// Every emitter sampled at every shading point (EmitterSet::every_light()).
+Vec3 every_light_radiance(const RenderContext& context, const SurfaceInteraction& si,
+                          const Bsdf& bsdf, const Vec3& wo, Sampler& sampler, uint8_t lobes) {
   Vec3 l(0.0f);
-  lobes &= kLobeDiffuse | kLobeGlossy;  // delta lobes reach lights by ray tracing
-  if (!(bsdf.flags() & lobes)) return l;
-  const LightSet& lights = *context.lights;
   BsdfSample bs;
-  for (size_t i = 0; i < lights.size(); ++i) {
+  for (const Emitter* e : context.emitters->every_light()) {
     LightSample ls;
-    const Vec2 u_light = sampler.get_2d();
-    if (lights.sample(i, si.p, u_light, &ls))
-      l += light_sample_term(context, si, bsdf, wo, lobes, ls);
-    if (!lights.has_area(i)) continue;
+    if (e->sample(si.p, sampler, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+    if (!e->has_area()) continue;
     // BSDF sample, weighted against the light sample.
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (!bsdf.sample(wo, u_lobe, u, lobes, &bs)) continue;
-    Vec3 le;
-    float distance, pdf_light;
-    if (!lights.eval(i, si.p, bs.wi, &le, &distance, &pdf_light)) continue;
-    if (!unoccluded(context, si, bs.wi, distance)) continue;
-    l += le * bs.weight * power_heuristic(bs.pdf, pdf_light);
+    switch (e->kind()) {
+      case EmitterKind::kLamp:
+        l += bsdf_sample_term(context, si, *e, bs, 1.0f);
+        break;
+      case EmitterKind::kSurface:
+        l += emissive_hit_term(context, si, bs, [&](const Hit& hit, const SurfaceInteraction& h) {
+          return e->surface_pdf(hit.instance, hit.primitive, hit.t, dot(bs.wi, h.ng));
+        });
+        break;
+      case EmitterKind::kWorld:
+        // A uniform world has no light sample: the BSDF sample and one shadow ray.
+        if (unoccluded(context, si, bs.wi, INFINITY))
+          l += e->radiance_at_infinity(bs.wi) * bs.weight;
+        break;
+    }
   }
+  return l;
+}
 
-  const EmissiveMeshes* emissive = context.emissive;
-  if (emissive && !emissive->empty()) {
+// Many emitters: suns one by one, one emitter picked by the light tree, one BSDF sample
+// weighted against it (the tree's pmf times the emitter's density is the light strategy's
+// density, Conty Estevez & Kulla 2018 sec. 5.1), and the world.
+Vec3 tree_radiance(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
+                   const Vec3& wo, Sampler& sampler, uint8_t lobes) {
+  const EmitterSet& set = *context.emitters;
+  const LightTree& tree = set.tree();
+  Vec3 l(0.0f);
+  for (const Emitter* e : set.distant()) {
     LightSample ls;
+    if (e->sample(si.p, sampler, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+  }
+  if (!tree.empty()) {
     const float u_pick = sampler.get_1d();
-    const Vec2 u_point = sampler.get_2d();
-    if (emissive->sample(si.p, u_pick, u_point, &ls))
-      l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+    uint32_t index;
+    float pmf;
+    LightSample ls;
+    if (tree.sample(si.p, u_pick, &index, &pmf)) {
+      if (set.tree_emitter(index).sample(si.p, sampler, &ls)) {
+        ls.weight = ls.weight / pmf;
+        ls.pdf *= pmf;
+        l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+      }
+    } else {
+      sampler.get_2d();  // keep the sampler's dimensions aligned between shading points
+    }
+    BsdfSample bs;
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) {
+      // One scene ray: it finds the emissive triangle the sample hits and bounds the lamps
+      // that can be seen along it (lamps do not occlude each other, as with every-light
+      // sampling; the geometry does).
       Ray ray;
       ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
       ray.direction = bs.wi;
       Hit hit;
-      if (context.accel->intersect(ray, kVisibleShadow, &hit)) {
+      const bool found = context.accel->intersect(ray, kVisibleShadow, &hit);
+      const float t_geo = found ? hit.t : INFINITY;
+      Ray lamp_ray;
+      lamp_ray.origin = si.p;
+      lamp_ray.direction = bs.wi;
+      lamp_ray.tmax =
+          found ? t_geo / (1.0f - 1e-4f) + 1e-4f * context.accel->length_scale() : INFINITY;
+      tree.for_each_hit(lamp_ray, [&](uint32_t i) {
+        Vec3 le;
+        float distance, pdf_lamp;
+        if (!set.tree_emitter(i).eval(si.p, bs.wi, &le, &distance, &pdf_lamp)) return;
+        if (found && t_geo < distance * (1.0f - 1e-4f)) return;  // behind the geometry
+        const float pmf_i = tree.pmf(si.p, i);
+        if (pmf_i > 0.0f) l += le * bs.weight * power_heuristic(bs.pdf, pmf_i * pdf_lamp);
+      });
+      const EmissiveMeshes* emissive = set.emissive();
+      const long t = found && emissive ? emissive->find(hit.instance, hit.primitive) : -1;
+      if (t >= 0) {
         const SurfaceInteraction light_si = context.accel->interaction(hit);
+        const uint32_t i = set.triangle_entry(static_cast<size_t>(t));
         const float pdf_light =
-            emissive->pdf(hit.instance, hit.primitive, hit.t, dot(bs.wi, light_si.ng));
+            tree.pmf(si.p, i) * set.tree_emitter(i).surface_pdf(hit.instance, hit.primitive, hit.t,
+                                                                dot(bs.wi, light_si.ng));
         if (pdf_light > 0.0f)
           l += emitted_radiance(*light_si.mat, light_si, context.textures) * bs.weight *
                power_heuristic(bs.pdf, pdf_light);
       }
     }
   }
-
-  // A uniform world is a light from every direction: a BSDF sample and one shadow ray.
-  const Vec3& world = context.scene->world.color;
-  if (!is_black(world)) {
+  if (const Emitter* world = set.world()) {
+    BsdfSample bs;
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, lobes, &bs) && unoccluded(context, si, bs.wi, INFINITY))
-      l += world * bs.weight;
+      l += world->radiance_at_infinity(bs.wi) * bs.weight;
   }
+  return l;
+}
+
+}  // namespace
+
+Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
+                     const Vec3& wo, Sampler& sampler, uint8_t lobes) {
+  lobes &= kLobeDiffuse | kLobeGlossy;  // delta lobes reach lights by ray tracing
+  if (!(bsdf.flags() & lobes)) return Vec3(0.0f);
+  const Vec3 l = context.emitters->use_tree()
+                     ? tree_radiance(context, si, bsdf, wo, sampler, lobes)
+                     : every_light_radiance(context, si, bsdf, wo, sampler, lobes);
   return is_finite(l) ? l : Vec3(0.0f);
 }
 
@@ -134,25 +230,43 @@ Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
     const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, kLobes, &pdf_bsdf);
     if (!is_black(f_cos)) add(f_cos * ls.weight, unoccluded(context, si, ls));
   };
-  const LightSet& lights = *context.lights;
-  for (size_t i = 0; i < lights.size(); ++i) {
-    LightSample ls;
-    if (lights.sample(i, si.p, sampler.get_2d(), &ls)) light_term(ls);
+  const EmitterSet& set = *context.emitters;
+  const Emitter* world = nullptr;
+  if (!set.use_tree()) {
+    for (const Emitter* e : set.every_light()) {
+      if (e->kind() == EmitterKind::kWorld) {
+        world = e;
+        continue;
+      }
+      LightSample ls;
+      if (e->sample(si.p, sampler, &ls)) light_term(ls);
+    }
+  } else {
+    for (const Emitter* e : set.distant()) {
+      LightSample ls;
+      if (e->sample(si.p, sampler, &ls)) light_term(ls);
+    }
+    if (!set.tree().empty()) {
+      uint32_t index;
+      float pmf;
+      LightSample ls;
+      if (set.tree().sample(si.p, sampler.get_1d(), &index, &pmf)) {
+        if (set.tree_emitter(index).sample(si.p, sampler, &ls)) {
+          ls.weight = ls.weight / pmf;
+          light_term(ls);
+        }
+      } else {
+        sampler.get_2d();
+      }
+    }
+    world = set.world();
   }
-  const EmissiveMeshes* emissive = context.emissive;
-  if (emissive && !emissive->empty()) {
-    LightSample ls;
-    const float u_pick = sampler.get_1d();
-    const Vec2 u_point = sampler.get_2d();
-    if (emissive->sample(si.p, u_pick, u_point, &ls)) light_term(ls);
-  }
-  const Vec3& world = context.scene->world.color;
-  if (!is_black(world)) {
+  if (world) {
     BsdfSample bs;
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, kLobes, &bs))
-      add(world * bs.weight, unoccluded(context, si, bs.wi, INFINITY));
+      add(world->radiance_at_infinity(bs.wi) * bs.weight, unoccluded(context, si, bs.wi, INFINITY));
   }
   *unshadowed = free;
   return shadowed;

@@ -6,9 +6,9 @@
 #include <unordered_map>
 #include <vector>
 
-#include "photon/render/accel.h"
 #include "photon/base/distribution.h"
 #include "photon/lights/lights.h"
+#include "photon/render/accel.h"
 #include "photon/render/textures.h"
 
 namespace photon {
@@ -17,7 +17,7 @@ struct EmissiveTriangle {
   Vec3 p0, e1, e2;  // world space: p = p0 + b1 e1 + b2 e2
   Vec3 normal;      // unit
   float area = 0.0f;
-  Vec3 radiance;    // emitted radiance, each side
+  Vec3 radiance;  // emitted radiance, each side
 };
 
 class EmissiveMeshes {
@@ -45,6 +45,12 @@ class EmissiveMeshes {
   // A point chosen by power (and the side chosen by `u_side`), for emission towards a target.
   size_t pick_point(float u_pick, Vec2 u_point, Vec3* point, Vec3* normal) const;
   float pick_probability(size_t i) const { return distribution_.probability(i); }
+  // The triangle an Embree hit (instance, primitive) is on, or -1 if it does not emit.
+  long find(uint32_t instance, uint32_t primitive) const {
+    auto it = index_.find((static_cast<uint64_t>(instance) << 32) | primitive);
+    return it == index_.end() ? -1 : static_cast<long>(it->second);
+  }
+  float length_scale() const { return length_scale_; }
 
  private:
   std::vector<EmissiveTriangle> triangles_;

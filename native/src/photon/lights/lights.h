@@ -10,8 +10,9 @@
 #include <vector>
 
 #include "photon/base/math.h"
-#include "photon/scene/scene.h"
 #include "photon/base/spherical_caps.h"
+#include "photon/lights/light_bounds.h"
+#include "photon/scene/scene.h"
 
 namespace photon {
 
@@ -78,6 +79,10 @@ class LightSet {
                     Vec2 u_dir, EmittedPhoton* out) const;
   float coverage(size_t index, const std::vector<BoundingSphere>& targets,
                  float scene_radius) const;
+
+  // Where light `index` is and which way it shines, for the light tree (emitters.cpp); power is
+  // left for the caller to fill in. Suns are `infinite`.
+  LightBounds bounds(size_t index) const;
 
  private:
   struct Prepared {

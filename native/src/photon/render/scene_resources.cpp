@@ -77,7 +77,8 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
       lights_(textures_.cancelled() || accel_.cancelled() ? nothing().lights : scene.lights,
               warnings),
       emissive_(textures_.cancelled() || accel_.cancelled() ? nothing() : scene, accel_,
-                &textures_) {
+                &textures_),
+      emitters_(lights_, emissive_, scene.world.color) {
   warn_out_of_range(scene, textures_, warnings);
   context_.scene = &scene;
   context_.accel = &accel_;
@@ -85,6 +86,7 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
   context_.settings = &settings;
   context_.emissive = &emissive_;
   context_.textures = &textures_;
+  context_.emitters = &emitters_;
 }
 
 }  // namespace photon

@@ -11,6 +11,7 @@
 
 #include "photon/integrators/integrator.h"
 #include "photon/lights/emissive_mesh.h"
+#include "photon/lights/emitter_set.h"
 #include "photon/lights/lights.h"
 #include "photon/render/accel.h"
 #include "photon/render/textures.h"
@@ -40,12 +41,14 @@ class SceneResources {
   const LightSet& lights() const { return lights_; }
   const TextureSet& textures() const { return textures_; }
   const EmissiveMeshes& emissive() const { return emissive_; }
+  const EmitterSet& emitters() const { return emitters_; }
 
  private:
   TextureSet textures_;  // first: the BVH is not needed to convert images
   Accel accel_;
   LightSet lights_;
   EmissiveMeshes emissive_;
+  EmitterSet emitters_;
   RenderContext context_;
 };
 

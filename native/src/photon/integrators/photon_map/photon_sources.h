@@ -1,14 +1,16 @@
-// Everything that emits photons (Blender lights, emissive triangles, a uniform world), with
+// Everything that emits photons (the scene's emitters: Blender lights, emissive triangles, a
+// uniform world), with
 // photons split between them in proportion to their power (Jensen 2001 sec. 5.1.4, multiple light
 // sources).
 #pragma once
 
 #include <vector>
 
-#include "photon/integrators/photon_map/caustic_targets.h"
 #include "photon/base/distribution.h"
-#include "photon/lights/emissive_mesh.h"
 #include "photon/integrators/integrator.h"
+#include "photon/integrators/photon_map/caustic_targets.h"
+#include "photon/lights/emissive_mesh.h"
+#include "photon/lights/emitter_set.h"
 
 namespace photon {
 
@@ -31,13 +33,8 @@ class PhotonSources {
   bool emit_caustic(Sampler& sampler, EmittedPhoton* out) const;
 
  private:
-  enum class Kind : uint8_t { kLight, kEmissive, kWorld };
-  struct Source {
-    Kind kind;
-    size_t light;
-  };
   const RenderContext& context_;
-  std::vector<Source> sources_;
+  std::vector<const Emitter*> sources_;  // EmitterSet::every_light() that emit
   Distribution1D global_, caustic_;
   std::vector<BoundingSphere> targets_;
   Vec3 total_power_{0.0f};

@@ -1,0 +1,50 @@
+#include "photon/lights/emitter_set.h"
+
+#include "photon/lights/emitters.h"
+
+namespace photon {
+
+EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
+                       const Vec3& world_color, size_t every_light_max)
+    : emissive_(&emissive) {
+  auto own = [&](std::unique_ptr<Emitter> e) {
+    owned_.push_back(std::move(e));
+    return owned_.back().get();
+  };
+  std::vector<const Emitter*> lamp_emitters;
+  for (size_t i = 0; i < lamps.size(); ++i)
+    lamp_emitters.push_back(own(std::make_unique<LampEmitter>(lamps, i)));
+  every_light_ = lamp_emitters;
+  if (!emissive.empty())
+    every_light_.push_back(own(std::make_unique<EmissiveGroupEmitter>(emissive)));
+  if (!is_black(world_color)) {
+    world_ = own(std::make_unique<WorldEmitter>(world_color));
+    every_light_.push_back(world_);
+  }
+
+  const size_t count = lamps.size() + (emissive.empty() ? 0 : 1);
+  use_tree_ = count > every_light_max;
+  if (!use_tree_) return;
+  std::vector<LightBounds> bounds;
+  std::vector<bool> hittable;
+  for (const Emitter* e : lamp_emitters) {
+    const LightBounds b = e->bounds();
+    if (b.infinite) {
+      distant_.push_back(e);
+      continue;
+    }
+    tree_emitters_.push_back(e);
+    bounds.push_back(b);
+    hittable.push_back(e->has_area());  // lamps are found by rays through the tree
+  }
+  first_triangle_ = tree_emitters_.size();
+  for (size_t t = 0; t < emissive.size(); ++t) {
+    const Emitter* e = own(std::make_unique<TriangleEmitter>(emissive, t));
+    tree_emitters_.push_back(e);
+    bounds.push_back(e->bounds());
+    hittable.push_back(false);  // triangles are found by the scene's BVH
+  }
+  tree_ = LightTree(bounds, hittable);
+}
+
+}  // namespace photon

@@ -1,0 +1,61 @@
+// Every emitter of a scene, and how direct lighting picks among them:
+//  - few emitters (at most `every_light_max` lamps, the emissive meshes counting as one): every
+//    one is sampled at every shading point, as Photon always did (every_light());
+//  - more: lamps at infinity (suns) are still sampled one by one, the world through the BSDF,
+//    and one emitter among the other lamps and the emissive triangles is picked per shading
+//    point by the light tree (Conty Estevez & Kulla 2018), so the cost no longer grows with
+//    the number of lights.
+// Photon emission always uses every_light() (power-proportional selection, photon_sources.h).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "photon/lights/emissive_mesh.h"
+#include "photon/lights/emitter.h"
+#include "photon/lights/light_tree.h"
+#include "photon/lights/lights.h"
+
+namespace photon {
+
+class EmitterSet {
+ public:
+  // Up to 8 lamps + emissive meshes the every-light estimator is kept: the images it gives stay
+  // exactly as they were, and with so few lights one sample of each costs little more than a
+  // tree pick.
+  static constexpr size_t kEveryLightMax = 8;
+
+  EmitterSet() = default;
+  // `lamps` and `emissive` must outlive the set.
+  EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const Vec3& world_color,
+             size_t every_light_max = kEveryLightMax);
+  EmitterSet(const EmitterSet&) = delete;
+  EmitterSet& operator=(const EmitterSet&) = delete;
+
+  // Lamps in scene order, then the emissive group, then the world (each only if it emits).
+  const std::vector<const Emitter*>& every_light() const { return every_light_; }
+
+  bool use_tree() const { return use_tree_; }
+  // Tree mode: suns, sampled one by one.
+  const std::vector<const Emitter*>& distant() const { return distant_; }
+  // Tree mode: the world (null if black).
+  const Emitter* world() const { return world_; }
+  const LightTree& tree() const { return tree_; }
+  const Emitter& tree_emitter(uint32_t i) const { return *tree_emitters_[i]; }
+  // Tree entry of emissive triangle `triangle` (EmissiveMeshes index).
+  uint32_t triangle_entry(size_t triangle) const {
+    return static_cast<uint32_t>(first_triangle_ + triangle);
+  }
+  const EmissiveMeshes* emissive() const { return emissive_; }
+
+ private:
+  std::vector<std::unique_ptr<Emitter>> owned_;
+  std::vector<const Emitter*> every_light_, distant_, tree_emitters_;
+  const Emitter* world_ = nullptr;
+  const EmissiveMeshes* emissive_ = nullptr;
+  LightTree tree_;
+  size_t first_triangle_ = 0;
+  bool use_tree_ = false;
+};
+
+}  // namespace photon
