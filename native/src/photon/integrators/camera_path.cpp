@@ -1,6 +1,7 @@
 #include "photon/integrators/camera_path.h"
 
 #include "photon/lights/direct_lighting.h"
+#include "photon/lights/emitter_set.h"
 #include "photon/render/matte.h"
 
 namespace photon {
@@ -12,7 +13,7 @@ bool add_escaped_or_lamp(const RenderContext& context, const Ray& ray, bool foun
                          bool camera_primary, Vec3* direct) {
   float t_light;
   Vec3 lamp;
-  if (context.lights->intersect(ray, found ? t_hit : ray.tmax, mask, &t_light, &lamp)) {
+  if (context.emitters->intersect_lamps(ray, found ? t_hit : ray.tmax, mask, &t_light, &lamp)) {
     if (count_emission) *direct += throughput * lamp;
     return true;
   }

@@ -6,7 +6,7 @@ namespace photon {
 
 EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
                        const Vec3& world_color, size_t every_light_max)
-    : emissive_(&emissive) {
+    : emissive_(&emissive), lamps_(&lamps) {
   auto own = [&](std::unique_ptr<Emitter> e) {
     owned_.push_back(std::move(e));
     return owned_.back().get();
@@ -27,13 +27,15 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
   if (!use_tree_) return;
   std::vector<LightBounds> bounds;
   std::vector<bool> hittable;
-  for (const Emitter* e : lamp_emitters) {
+  for (size_t lamp = 0; lamp < lamp_emitters.size(); ++lamp) {
+    const Emitter* e = lamp_emitters[lamp];
     const LightBounds b = e->bounds();
     if (b.infinite) {
       distant_.push_back(e);
       continue;
     }
     tree_emitters_.push_back(e);
+    tree_lamp_.push_back(static_cast<uint32_t>(lamp));
     bounds.push_back(b);
     hittable.push_back(e->has_area());  // lamps are found by rays through the tree
   }
@@ -41,10 +43,27 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
   for (size_t t = 0; t < emissive.size(); ++t) {
     const Emitter* e = own(std::make_unique<TriangleEmitter>(emissive, t));
     tree_emitters_.push_back(e);
+    tree_lamp_.push_back(UINT32_MAX);
     bounds.push_back(e->bounds());
     hittable.push_back(false);  // triangles are found by the scene's BVH
   }
   tree_ = LightTree(bounds, hittable);
+}
+
+bool EmitterSet::intersect_lamps(const Ray& ray, float tmax, uint32_t mask, float* t_hit,
+                                 Vec3* radiance) const {
+  if (!use_tree_) return lamps_->intersect(ray, tmax, mask, t_hit, radiance);
+  Ray bounded = ray;
+  bounded.tmax = tmax;
+  bool found = false;
+  float best = tmax;
+  tree_.for_each_hit(bounded, [&](uint32_t i) {
+    const uint32_t lamp = tree_lamp_[i];
+    if (lamp != UINT32_MAX && lamps_->intersect_one(lamp, ray, best, mask, &best, radiance))
+      found = true;
+  });
+  if (found) *t_hit = best;
+  return found;
 }
 
 }  // namespace photon

@@ -48,11 +48,20 @@ class EmitterSet {
   }
   const EmissiveMeshes* emissive() const { return emissive_; }
 
+  // LightSet::intersect (the nearest lamp surface a ray meets before `tmax`); in tree mode only
+  // the lamps whose boxes in the tree the ray crosses are tested, so camera and glossy rays do
+  // not pay for every lamp of the scene. Lamps without power are not in the tree and so are
+  // never met (they would only have hidden lamps behind them).
+  bool intersect_lamps(const Ray& ray, float tmax, uint32_t mask, float* t_hit,
+                       Vec3* radiance) const;
+
  private:
   std::vector<std::unique_ptr<Emitter>> owned_;
   std::vector<const Emitter*> every_light_, distant_, tree_emitters_;
   const Emitter* world_ = nullptr;
   const EmissiveMeshes* emissive_ = nullptr;
+  const LightSet* lamps_ = nullptr;
+  std::vector<uint32_t> tree_lamp_;  // per tree entry: its LightSet index (UINT32_MAX: triangle)
   LightTree tree_;
   size_t first_triangle_ = 0;
   bool use_tree_ = false;

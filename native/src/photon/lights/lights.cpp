@@ -170,48 +170,57 @@ bool LightSet::intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit
                          Vec3* radiance) const {
   bool found = false;
   float best = tmax;
-  for (const Prepared& l : lights_) {
-    if (!(l.visibility & mask)) continue;
-    switch (l.type) {
-      case LightType::kPoint:
-      case LightType::kSpot: {
-        if (l.radius <= 0.0f) break;
-        const Vec3 oc = ray.origin - l.position;
-        const float b = dot(oc, ray.direction);
-        const float c = length_squared(oc) - l.radius * l.radius;
-        const float disc = b * b - c;
-        if (disc < 0.0f) break;
-        const float s = std::sqrt(disc);
-        float t = -b - s;
-        if (t <= ray.tmin) t = -b + s;
-        if (t <= ray.tmin || t >= best) break;
-        Vec3 le = l.radiance;
-        if (l.type == LightType::kSpot) le *= spot_attenuation(l, -ray.direction);
-        best = t;
-        *radiance = le;
-        found = true;
-        break;
-      }
-      case LightType::kArea: {
-        const float denom = dot(ray.direction, l.axis);
-        if (denom >= 0.0f) break;  // seen from behind: the back of an area light is dark
-        const float t = dot(l.position - ray.origin, l.axis) / denom;
-        if (t <= ray.tmin || t >= best) break;
-        const Vec3 d = ray.origin + ray.direction * t - l.position;
-        const float su = dot(d, l.half_u) / length_squared(l.half_u);
-        const float sv = dot(d, l.half_v) / length_squared(l.half_v);
-        const bool inside = l.shape == AreaShape::kRectangle
-                                ? std::fabs(su) <= 1.0f && std::fabs(sv) <= 1.0f
-                                : su * su + sv * sv <= 1.0f;
-        if (!inside) break;
-        best = t;
-        *radiance = l.radiance;
-        found = true;
-        break;
-      }
-      case LightType::kSun:
-        break;  // at infinity: see distant_radiance()
+  for (size_t i = 0; i < lights_.size(); ++i)
+    if (intersect_one(i, ray, best, mask, &best, radiance)) found = true;
+  if (found) *t_hit = best;
+  return found;
+}
+
+bool LightSet::intersect_one(size_t index, const Ray& ray, float tmax, uint32_t mask,
+                             float* t_hit, Vec3* radiance) const {
+  const Prepared& l = lights_[index];
+  if (!(l.visibility & mask)) return false;
+  bool found = false;
+  float best = tmax;
+  switch (l.type) {
+    case LightType::kPoint:
+    case LightType::kSpot: {
+      if (l.radius <= 0.0f) break;
+      const Vec3 oc = ray.origin - l.position;
+      const float b = dot(oc, ray.direction);
+      const float c = length_squared(oc) - l.radius * l.radius;
+      const float disc = b * b - c;
+      if (disc < 0.0f) break;
+      const float s = std::sqrt(disc);
+      float t = -b - s;
+      if (t <= ray.tmin) t = -b + s;
+      if (t <= ray.tmin || t >= best) break;
+      Vec3 le = l.radiance;
+      if (l.type == LightType::kSpot) le *= spot_attenuation(l, -ray.direction);
+      best = t;
+      *radiance = le;
+      found = true;
+      break;
     }
+    case LightType::kArea: {
+      const float denom = dot(ray.direction, l.axis);
+      if (denom >= 0.0f) break;  // seen from behind: the back of an area light is dark
+      const float t = dot(l.position - ray.origin, l.axis) / denom;
+      if (t <= ray.tmin || t >= best) break;
+      const Vec3 d = ray.origin + ray.direction * t - l.position;
+      const float su = dot(d, l.half_u) / length_squared(l.half_u);
+      const float sv = dot(d, l.half_v) / length_squared(l.half_v);
+      const bool inside = l.shape == AreaShape::kRectangle
+                              ? std::fabs(su) <= 1.0f && std::fabs(sv) <= 1.0f
+                              : su * su + sv * sv <= 1.0f;
+      if (!inside) break;
+      best = t;
+      *radiance = l.radiance;
+      found = true;
+      break;
+    }
+    case LightType::kSun:
+      break;  // at infinity: see distant_radiance()
   }
   if (found) *t_hit = best;
   return found;

@@ -53,6 +53,9 @@ class LightSet {
   // Nearest light surface (area quad/disc or point-light sphere) hit by the ray before `tmax`
   // among lights whose visibility matches `mask`. Returns the emitted radiance towards the ray.
   bool intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance) const;
+  // The same for light `index` alone.
+  bool intersect_one(size_t index, const Ray& ray, float tmax, uint32_t mask, float* t_hit,
+                     Vec3* radiance) const;
 
   // Radiance from lights at infinity (sun discs) along a ray that left the scene, for lights
   // whose visibility matches `mask`. Zero when the direction misses every sun.

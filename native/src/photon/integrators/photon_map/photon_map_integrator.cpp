@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "photon/lights/direct_lighting.h"
+#include "photon/lights/emitter_set.h"
 #include "photon/integrators/photon_map/irradiance_cache_build.h"
 #include "photon/integrators/photon_map/photon_memory.h"
 #include "photon/integrators/photon_map/irradiance_cache_points.h"
@@ -315,8 +316,8 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
       if (state.after_glossy) {
         float t_light;
         Vec3 lamp;
-        if (context.lights->intersect(state.ray, found ? hit.t : state.ray.tmax, state.mask,
-                                      &t_light, &lamp)) {
+        if (context.emitters->intersect_lamps(state.ray, found ? hit.t : state.ray.tmax,
+                                              state.mask, &t_light, &lamp)) {
           sum = sum + state.throughput * lamp;
           return false;
         }
