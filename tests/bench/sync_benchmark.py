@@ -127,7 +127,7 @@ def main():
         for key, value in zip(("sync", "bvh", "sample", "engine total"), match.groups()):
             photon[key].append(float(value))
         photon["wall"].append(wall)
-        photon["prepare"].append(summary.sessions[-1].stats["prepare_seconds"])
+        photon["prepare"].append(summary.sessions[-1].stats.prepare_seconds)
         if 'CYCLES' in engines:
             cycles.append(render_once(scene, 'CYCLES'))
 
