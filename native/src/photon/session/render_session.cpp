@@ -80,11 +80,11 @@ RenderSettings sanitized_settings(const RenderSettings& settings,
 }
 
 int arena_threads(int threads) {
-  if (threads <= 0) return tbb::this_task_arena::max_concurrency();
   // TBB never runs more threads than the host allows (Blender's -t sets this): a bigger arena
-  // would only make TBB print a warning.
+  // would only make TBB print a warning, and the stats would name threads that never ran.
   const auto allowed = static_cast<int>(std::min<size_t>(
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism), 1 << 20));
+  if (threads <= 0) return std::max(1, std::min(tbb::this_task_arena::max_concurrency(), allowed));
   return std::max(1, std::min({threads, thread_limit(), allowed}));
 }
 
