@@ -102,15 +102,8 @@ TEST_F(Textures, ExtensionModesAndMissingFiles) {
 // One quad at z = 0 facing +z with UVs, using material 0, to shade.
 struct ShadeFixture {
   explicit ShadeFixture(Material m) {
-    Mesh quad = make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
-    quad.corner_uvs.clear();
-    for (size_t t = 0; t < quad.triangle_count(); ++t)
-      for (int c = 0; c < 3; ++c) {
-        const Vec3& p = quad.positions[quad.indices[3 * t + c]];
-        quad.corner_uvs.push_back(Vec2(0.5f * (p.x + 1.0f), 0.5f * (p.y + 1.0f)));
-      }
     scene.materials.push_back(std::move(m));
-    add_mesh_instance(&scene, quad, 0);
+    add_mesh_instance(&scene, make_textured_quad(), 0);
     accel = std::make_unique<Accel>(scene, nullptr);
   }
   SurfaceInteraction at(float x, float y) const {

@@ -22,6 +22,16 @@ Mesh make_quad(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v) {
   return m;
 }
 
+Mesh make_textured_quad() {
+  Mesh quad = make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0});
+  for (size_t t = 0; t < quad.triangle_count(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const Vec3& p = quad.positions[quad.indices[3 * t + c]];
+      quad.corner_uvs.push_back(Vec2(0.5f * (p.x + 1.0f), 0.5f * (p.y + 1.0f)));
+    }
+  return quad;
+}
+
 Mesh make_box(const Vec3& lo, const Vec3& hi) {
   Mesh m;
   m.name = "box";

@@ -10,6 +10,8 @@ uint32_t add_mesh_instance(Scene* scene, Mesh mesh, int32_t material,
                            const Transform& xf = Transform());
 
 Mesh make_quad(const Vec3& corner, const Vec3& edge_u, const Vec3& edge_v);
+// The square [-1, 1]^2 at z = 0 facing +z, with per-corner UVs spanning [0, 1]^2.
+Mesh make_textured_quad();
 Mesh make_box(const Vec3& min, const Vec3& max);
 Mesh make_uv_sphere(const Vec3& center, float radius, int segments, int rings);
 
