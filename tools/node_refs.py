@@ -1,0 +1,133 @@
+"""Renders shader-node conformance cases: each case's node output drives an Emission shader on
+a tilted plane seen by an orthographic camera, with no lights, so the image *is* the node's output
+at each pixel's hit point. Cycles renders are the stored references; Photon renders the same
+scenes for the conformance suite.
+
+Run inside Blender:
+  blender -b --factory-startup [--addons photon] --python tools/node_refs.py -- \
+      MANIFEST.json OUT_DIR [--engine CYCLES|PHOTON] [--cases NAME,...]
+
+A manifest is {"cases": [CASE, ...]} with CASE:
+  {"name": "noise_3d",                       # file OUT_DIR/<name>.exr
+   "node": "ShaderNodeTexNoise",             # bl_idname of the node under test
+   "properties": {"noise_dimensions": "3D"}, # node attributes set before linking
+   "inputs": {"Scale": 5.0, "W": 0.3},       # unlinked input values (by name or index "#2")
+   "vector": "Vector",                       # input fed the hit point's Object coordinate (or null)
+   "output": "Color"}                        # output (name or "#index") shown by the Emission
+Every render also writes OUT_DIR/coords.exr: the Object coordinate of each pixel's hit point plus
+(4, 4, 4), so tests can evaluate a node at exactly the point the render shaded (Emission colours
+stay positive). The plane spans x, y in [-1, 1] with z = 0.3 x + 0.2 y + 0.25.
+"""
+
+import json
+import os
+import sys
+
+import bpy
+
+RESOLUTION = 64
+COORD_OFFSET = 4.0
+
+
+def _argv():
+    argv = sys.argv
+    return argv[argv.index("--") + 1:] if "--" in argv else []
+
+
+def _socket(sockets, key):
+    if isinstance(key, str) and key.startswith("#"):
+        return sockets[int(key[1:])]
+    found = [s for s in sockets if s.name == key and s.enabled]
+    return found[0] if found else sockets[key]
+
+
+def _scene(engine):
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    scene.render.engine = engine
+    scene.render.resolution_x = scene.render.resolution_y = RESOLUTION
+    scene.render.resolution_percentage = 100
+    scene.render.image_settings.file_format = 'OPEN_EXR'
+    scene.render.image_settings.color_depth = '32'
+    scene.render.image_settings.color_mode = 'RGB'
+    scene.view_settings.view_transform = 'Standard'
+    scene.view_settings.look = 'None'
+    if engine == 'CYCLES':
+        scene.cycles.samples = 1
+        scene.cycles.use_denoising = False
+        scene.cycles.pixel_filter_type = 'BOX'
+        scene.cycles.filter_width = 0.01
+        scene.cycles.max_bounces = 0
+    world = bpy.data.worlds.new("black")
+    world.color = (0.0, 0.0, 0.0)
+    scene.world = world
+    mesh = bpy.data.meshes.new("plane")
+    corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+    mesh.from_pydata([(x, y, 0.3 * x + 0.2 * y + 0.25) for x, y in corners], [],
+                     [(0, 1, 2, 3)])
+    mesh.uv_layers.new(name="UVMap")
+    plane = bpy.data.objects.new("plane", mesh)
+    scene.collection.objects.link(plane)
+    cam_data = bpy.data.cameras.new("camera")
+    cam_data.type = 'ORTHO'
+    cam_data.ortho_scale = 2.0
+    cam_data.clip_start, cam_data.clip_end = 0.1, 100.0
+    camera = bpy.data.objects.new("camera", cam_data)
+    camera.location = (0.0, 0.0, 10.0)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+    return scene, plane
+
+
+def _material(case):
+    mat = bpy.data.materials.new(case["name"])
+    mat.use_nodes = True
+    tree = mat.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputMaterial")
+    emission = tree.nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = 1.0
+    tree.links.new(emission.outputs[0], out.inputs["Surface"])
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    if case.get("node") is None:  # the coordinate image
+        add = tree.nodes.new("ShaderNodeVectorMath")
+        add.operation = 'ADD'
+        add.inputs[1].default_value = (COORD_OFFSET,) * 3
+        tree.links.new(coords.outputs["Object"], add.inputs[0])
+        tree.links.new(add.outputs[0], emission.inputs["Color"])
+        return mat
+    node = tree.nodes.new(case["node"])
+    for name, value in case.get("properties", {}).items():
+        setattr(node, name, value)
+    for name, value in case.get("inputs", {}).items():
+        _socket(node.inputs, name).default_value = value
+    vector = case.get("vector", "Vector")
+    if vector is not None:
+        tree.links.new(coords.outputs["Object"], _socket(node.inputs, vector))
+    tree.links.new(_socket(node.outputs, case.get("output", "#0")), emission.inputs["Color"])
+    return mat
+
+
+def render(case, engine, out_dir):
+    scene, plane = _scene(engine)
+    plane.data.materials.append(_material(case))
+    scene.render.filepath = os.path.join(out_dir, case["name"] + ".exr")
+    bpy.ops.render.render(write_still=True)
+
+
+def main():
+    args = _argv()
+    manifest, out_dir = args[0], args[1]
+    engine = args[args.index("--engine") + 1] if "--engine" in args else 'CYCLES'
+    only = set(args[args.index("--cases") + 1].split(",")) if "--cases" in args else None
+    with open(manifest) as f:
+        cases = json.load(f)["cases"]
+    os.makedirs(out_dir, exist_ok=True)
+    render({"name": "coords", "node": None}, engine, out_dir)
+    for case in cases:
+        if only is None or case["name"] in only:
+            render(case, engine, out_dir)
+
+
+if __name__ == "__main__":
+    main()
