@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "photon/session/image_io.h"
+#include "program_binding.h"
 #include "photon/render/texture_convert.h"
 #include "photon/scene/material_params.h"
 
@@ -50,6 +51,19 @@ Input parse_input(const py::handle& value, ParamKind kind, const Input& fallback
     // A number for a colour is a grey (Blender's float -> colour conversion).
     return Input::constant(value.cast<float>());
   }
+  if (py::isinstance<py::dict>(value) &&
+      py::reinterpret_borrow<py::dict>(value).contains("register")) {
+    py::dict d = py::reinterpret_borrow<py::dict>(value);
+    check_keys(d, {"register", "value"}, what);
+    Input in = fallback;  // the constant stays for when the program cannot run
+    if (d.contains("value")) {
+      Input v = parse_input(d["value"], kind, fallback, what);
+      in.value = v.value;
+    }
+    in.texture = -1;
+    in.reg = static_cast<int32_t>(std::clamp<int64_t>(d["register"].cast<int64_t>(), -1, INT32_MAX));
+    return in;
+  }
   if (py::isinstance<py::dict>(value)) {
     py::dict d = py::reinterpret_borrow<py::dict>(value);
     check_keys(d, {"texture", "channel"}, what);
@@ -82,7 +96,7 @@ Input parse_input(const py::handle& value, ParamKind kind, const Input& fallback
 Closure parse_closure(const py::handle& item, const std::string& what) {
   if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
   py::dict d = py::reinterpret_borrow<py::dict>(item);
-  check_keys(d, {"type", "sharp", "params", "normal_map", "weight"}, what);
+  check_keys(d, {"type", "sharp", "params", "normal_map", "normal", "weight"}, what);
   if (!d.contains("type")) fail(what + " has no 'type'");
   const std::string type = py::str(d["type"]);
   const ClosureSpec* found = find_closure(type.c_str());
@@ -113,6 +127,13 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
     if (n.contains("strength")) closure.normal.strength = n["strength"].cast<float>();
   }
 
+  if (d.contains("normal") && !d["normal"].is_none()) {
+    py::dict n = d["normal"];
+    check_keys(n, {"register"}, what + " normal");
+    closure.normal_reg =
+        static_cast<int32_t>(std::clamp<int64_t>(n["register"].cast<int64_t>(), -1, INT32_MAX));
+  }
+
   if (d.contains("weight")) {
     if (!py::isinstance<py::list>(d["weight"])) fail(what + ": 'weight' must be a list");
     for (auto w : py::reinterpret_borrow<py::list>(d["weight"])) {
@@ -131,6 +152,11 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
 }
 
 py::object describe_input(const Input& in, ParamKind kind) {
+  if (in.reg >= 0) {
+    py::dict d;
+    d["register"] = in.reg;
+    return std::move(d);
+  }
   if (in.texture >= 0) {
     py::dict d;
     d["texture"] = in.texture;
@@ -146,7 +172,8 @@ py::object describe_input(const Input& in, ParamKind kind) {
 }  // namespace
 
 Material parse_material(const std::string& name, const py::handle& closures,
-                        int64_t texture_count) {
+                        int64_t texture_count, const py::handle& program,
+                        std::string* warning) {
   if (!py::isinstance<py::list>(closures) && !py::isinstance<py::tuple>(closures))
     fail("closures must be a list of dicts");
   Material material;
@@ -155,7 +182,9 @@ Material parse_material(const std::string& name, const py::handle& closures,
   for (auto item : py::reinterpret_borrow<py::sequence>(closures))
     material.closures.push_back(
         parse_closure(item, "material '" + name + "' closure " + std::to_string(i++)));
-  sanitize_material(&material, texture_count < 0 ? SIZE_MAX : static_cast<size_t>(texture_count));
+  if (!program.is_none()) material.program = parse_program(program);
+  sanitize_material(&material, texture_count < 0 ? SIZE_MAX : static_cast<size_t>(texture_count),
+                    warning);
   return material;
 }
 

@@ -16,8 +16,12 @@ namespace photon_python {
 // ValueError; non-finite or out-of-range constants are clamped to Blender's defaults/ranges;
 // texture indices outside [0, texture_count) become the param's default constant
 // (texture_count < 0: any non-negative index is accepted).
+// `program` (None or a program dict, program_binding.h) is compiled into Material::program;
+// `warning` (may be null) receives why an invalid program was dropped.
 photon::Material parse_material(const std::string& name, const pybind11::handle& closures,
-                                int64_t texture_count);
+                                int64_t texture_count,
+                                const pybind11::handle& program = pybind11::none(),
+                                std::string* warning = nullptr);
 
 // An Image Texture's settings; unknown extension / interpolation names raise ValueError.
 photon::ImageTexture parse_texture(const std::string& path, bool srgb, const std::string& extension,

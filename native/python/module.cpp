@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "material_binding.h"
+#include "program_binding.h"
 #include "photon/scene/mesh_import.h"
 #include "photon/integrators/render_params.h"
 #include "photon/session/pixel_renderer.h"
@@ -254,6 +255,35 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("holdout") = false, py::arg("shadow_catcher") = false,
           "Adds many instances of one mesh from an (N, 4, 4) array of row-major matrices.")
       .def(
+          "set_mesh_texspace",
+          [](Scene& scene, uint32_t mesh, const std::vector<float>& location,
+             const std::vector<float>& size) {
+            if (mesh >= scene.meshes.size()) throw std::out_of_range("mesh index");
+            const Vec3 loc = vec3_from(location, "location"), sz = vec3_from(size, "size");
+            if (is_finite(loc) && is_finite(sz)) {
+              scene.meshes[mesh].texspace_location = loc;
+              scene.meshes[mesh].texspace_size = sz;
+            }
+          },
+          py::arg("mesh"), py::arg("location"), py::arg("size"),
+          "Sets a mesh's texture space (Generated coordinates), Blender's texspace_location/size.")
+      .def(
+          "set_instance_info",
+          [](Scene& scene, size_t first, const std::vector<float>& color,
+             const std::vector<float>& randoms, float pass_index) {
+            const Vec3 c = vec3_from(color, "color");
+            if (first + randoms.size() > scene.instances.size())
+              throw std::out_of_range("instance index");
+            for (size_t i = 0; i < randoms.size(); ++i) {
+              Instance& inst = scene.instances[first + i];
+              inst.color = is_finite(c) ? c : Vec3(1.0f);
+              inst.random = std::isfinite(randoms[i]) ? std::clamp(randoms[i], 0.0f, 1.0f) : 0.0f;
+              inst.pass_index = std::isfinite(pass_index) ? pass_index : 0.0f;
+            }
+          },
+          py::arg("first"), py::arg("color"), py::arg("randoms"), py::arg("pass_index") = 0.0f,
+          "Object Info of instances first .. first + len(randoms): colour, random, pass index.")
+      .def(
           "add_texture",
           [](Scene& scene, const std::string& path, bool srgb, const std::string& extension,
              const std::string& interpolation) {
@@ -280,12 +310,18 @@ PYBIND11_MODULE(_photon, m) {
           "index. Converted like files, keyed by the pixels' content.")
       .def(
           "add_material",
-          [](Scene& scene, const std::string& name, const py::list& closures) {
-            scene.materials.push_back(photon_python::parse_material(
-                name, closures, static_cast<int64_t>(scene.textures.size())));
+          [](Scene& scene, const std::string& name, const py::list& closures,
+             const py::object& program, float pass_index) {
+            std::string warning;
+            Material material = photon_python::parse_material(
+                name, closures, static_cast<int64_t>(scene.textures.size()), program, &warning);
+            if (!warning.empty()) throw py::value_error(warning);
+            material.pass_index = pass_index;
+            scene.materials.push_back(std::move(material));
             return scene.materials.size() - 1;
           },
-          py::arg("name"), py::arg("closures"),
+          py::arg("name"), py::arg("closures"), py::arg("program") = py::none(),
+          py::arg("pass_index") = 0.0f,
           "Adds a material from closure dicts (schema: addon/photon/sync/materials.py); "
           "texture indices refer to add_texture's.")
       .def(
@@ -455,6 +491,7 @@ PYBIND11_MODULE(_photon, m) {
       });
 
   photon_python::register_material_functions(m);
+  photon_python::register_program_functions(m);
   photon_python::register_stats_classes(m);
 
   // Largest lamp power (W, a sun's W/m^2) and world radiance rendered; larger ones are clamped.

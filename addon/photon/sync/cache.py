@@ -99,7 +99,12 @@ class MeshCache:
                 self._entries.pop(key, None)
                 return None, 0, (None, None)
             method, kwargs = arrays
+            kwargs = dict(kwargs)
+            texspace = kwargs.pop("texspace", None)
             info = getattr(native_scene, method)(obj.name, **kwargs)
+            if texspace is not None and info["triangles"]:
+                native_scene.set_mesh_texspace(info["index"], list(texspace[0]),
+                                               list(texspace[1]))
             bounds = local_bounds(kwargs["positions"])
             if entry is not _CHANGED:
                 kept = native_scene.keep_mesh(info["index"])

@@ -68,7 +68,8 @@ class _Compiler:
             return [(s, w, None) for s, w in ((first, 1.0 - fac), (second, fac)) if w > 0.0]
         out = []
         for shader, complement in ((first, True), (second, False)):
-            key = (fac["texture"], fac.get("channel", "COLOR"), complement)
+            key = ((fac["texture"], fac.get("channel", "COLOR"), complement) if "texture" in fac
+                   else ("register", fac["register"], complement))
             self.factors[key] = {"fac": fac, "complement": complement}
             out.append((shader, 1.0, key))
         return out

@@ -27,6 +27,18 @@ class MaterialContext:
         self.reported = set()
         self.ignored_principled = []  # "Input (node)" entries for the one Principled warning
         self.links = nodes.LinkIndex()
+        self._program = None
+
+    @property
+    def program(self):
+        """The material's ProgramBuilder (shader_program.py), made on first use."""
+        if self._program is None:
+            from .shader_program import ProgramBuilder
+            self._program = ProgramBuilder(self)
+        return self._program
+
+    def program_dict(self):
+        return self._program.program() if self._program is not None else None
 
     def where(self, node, stack):
         return f"Material '{self.name}': node '{nodes.node_path(node, stack)}'"
@@ -140,12 +152,47 @@ def read_input(socket, stack, param, ctx):
     return _from_node(src, socket, param, ctx, what, depth=0)
 
 
+def _plain_image(node, stack, ctx):
+    """An Image Texture read at the active UV map with a flat projection: the texture lookup
+    Inputs express without a program."""
+    if node.type != 'TEX_IMAGE' or node.projection != 'FLAT':
+        return False
+    socket = node.inputs.get("Vector")
+    for _ in range(16):
+        src = nodes.source(socket, stack, ctx.links) if socket is not None else None
+        if src is None or src.node is None:
+            return True
+        if src.node.type == 'UVMAP' and not src.node.uv_map:
+            return True
+        if src.node.type == 'TEX_COORD' and src.output_name == "UV":
+            return True
+        if src.node.type == 'MAPPING' and _identity_mapping(src.node):
+            socket, stack = src.node.inputs.get("Vector"), src.stack
+            continue
+        return False
+    return False
+
+
+def _from_program(src, fed, param, ctx, fallback):
+    """An input computed by the material's shader program."""
+    kind = 'float' if param.kind == 'scalar' else 'color'
+    outputs = ctx.program.compile(src.node, src.stack)
+    found = outputs.get(src.socket.identifier)
+    if found is None:
+        return fallback
+    reg = ctx.program.convert(found[0], found[1], kind)
+    return {"register": reg, "value": fallback}
+
+
 def _from_node(src, fed, param, ctx, what, depth):
     node, kind = src.node, param.kind
     fallback = socket_constant(fed, kind)
     if fallback is None:
         fallback = param.default
     fallback = clamp_constant(fallback, kind, param.lo, param.hi, param.default, ctx, what)
+    if node.type not in {'TEX_IMAGE', 'RGB', 'VALUE'} or (
+            node.type == 'TEX_IMAGE' and not _plain_image(node, src.stack, ctx)):
+        return _from_program(src, fed, param, ctx, fallback)
     if node.type == 'TEX_IMAGE':
         channel = "ALPHA" if src.output_name == "Alpha" else "COLOR"
         check_coordinates(node, src.stack, ctx)
@@ -226,21 +273,20 @@ def read_normal_map(socket, stack, ctx):
         return None
     node = src.node
     where = ctx.where(node, src.stack)
-    if node.type != 'NORMAL_MAP':
-        ctx.warn_once(("node", nodes.node_path(node, src.stack)),
-                      f"{where} ({node.bl_idname}) is not supported yet as a normal; using the "
-                      f"surface normal")
-        return None
-    if node.space != 'TANGENT':
-        ctx.warn_once(("space", where), f"{where}: {node.space.replace('_', ' ').title()} "
-                                        f"space normal maps are not supported; using the "
-                                        f"surface normal")
-        return None
-    color = nodes.source(node.inputs["Color"], src.stack, ctx.links)
-    if color.node is None or color.node.type != 'TEX_IMAGE' or color.output_name != "Color":
-        ctx.warn_once(("nmap", where), f"{where}: only an Image Texture's Color can drive a "
-                                       f"Normal Map; using the surface normal")
-        return None
+    color = (nodes.source(node.inputs["Color"], src.stack, ctx.links)
+             if node.type == 'NORMAL_MAP' else None)
+    strength_src = (nodes.source(node.inputs["Strength"], src.stack, ctx.links)
+                    if node.type == 'NORMAL_MAP' else None)
+    if (node.type != 'NORMAL_MAP' or node.space != 'TANGENT' or node.uv_map or
+            color.node is None or color.node.type != 'TEX_IMAGE' or
+            color.output_name != "Color" or strength_src.node is not None or
+            not _plain_image(color.node, color.stack, ctx)):
+        # Anything but a tangent-space map of a plain image: the shader program computes it.
+        outputs = ctx.program.compile(node, src.stack)
+        found = outputs.get(src.socket.identifier)
+        if found is None:
+            return None
+        return {"register": ctx.program.convert(found[0], found[1], 'vector')}
     check_coordinates(color.node, color.stack, ctx)
     index = ctx.textures.texture(color.node, ctx.where(color.node, color.stack))
     if index is None:

@@ -98,7 +98,7 @@ def _bsdf_closure(node, stack, ctx):
     if normal is not None:
         normal_map = read_normal_map(normal, stack, ctx)
         if normal_map is not None:
-            closure["normal_map"] = normal_map
+            closure["normal" if "register" in normal_map else "normal_map"] = normal_map
     return closure
 
 
@@ -126,13 +126,19 @@ def _diffuse_of(color):
 
 
 def convert_material(material, reporter, textures):
-    """(name, closures) for Scene.add_material; textures is a TextureTable."""
+    """(name, closures, program) for Scene.add_material; textures is a TextureTable; program
+    is None when every input is a constant or a plain image lookup."""
+    name, closures, ctx = _convert(material, reporter, textures)
+    return name, closures, (ctx.program_dict() if ctx is not None else None)
+
+
+def _convert(material, reporter, textures):
     if material is None:
-        return "default", _diffuse_of(DEFAULT_COLOR)
+        return "default", _diffuse_of(DEFAULT_COLOR), None
     name = material.name
     ctx = MaterialContext(name, reporter, textures)
     if not material.use_nodes or material.node_tree is None:
-        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
+        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx)), ctx
     output = nodes.output_node(material.node_tree, 'OUTPUT_MATERIAL')
     surface = output.inputs.get("Surface") if output else None
     if surface is None or nodes.source(surface, (), ctx.links).node is None:
@@ -140,7 +146,7 @@ def convert_material(material, reporter, textures):
         # of a silent black object, and say so.
         reporter.warning(f"Material '{name}' has no shader connected to its output; "
                          f"rendering its viewport colour")
-        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx))
+        return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx)), ctx
     closures = graph.collect_closures(
         surface, ctx, lambda node, stack: _leaf_closure(node, stack, ctx))
     for socket_name in ("Volume", "Displacement"):
@@ -156,7 +162,22 @@ def convert_material(material, reporter, textures):
     if scattering > MAX_BSDF_LOBES:
         reporter.warning(f"Material '{name}': {scattering} BSDF closures; Photon shades the "
                          f"{MAX_BSDF_LOBES} strongest lobes at each point and drops the rest")
-    return name, closures
+    return name, closures, ctx
+
+
+def _without_registers(closures):
+    """Closures with every program input replaced by its constant."""
+    def plain(value):
+        return value.get("value", 0.0) if isinstance(value, dict) and "register" in value \
+            else value
+    result = []
+    for c in closures:
+        c = dict(c)
+        c["params"] = {k: plain(v) for k, v in c.get("params", {}).items()}
+        c["weight"] = [dict(w, fac=plain(w["fac"])) for w in c.get("weight", [])]
+        c.pop("normal", None)
+        result.append(c)
+    return result
 
 
 def read_constant_color(value, ctx):
@@ -178,8 +199,17 @@ class MaterialTable:
         key = material.name_full if material is not None else None
         found = self._index.get(key)
         if found is None:
-            name, closures = convert_material(material, self._reporter, self.textures)
-            found = self._scene.add_material(name, closures)
+            name, closures, program = convert_material(material, self._reporter, self.textures)
+            pass_index = float(getattr(material, "pass_index", 0)) if material else 0.0
+            try:
+                found = self._scene.add_material(name, closures, program, pass_index)
+            except ValueError as error:
+                if program is None:
+                    raise
+                self._reporter.warning(f"Material '{name}': its nodes could not be compiled "
+                                       f"({error}); rendering its inputs' constant values")
+                found = self._scene.add_material(name, _without_registers(closures), None,
+                                                 pass_index)
             self._index[key] = found
         return found
 

@@ -65,10 +65,19 @@ def mesh_arrays(mesh):
     need the loops anyway, vertices come from loops -> vertex_index and the per-corner gathers
     happen in C++.
     """
+    method, kwargs = _mesh_arrays(mesh)
+    if method is None:
+        return None
+    # Generated coordinates: Blender's texture space (the bounds unless the artist set one).
+    kwargs["texspace"] = (tuple(mesh.texspace_location), tuple(mesh.texspace_size))
+    return method, kwargs
+
+
+def _mesh_arrays(mesh):
     mesh.calc_loop_triangles()
     tri_count = len(mesh.loop_triangles)
     if tri_count == 0:
-        return None
+        return None, None
     vertex_count = len(mesh.vertices)
     loop_count = len(mesh.loops)
     positions = _get(mesh.vertices, "co", np.float32, vertex_count, 3)
@@ -141,7 +150,11 @@ def object_mesh_arrays(obj, reporter):
 def add_mesh_arrays(native_scene, name, arrays, reporter):
     """Adds mesh_arrays() output to the native scene; returns as export_object_mesh."""
     method, kwargs = arrays
+    kwargs = dict(kwargs)
+    texspace = kwargs.pop("texspace", None)
     info = getattr(native_scene, method)(name, **kwargs)
+    if texspace is not None and info["triangles"]:
+        native_scene.set_mesh_texspace(info["index"], list(texspace[0]), list(texspace[1]))
     return mesh_result(name, info, local_bounds(kwargs["positions"]), reporter)
 
 

@@ -4,6 +4,7 @@ import time
 
 import numpy as np
 
+from . import object_info
 from . import camera as sync_camera
 from . import hair as sync_hair
 from . import layers as sync_layers
@@ -158,14 +159,14 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         owner = None if inst.is_instance else obj.name
         matte = mattes.of(obj, inst.parent if inst.is_instance else None)
         pending.setdefault((index, slots, visibility, matte), []).append(
-            (np.array(inst.matrix_world, dtype=np.float64), owner))
+            (np.array(inst.matrix_world, dtype=np.float64), owner, _object_info(inst, obj)))
 
     if mesh_cache is not None:
         mesh_cache.end()
         stats.meshes_reused, stats.meshes_exported = mesh_cache.reused, mesh_cache.exported
 
     # The world origin offset, once every world-space quantity is known in double precision.
-    stacked = {key: np.stack([matrix for matrix, _ in entries])
+    stacked = {key: np.stack([matrix for matrix, _, _ in entries])
                for key, entries in pending.items()}
     for key, matrices in stacked.items():
         bounds.add_instances(*mesh_bounds[key[0]], matrices)
@@ -184,8 +185,9 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         stats.instances += native_scene.add_instances(
             index, sync_origin.rebased_matrices(stacked[key], origin), list(slots), visibility,
             holdout=holdout, shadow_catcher=catcher)
+        _set_object_info(native_scene, first, [info for _, _, info in entries])
         if object_instances is not None:
-            for offset, (_, owner) in enumerate(entries):
+            for offset, (_, owner, _) in enumerate(entries):
                 if owner is not None:
                     object_instances.setdefault(owner, []).append(first + offset)
 
@@ -213,3 +215,27 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         reporter.warning("The scene has no lights and a black world: only emissive surfaces will show")
     stats.seconds = time.perf_counter() - t0
     return native_scene
+
+
+def _object_info(inst, obj):
+    """(colour, pass index, random) of an instance for the Object Info node, as Cycles sets
+    them: instances keep the depsgraph's random_id, objects hash their name."""
+    random_id = (inst.random_id if inst.is_instance else
+                 object_info.hash_uint2(object_info.hash_string(obj.name), 0))
+    color = tuple(float(c) for c in obj.color[:3])
+    return color, float(obj.pass_index), (random_id & 0xFFFFFFFF) / 0xFFFFFFFF
+
+
+def _set_object_info(native_scene, first, infos):
+    """Object Info of instances first.. in runs of equal colour and pass index."""
+    start = 0
+    while start < len(infos):
+        color, pass_index = infos[start][0], infos[start][1]
+        end = start + 1
+        while end < len(infos) and infos[end][0] == color and infos[end][1] == pass_index:
+            end += 1
+        if color != (1.0, 1.0, 1.0) or pass_index != 0.0 or any(
+                info[2] for info in infos[start:end]):
+            native_scene.set_instance_info(first + start, list(color),
+                                           [info[2] for info in infos[start:end]], pass_index)
+        start = end

@@ -254,7 +254,7 @@ def main(folder):
     result = {"materials": {}}
     for mat in bpy.data.materials:
         reporter.current = mat.name
-        name, closures = sync_materials.convert_material(mat, reporter, textures)
+        name, closures, _program = sync_materials.convert_material(mat, reporter, textures)
         result["materials"][name] = {"closures": closures,
                                      "warnings": reporter.warnings.get(mat.name, [])}
     result["textures"] = scene.textures

@@ -384,6 +384,9 @@ SurfaceInteraction Accel::interaction(const Hit& hit) const {
   si.instance = hit.instance;
   si.primitive = hit.primitive;
   si.barycentric = Vec2(hit.u, hit.v);
+  si.scene = &scene_;
+  si.object = &scene_.instances[inst.scene_index];
+  si.mesh = &mesh;
   return si;
 }
 

@@ -36,6 +36,10 @@ struct SurfaceInteraction {
   const Material* mat = nullptr;
   uint32_t instance = 0, primitive = 0;  // Embree instance and triangle (for UV tangents)
   Vec2 barycentric;                      // Embree's (u, v) on that triangle
+  // What shader programs read about the object (null for points not made by an Accel).
+  const Scene* scene = nullptr;
+  const Instance* object = nullptr;
+  const Mesh* mesh = nullptr;
 };
 
 // What the BVH is built for. Embree's LOW quality (Morton build) takes about a third of the

@@ -1,19 +1,31 @@
 #include "photon/render/material_eval.h"
 
+#include <optional>
+
+#include "photon/render/shader_globals.h"
 #include "photon/scene/material_params.h"
+#include "photon/shading/program_eval.h"
 
 namespace photon {
 namespace {
 
 constexpr float kWeightCutoff = 1e-5f;  // closures below this weight are skipped (Cycles: 1e-5)
 
-// A texture lookup, unclamped (non-finite values already read as 0), or the constant.
+// A program register or texture lookup, unclamped (non-finite values already read as 0), or
+// the constant.
 struct InputReader {
   Vec2 uv;
   const TextureSet* textures;
+  const float* registers = nullptr;  // the material's program after it ran, or null
 
   Vec3 raw(const Input& in, bool* textured) const {
     *textured = false;
+    if (in.reg >= 0 && registers) {
+      const Vec3 v = load3(registers, in.reg);
+      *textured = true;
+      return Vec3(std::isfinite(v.x) ? v.x : 0.0f, std::isfinite(v.y) ? v.y : 0.0f,
+                  std::isfinite(v.z) ? v.z : 0.0f);
+    }
     if (in.texture >= 0 && textures) {
       float rgba[4];
       if (textures->lookup(in.texture, uv, rgba)) {
@@ -37,7 +49,10 @@ struct InputReader {
     bool textured;
     const Vec3 v = raw(in, &textured);
     if (!textured) return v.x;
-    return std::clamp(in.channel == TextureChannel::kAlpha ? v.x : luminance(v), r.lo, r.hi);
+    // A register already holds the scalar (the add-on converts colours to floats as Blender
+    // does); a texture's colour becomes its luminance.
+    const bool scalar = in.reg >= 0 || in.channel == TextureChannel::kAlpha;
+    return std::clamp(scalar ? v.x : luminance(v), r.lo, r.hi);
   }
   float unit(const Input& in) const { return std::clamp(scalar(in, {0.0f, 1.0f}), 0.0f, 1.0f); }
 };
@@ -197,6 +212,32 @@ void add_closure(const Closure& c, float w, const InputReader& reader, ShadingPo
   out->bsdf.add(l);
 }
 
+// A normal from the program (Bump, Normal Map), in world space on the incoming ray's side:
+// turned to the geometric normal's side for the Bsdf, which flips both for back faces.
+Vec3 program_normal(const Vec3& n, const SurfaceInteraction& si, bool front) {
+  if (!is_finite(n) || !(length_squared(n) > 0.0f)) return si.ns;
+  Vec3 ns = normalize(front ? n : -n);
+  // A bent normal must stay on the geometric normal's side, or the surface turns black.
+  if (dot(ns, si.ng) <= 1e-3f) return si.ns;
+  return ns;
+}
+
+// The material's program run at a shading point, when it has one.
+class ProgramRun {
+ public:
+  ProgramRun(const Material& m, const SurfaceInteraction& si, const Vec3& wo, const Accel* accel,
+             const TextureSet* textures, const ShadeRay& ray) {
+    if (m.program.empty()) return;
+    registers_.emplace(m.program);
+    const ShaderGlobals g = surface_globals(si, wo, accel, textures, ray);
+    run_program(m.program, g, registers_->data());
+  }
+  const float* registers() { return registers_ ? registers_->data() : nullptr; }
+
+ private:
+  std::optional<ProgramRegisters> registers_;
+};
+
 }  // namespace
 
 const char* input_label(ClosureType type, Param p) {
@@ -204,17 +245,25 @@ const char* input_label(ClosureType type, Param p) {
 }
 
 ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const Accel& accel,
-                           const TextureSet* textures) {
+                           const TextureSet* textures, const ShadeRay& ray) {
   ShadingPoint out;
   const Material& m = si.mat ? *si.mat : Scene::default_material();
-  const InputReader in{si.uv, textures};
+  InputReader in{si.uv, textures};
+  const bool front = dot(si.ng, wo) >= 0.0f;
+  ProgramRun run(m, si, wo, &accel, textures, ray);
+  in.registers = run.registers();
   Vec3 ns = si.ns;
-  for (const Closure& c : m.closures)
-    if (c.normal.texture >= 0) {  // one shading normal per point: the first normal map
+  for (const Closure& c : m.closures) {
+    // One shading normal per point: the first closure's normal input that is set.
+    if (c.normal_reg >= 0 && in.registers) {
+      ns = program_normal(load3(in.registers, c.normal_reg), si, front);
+      break;
+    }
+    if (c.normal.texture >= 0) {
       ns = apply_normal_map(c.normal, si, accel, in);
       break;
     }
-  const bool front = dot(si.ng, wo) >= 0.0f;
+  }
   out.bsdf = front ? Bsdf(ns, si.ng, true) : Bsdf(-ns, -si.ng, false);
   for (const Closure& c : m.closures) {
     const float w = closure_weight(c, in);
@@ -226,9 +275,11 @@ ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const A
 }
 
 Vec3 emitted_radiance(const Material& material, const SurfaceInteraction& si,
-                      const TextureSet* textures) {
+                      const TextureSet* textures, const Vec3* wo) {
   if (!material.may_emit()) return Vec3(0.0f);
-  const InputReader in{si.uv, textures};
+  InputReader in{si.uv, textures};
+  ProgramRun run(material, si, wo ? *wo : si.ng, nullptr, textures, ShadeRay{});
+  in.registers = run.registers();
   Vec3 e(0.0f);
   for (const Closure& c : material.closures) {
     if (c.type != ClosureType::kEmission && c.type != ClosureType::kPrincipled) continue;

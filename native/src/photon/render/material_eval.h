@@ -4,6 +4,7 @@
 
 #include "photon/render/accel.h"
 #include "photon/render/bsdf.h"
+#include "photon/render/shader_globals.h"
 #include "photon/scene/material.h"
 #include "photon/render/textures.h"
 
@@ -22,10 +23,12 @@ const char* input_label(ClosureType type, Param p);
 // Normals are flipped to wo's side; a normal map bends the shading normal. `textures` may be
 // null (inputs then use their constants). `accel` supplies UV tangents for normal maps.
 ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const Accel& accel,
-                           const TextureSet* textures);
+                           const TextureSet* textures, const ShadeRay& ray = ShadeRay{});
 
 // Emitted radiance only (for emissive triangles as lights): cheaper than shade_surface.
+// `wo` (towards the viewer) matters only to programs that read the incoming direction; without
+// it the geometric normal stands in.
 Vec3 emitted_radiance(const Material& material, const SurfaceInteraction& si,
-                      const TextureSet* textures);
+                      const TextureSet* textures, const Vec3* wo = nullptr);
 
 }  // namespace photon

@@ -4,18 +4,19 @@
 #include <cmath>
 
 #include "photon/scene/material_params.h"
+#include "photon/shading/program_eval.h"
 
 namespace photon {
 namespace {
 
 bool constant_zero(const Input& in) {
-  return in.texture < 0 && max_component(in.value) <= 0.0f;
+  return in.is_constant() && max_component(in.value) <= 0.0f;
 }
 
 // A closure weight that is a product of constant factors, one of which is 0 (or 1 - 1).
 bool weight_is_zero(const Closure& c) {
   for (const WeightFactor& f : c.weight) {
-    if (f.fac.texture >= 0) continue;
+    if (!f.fac.is_constant()) continue;
     const float v = std::clamp(f.fac.value.x, 0.0f, 1.0f);
     if ((f.complement ? 1.0f - v : v) <= 0.0f) return true;
   }
@@ -28,8 +29,15 @@ float clamp_or(float v, const ParamRange& r, float fallback) {
 
 // A constant clamped into `r` component-wise (non-finite components take `fallback`'s), or a
 // texture lookup when the index names an existing texture, else `fallback`.
-void sanitize_input(Input* in, const ParamRange& r, const Input& fallback, size_t texture_count) {
-  if (in->texture >= 0 && static_cast<size_t>(in->texture) >= texture_count) *in = fallback;
+void sanitize_input(Input* in, const ParamRange& r, const Input& fallback, size_t texture_count,
+                    size_t register_count) {
+  if (in->reg >= 0 && static_cast<size_t>(in->reg) + 3 > register_count) in->reg = -1;
+  if (in->reg < 0) in->reg = -1;
+  if (in->texture >= 0 && static_cast<size_t>(in->texture) >= texture_count) {
+    const int32_t reg = in->reg;
+    *in = fallback;
+    in->reg = reg;
+  }
   if (in->texture < 0) in->texture = -1;
   in->value = {clamp_or(in->value.x, r, fallback.value.x),
                clamp_or(in->value.y, r, fallback.value.y),
@@ -38,20 +46,29 @@ void sanitize_input(Input* in, const ParamRange& r, const Input& fallback, size_
 
 }  // namespace
 
-void sanitize_material(Material* material, size_t texture_count) {
+void sanitize_material(Material* material, size_t texture_count, std::string* warning) {
+  std::string error;
+  if (!material->program.empty() && !validate_program(material->program, &error)) {
+    if (warning) *warning = "Material '" + material->name + "': its node program is invalid (" + error +
+                            "); its inputs use their constant values";
+    material->program = ShaderProgram{};
+  }
+  const size_t registers = material->program.empty() ? 0 : material->program.registers.size();
   for (Closure& c : material->closures) {
+    if (c.normal_reg >= 0 && static_cast<size_t>(c.normal_reg) + 3 > registers) c.normal_reg = -1;
+    if (c.normal_reg < 0) c.normal_reg = -1;
     // Ranges and fallbacks from the one table (material_params.cpp): the node's own defaults.
     const auto defaults = default_params(c.type);
     for (size_t i = 0; i < defaults.size(); ++i)
       sanitize_input(&c.params[i], param_range(c.type, static_cast<Param>(i)), defaults[i],
-                     texture_count);
+                     texture_count, registers);
     if (c.normal.texture < 0 || static_cast<size_t>(c.normal.texture) >= texture_count)
       c.normal = NormalMap{};
     c.normal.strength =
         clamp_or(c.normal.strength, kNormalMapStrength.range, kNormalMapStrength.default_value);
     for (WeightFactor& f : c.weight)
       sanitize_input(&f.fac, kMixFactor.range, Input::constant(kMixFactor.default_value),
-                     texture_count);
+                     texture_count, registers);
   }
 }
 
@@ -115,7 +132,7 @@ bool Material::may_emit() const {
 bool Material::may_be_specular() const {
   // Perfectly specular (delta) lobes form caustics; rough lobes are gathered instead.
   auto smooth = [](const Input& roughness) {
-    return roughness.texture >= 0 || roughness.value.x * roughness.value.x < 1e-4f;
+    return !roughness.is_constant() || roughness.value.x * roughness.value.x < 1e-4f;
   };
   for (const Closure& c : closures) {
     if (weight_is_zero(c)) continue;

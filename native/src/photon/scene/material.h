@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "photon/base/math.h"
+#include "photon/shading/program.h"
 
 namespace photon {
 
@@ -32,12 +33,16 @@ struct ImageTexture {
 
 enum class TextureChannel : uint8_t { kColor, kAlpha };
 
-// A shader input socket: a constant, or an image texture read at the hit's UV coordinates
-// (the mesh's active UV layer). Scalars use value.x.
+// A shader input socket: a constant, an image texture read at the hit's UV coordinates (the
+// mesh's active UV layer), or a register of the material's shader program (any expression of
+// nodes: one float for a scalar, three for a colour). Scalars use value.x.
 struct Input {
   Vec3 value{0.0f};
   int32_t texture = -1;  // Scene::textures index, or -1 for the constant
   TextureChannel channel = TextureChannel::kColor;
+  int32_t reg = -1;  // Material::program register, or -1
+
+  bool is_constant() const { return texture < 0 && reg < 0; }
 
   static Input constant(float v) { return Input{Vec3(v), -1, TextureChannel::kColor}; }
   static Input constant(const Vec3& v) { return Input{v, -1, TextureChannel::kColor}; }
@@ -92,6 +97,7 @@ struct Closure {
   std::array<Input, static_cast<size_t>(Param::kCount)> params = default_params();
   bool sharp = false;  // Glossy / Glass / Refraction with the Sharp distribution
   NormalMap normal;
+  int32_t normal_reg = -1;  // a program register holding the Normal input (Bump, Normal Map...)
   std::vector<WeightFactor> weight;  // empty: weight 1
 
   Input& operator[](Param p) { return params[static_cast<size_t>(p)]; }
@@ -103,6 +109,10 @@ struct Closure {
 struct Material {
   std::string name;
   std::vector<Closure> closures;  // empty: black (Cycles renders an empty output black)
+  // The node tree's program: evaluated once per shading point before the closures' inputs are
+  // read (empty when every input is a constant or a plain image lookup).
+  ShaderProgram program;
+  float pass_index = 0.0f;  // Object Info's Material Index
 
   // Single-closure materials for tests, the CLI and the built-in scenes.
   static Material diffuse(const Vec3& color, const std::string& name = "diffuse");
@@ -140,7 +150,8 @@ ParamRange emitter_range();
 // CLI, tests): constants outside their Param's range are clamped and non-finite ones replaced by
 // Blender's default for the closure's node; texture indices outside [0, texture_count) become the default constant (a
 // normal map with such an index is dropped); normal-map strength is clamped to [0, 100] and mix
-// factors to [0, 1] (0.5 when not finite).
-void sanitize_material(Material* material, size_t texture_count);
+// factors to [0, 1] (0.5 when not finite). A program that names registers or tables outside
+// itself is dropped (its inputs take their constants) and `warning` says why.
+void sanitize_material(Material* material, size_t texture_count, std::string* warning = nullptr);
 
 }  // namespace photon

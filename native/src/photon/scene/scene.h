@@ -31,6 +31,10 @@ struct Mesh {
   // Index each triangle had as given (before clean_mesh dropped any), or empty when none was
   // dropped: lets a bake address triangles by the caller's numbering (Blender loop triangles).
   std::vector<uint32_t> source_triangles;
+  // Blender's texture space (Generated coordinates = (p - (location - size)) / (2 size) in
+  // object space): the mesh's bounding box unless the artist set another.
+  Vec3 texspace_location{0.0f};
+  Vec3 texspace_size{1.0f};
 
   size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -54,6 +58,10 @@ struct Instance {
   // them); every other ray meets the object as usual (camera_path.cpp, matte.h).
   bool holdout = false;         // Blender's Object holdout: the pixel becomes transparent
   bool shadow_catcher = false;  // only the shadows cast on it show, as alpha or over the world
+  // Object Info node outputs.
+  Vec3 color{1.0f};
+  float random = 0.0f;  // in [0, 1]
+  float pass_index = 0.0f;
 };
 
 enum class LightType : uint8_t { kPoint, kSpot, kSun, kArea };

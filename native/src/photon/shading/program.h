@@ -16,6 +16,7 @@
 namespace photon {
 
 class TextureSet;
+struct Camera;
 
 // One node as the add-on describes it (see addon/photon/sync/shader_program.py).
 struct NodeDesc {
@@ -70,14 +71,16 @@ struct ShaderGlobals {
   Vec3 dpdu{0.0f}, dpdv{0.0f};  // UV tangents (zero when unknown)
   bool backfacing = false;
   Vec3 generated{0.0f};  // Generated coordinates (mesh texture space, [0, 1]^3)
+  Vec3 generated_scale{1.0f};  // d generated / d object position (per axis)
+  Transform object_to_world;
   Transform world_to_object;
-  Transform world_to_camera;
+  Transform world_to_camera;  // Blender's camera space: looking down -Z
+  const Camera* camera = nullptr;  // for Window coordinates
   Vec3 object_location{0.0f};
   Vec3 object_color{1.0f};
   float object_random = 0.0f;
   float object_pass_index = 0.0f;
   float material_pass_index = 0.0f;
-  Vec2 window{0.5f, 0.5f};  // the pixel's position in the image, [0, 1]^2 (Window coordinates)
   // Light Path: the ray that reached this point.
   uint32_t ray_flags = 1;  // LightPathFlag bits
   float ray_length = 0.0f;

@@ -14,8 +14,8 @@ inline bool is_radiosity_surface(const Material& m) {
     if (c.type == ClosureType::kPrincipled) {
       const Input& metallic = c[Param::kMetallic];
       const Input& transmission = c[Param::kTransmission];
-      const bool metal = metallic.texture < 0 && metallic.value.x >= 1.0f;
-      const bool glass = transmission.texture < 0 && transmission.value.x >= 1.0f;
+      const bool metal = metallic.is_constant() && metallic.value.x >= 1.0f;
+      const bool glass = transmission.is_constant() && transmission.value.x >= 1.0f;
       if (!metal && !glass) return true;
     }
   }

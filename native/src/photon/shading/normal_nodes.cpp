@@ -1,0 +1,164 @@
+#include "photon/shading/normal_nodes.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "photon/shading/input_nodes.h"
+#include "photon/shading/node_registry.h"
+
+namespace photon {
+namespace {
+
+enum NormalKind : uint16_t { kBump, kNormalMap };
+enum NormalMapSpace : uint32_t { kTangent, kObject, kWorld, kBlenderObject, kBlenderWorld };
+
+Vec3 safe_normalize(const Vec3& v) {
+  const float l2 = length_squared(v);
+  return l2 > 0.0f && std::isfinite(l2) ? v / std::sqrt(l2) : Vec3(0.0f);
+}
+
+// Cycles' svm_node_set_bump and svm_node_bump: with dPdx, dPdy along the surface, the
+// perturbed normal is normalize(|det| N - distance sign(det) (dhdx Rx + dhdy Ry)) where
+// Rx = dPdy x N, Ry = N x dPdx, det = dPdx . Rx (Mikkelsen 2010, "Bump mapping unparametrized
+// surfaces on the GPU", eq. 3), then blended towards N by strength.
+void eval_bump(const Instruction& ins, const ShaderProgram& program, const ShaderGlobals& g,
+               float* r, size_t index) {
+  const Vec3 normal_in = ins.in[3] >= 0 ? safe_normalize(load3(r, ins.in[3])) : g.n;
+  const float strength = std::clamp(load1(r, ins.in[0]), 0.0f, 1.0f);
+  float distance = load1(r, ins.in[1]);
+  if (ins.mode & 1u) distance = -distance;  // invert
+  Vec3 result = normal_in;
+  if (ins.skip > 0 && ins.in[2] >= 0 && strength > 0.0f && !g.is_background) {
+    const float h_c = load1(r, ins.in[2]);
+    const Frame frame(normal_in);
+    const Vec3 dpdx = frame.t * g.bump_step, dpdy = frame.b * g.bump_step;
+    // The height's nodes again, at the two offset points, on scratch copies of the registers
+    // (the nodes' outputs at the shading point itself stay as they are for later readers).
+    std::vector<float> scratch(r, r + program.registers.size());
+    const size_t begin = index - static_cast<size_t>(ins.skip);
+    run_block(program, begin, index, offset_globals(g, dpdx), scratch.data());
+    const float h_x = scratch[ins.in[2]];
+    std::copy(r, r + program.registers.size(), scratch.begin());
+    run_block(program, begin, index, offset_globals(g, dpdy), scratch.data());
+    const float h_y = scratch[ins.in[2]];
+    const Vec3 rx = cross(dpdy, normal_in), ry = cross(normal_in, dpdx);
+    const float det = dot(dpdx, rx);
+    const Vec3 surfgrad = rx * (h_x - h_c) + ry * (h_y - h_c);
+    const float sign = det < 0.0f ? -1.0f : 1.0f;
+    Vec3 n = safe_normalize(normal_in * std::fabs(det) - surfgrad * (distance * sign));
+    if (length_squared(n) > 0.0f && std::isfinite(h_x) && std::isfinite(h_y))
+      result = safe_normalize(n * strength + normal_in * (1.0f - strength));
+    if (!(length_squared(result) > 0.0f)) result = normal_in;
+  }
+  store3(r, ins.out[0], result);
+}
+
+// Cycles' svm_node_normal_map: colour 2c - 1 in the tangent frame (T, sign B, N) of the
+// interpolated normal, or in object / world space; then N + (N' - N) strength.
+void eval_normal_map(const Instruction& ins, const ShaderGlobals& g, float* r) {
+  const float strength = std::max(load1(r, ins.in[0]), 0.0f);
+  Vec3 c = load3(r, ins.in[1]);
+  c = Vec3(2.0f * (c.x - 0.5f), 2.0f * (c.y - 0.5f), 2.0f * (c.z - 0.5f));
+  Vec3 n(0.0f);
+  if (ins.mode == kTangent) {
+    if (length_squared(g.dpdu) > 0.0f) {
+      Vec3 t = safe_normalize(g.dpdu - g.n * dot(g.n, g.dpdu));
+      Vec3 b = cross(g.n, t);
+      if (dot(b, g.dpdv) < 0.0f) b = -b;
+      n = safe_normalize(t * c.x + b * c.y + g.n * c.z);
+    }
+  } else {
+    if (ins.mode == kBlenderObject || ins.mode == kBlenderWorld) c = Vec3(c.x, -c.y, -c.z);
+    if (ins.mode == kObject || ins.mode == kBlenderObject) {
+      float nm[3][3];
+      if (g.object_to_world.normal_matrix(nm))
+        c = Vec3(nm[0][0] * c.x + nm[0][1] * c.y + nm[0][2] * c.z,
+                 nm[1][0] * c.x + nm[1][1] * c.y + nm[1][2] * c.z,
+                 nm[2][0] * c.x + nm[2][1] * c.y + nm[2][2] * c.z);
+    }
+    n = safe_normalize(c);
+    if (g.backfacing) n = -n;
+  }
+  if (length_squared(n) > 0.0f && strength != 1.0f) n = safe_normalize(g.n + (n - g.n) * strength);
+  if (!(length_squared(n) > 0.0f)) n = g.n;
+  store3(r, ins.out[0], n);
+}
+
+}  // namespace
+
+ShaderGlobals offset_globals(const ShaderGlobals& g, const Vec3& dp) {
+  ShaderGlobals s = g;
+  s.p = g.p + dp;
+  // Generated moves with the object-space offset scaled as the texture space scales it: the
+  // ratio of Generated to object position per axis is constant on a mesh.
+  const Vec3 obj_dp = g.world_to_object.vector(dp);
+  s.generated = g.generated + obj_dp * g.generated_scale;
+  // UV: solve dp = du dpdu + dv dpdv in the least-squares sense.
+  const float a = dot(g.dpdu, g.dpdu), b = dot(g.dpdu, g.dpdv), c = dot(g.dpdv, g.dpdv);
+  const float det = a * c - b * b;
+  if (std::fabs(det) > 1e-30f) {
+    const float pu = dot(dp, g.dpdu), pv = dot(dp, g.dpdv);
+    s.uv = Vec2{g.uv.x + (c * pu - b * pv) / det, g.uv.y + (a * pv - b * pu) / det};
+  }
+  return s;
+}
+
+CompileStatus compile_normal_node(const NodeDesc& desc, ShaderProgram* program, Instruction* out,
+                                  std::string* error) {
+  out->family = NodeFamily::kNormal;
+  if (desc.type == "ShaderNodeBump") {
+    out->kind = kBump;
+    out->in[0] = input_register(desc, "Strength");
+    out->in[1] = input_register(desc, "Distance");
+    out->in[2] = input_register(desc, "Height");
+    out->in[3] = input_register(desc, "Normal");
+    out->out[0] = output_register(desc, "Normal");
+    out->mode = enum_value(desc, "invert", "False") == "True" ? 1u : 0u;
+    if (out->in[0] < 0 || out->in[1] < 0) {
+      *error = "Bump: Strength and Distance need registers";
+      return CompileStatus::kError;
+    }
+    // The height's code runs from the last open block marker up to this instruction (when the
+    // add-on made a block: an unlinked Height has none).
+    const bool block = number_value(desc, "block", 0.0) != 0.0;
+    for (size_t i = program->code.size(); block && i-- > 0;) {
+      if (is_open_block_marker(program->code[i])) {
+        program->code[i].mode = 1;
+        out->skip = static_cast<int32_t>(program->code.size() - i - 1);
+        break;
+      }
+    }
+    return CompileStatus::kCompiled;
+  }
+  if (desc.type == "ShaderNodeNormalMap") {
+    out->kind = kNormalMap;
+    out->in[0] = input_register(desc, "Strength");
+    out->in[1] = input_register(desc, "Color");
+    out->out[0] = output_register(desc, "Normal");
+    const std::string space = enum_value(desc, "space", "TANGENT");
+    out->mode = space == "OBJECT"           ? kObject
+                : space == "WORLD"          ? kWorld
+                : space == "BLENDER_OBJECT" ? kBlenderObject
+                : space == "BLENDER_WORLD"  ? kBlenderWorld
+                                            : kTangent;
+    if (out->in[0] < 0 || out->in[1] < 0) {
+      *error = "Normal Map: Strength and Color need registers";
+      return CompileStatus::kError;
+    }
+    return CompileStatus::kCompiled;
+  }
+  return CompileStatus::kUnknownNode;
+}
+
+void eval_normal_node(const Instruction& ins, const ShaderProgram& program,
+                      const ShaderGlobals& g, float* r) {
+  if (ins.kind == kBump) {
+    const size_t index = static_cast<size_t>(&ins - program.code.data());
+    eval_bump(ins, program, g, r, index);
+  } else {
+    eval_normal_map(ins, g, r);
+  }
+}
+
+}  // namespace photon
