@@ -14,6 +14,8 @@ A manifest is {"cases": [CASE, ...]} with CASE:
    "inputs": {"Scale": 5.0, "W": 0.3},       # unlinked input values (by name or index "#2")
    "vector": "Vector",                       # input fed the hit point's Object coordinate (or null)
    "output": "Color",                        # output (name or "#index") shown by the Emission
+   "output_values": {"#0": [0, 0, 1]},       # optional: output sockets' default_value (the
+                                             # Normal node's direction)
    "vector_scale": 4.0,                      # optional: the coordinate times this (Vector Math
                                              # SCALE) before it reaches the input
    "object": {"location": [0, 0, 0.5],       # optional: the plane object's transform (Euler XYZ
@@ -106,6 +108,8 @@ def _material(case):
         setattr(node, name, value)
     for name, value in case.get("inputs", {}).items():
         _socket(node.inputs, name).default_value = value
+    for name, value in case.get("output_values", {}).items():
+        _socket(node.outputs, name).default_value = value
     vector = case.get("vector", "Vector")
     if vector is not None:
         source = coords.outputs["Object"]

@@ -78,27 +78,18 @@ Vec3 normalize_keep_zero(const Vec3& v) {
   return l != 0.0f ? v / l : v;
 }
 
-Vec3 normal_matrix_apply(const Transform& t, const Vec3& n) {
-  float m[3][3];
-  if (!t.normal_matrix(m)) return n;
-  return {m[0][0] * n.x + m[0][1] * n.y + m[0][2] * n.z,
-          m[1][0] * n.x + m[1][1] * n.y + m[1][2] * n.z,
-          m[2][0] * n.x + m[2][1] * n.y + m[2][2] * n.z};
-}
-
 }  // namespace
 
 Vec3 vector_transform(VectorTransformType type, VectorTransformSpace from, VectorTransformSpace to,
                       const Vec3& v, const ShaderGlobals& g) {
-  // The conversions of Cycles' svm_node_vector_transform, through world space. Normals use the
-  // inverse transpose of the point transform (transposed(A^-1) for A), then are normalised.
+  // Cycles 3.4's svm_node_vector_transform: through world space, a Normal is carried like a
+  // Vector (the direction part of each transform, not its inverse transpose) and normalised at
+  // the end. Without an object (the world shader) object space is world space.
   using S = VectorTransformSpace;
-  const bool is_normal = type == VectorTransformType::kNormal;
-  const bool is_direction = type == VectorTransformType::kVector;
+  const bool is_point = type == VectorTransformType::kPoint;
   const bool is_object = !g.is_background;
   auto apply = [&](const Transform& to_space, const Vec3& x) {
-    if (is_normal) return normalize_keep_zero(normal_matrix_apply(to_space, x));
-    return is_direction ? to_space.vector(x) : to_space.point(x);
+    return is_point ? to_space.point(x) : to_space.vector(x);
   };
   auto inverse_of = [](const Transform& t) {
     Transform inv;
@@ -119,7 +110,7 @@ Vec3 vector_transform(VectorTransformType type, VectorTransformSpace from, Vecto
       out = apply(inverse_of(g.world_to_object), out);
     if (to == S::kCamera) out = apply(g.world_to_camera, out);
   }
-  return out;
+  return type == VectorTransformType::kNormal ? normalize_keep_zero(out) : out;
 }
 
 CompileStatus compile_math_node(const NodeDesc& desc, ShaderProgram* program, Instruction* out,
