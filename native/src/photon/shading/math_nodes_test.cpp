@@ -417,3 +417,40 @@ TEST(MathNodes, MissingInputsReadBlenderDefaults) {
 
 }  // namespace
 }  // namespace photon
+
+namespace photon {
+namespace {
+
+TEST(MathNodes, WorldShaderHasNoObjectSpace) {
+  // Cycles skips the object transforms where there is no object (sd->object == OBJECT_NONE).
+  ShaderGlobals g;
+  g.world_to_object = Transform::translation(Vec3(1.0f, 2.0f, 3.0f));
+  Vec3 p(0.25f, -0.5f, 2.0f);
+  Vec3 moved = vector_transform(VectorTransformType::kPoint, VectorTransformSpace::kWorld,
+                                VectorTransformSpace::kObject, p, g);
+  EXPECT_FLOAT_EQ(moved.x, 1.25f);
+  g.is_background = true;
+  Vec3 kept = vector_transform(VectorTransformType::kPoint, VectorTransformSpace::kWorld,
+                               VectorTransformSpace::kObject, p, g);
+  EXPECT_FLOAT_EQ(kept.x, p.x);
+  EXPECT_FLOAT_EQ(kept.z, p.z);
+}
+
+TEST(MathNodes, GuardsKeepResultsFinite) {
+  // A NaN operand clamps to the lower bound as in Cycles' ternary clamp (use_clamp).
+  EXPECT_EQ(cy_clamp(NAN, 0.0f, 1.0f), 0.0f);
+  // Exponents beyond int range: Cycles' (int) cast gives INT_MIN, so a negative base yields 0.
+  EXPECT_EQ(safe_powf(-2.0f, 1e20f), 0.0f);
+  EXPECT_EQ(safe_powf(-2.0f, NAN), 0.0f);
+  EXPECT_EQ(safe_powf(-2.0f, 3.0f), -8.0f);
+  // Zero-length normals in Reflect/Refract stay finite (Cycles would produce NaN).
+  VectorMathResult r = eval_vector_math(VectorMathOp::kReflect, Vec3(1.0f, 2.0f, 3.0f), Vec3(0.0f),
+                                        Vec3(0.0f), 1.0f);
+  EXPECT_TRUE(is_finite(r.vector));
+  r = eval_vector_math(VectorMathOp::kRefract, Vec3(1.0f, 2.0f, 3.0f), Vec3(0.0f), Vec3(0.0f),
+                       1.5f);
+  EXPECT_TRUE(is_finite(r.vector));
+}
+
+}  // namespace
+}  // namespace photon
