@@ -13,7 +13,14 @@ A manifest is {"cases": [CASE, ...]} with CASE:
    "properties": {"noise_dimensions": "3D"}, # node attributes set before linking
    "inputs": {"Scale": 5.0, "W": 0.3},       # unlinked input values (by name or index "#2")
    "vector": "Vector",                       # input fed the hit point's Object coordinate (or null)
-   "output": "Color"}                        # output (name or "#index") shown by the Emission
+   "output": "Color",                        # output (name or "#index") shown by the Emission
+   "output_values": {"#0": [0, 0, 1]},       # optional: output sockets' default_value (the
+                                             # Normal node's direction)
+   "vector_scale": 4.0,                      # optional: the coordinate times this (Vector Math
+                                             # SCALE) before it reaches the input
+   "object": {"location": [0, 0, 0.5],       # optional: the plane object's transform (Euler XYZ
+              "rotation": [0.3, 0, 0],       # radians); the case then gets its own coordinate
+              "scale": [1, 2, 1]}}           # image OUT_DIR/<name>_coords.exr
 Every render also writes OUT_DIR/coords.exr: the Object coordinate of each pixel's hit point plus
 (4, 4, 4), so tests can evaluate a node at exactly the point the render shaded (Emission colours
 stay positive). The plane spans x, y in [-1, 1] with z = 0.3 x + 0.2 y + 0.25.
@@ -101,15 +108,29 @@ def _material(case):
         setattr(node, name, value)
     for name, value in case.get("inputs", {}).items():
         _socket(node.inputs, name).default_value = value
+    for name, value in case.get("output_values", {}).items():
+        _socket(node.outputs, name).default_value = value
     vector = case.get("vector", "Vector")
     if vector is not None:
-        tree.links.new(coords.outputs["Object"], _socket(node.inputs, vector))
+        source = coords.outputs["Object"]
+        if case.get("vector_scale") is not None:
+            scale = tree.nodes.new("ShaderNodeVectorMath")
+            scale.operation = 'SCALE'
+            scale.inputs["Scale"].default_value = case["vector_scale"]
+            tree.links.new(source, scale.inputs[0])
+            source = scale.outputs["Vector"]
+        tree.links.new(source, _socket(node.inputs, vector))
     tree.links.new(_socket(node.outputs, case.get("output", "#0")), emission.inputs["Color"])
     return mat
 
 
 def render(case, engine, out_dir):
     scene, plane = _scene(engine)
+    transform = case.get("object")
+    if transform:
+        plane.location = transform.get("location", (0.0, 0.0, 0.0))
+        plane.rotation_euler = transform.get("rotation", (0.0, 0.0, 0.0))
+        plane.scale = transform.get("scale", (1.0, 1.0, 1.0))
     plane.data.materials.append(_material(case))
     scene.render.filepath = os.path.join(out_dir, case["name"] + ".exr")
     bpy.ops.render.render(write_still=True)
@@ -126,6 +147,9 @@ def main():
     render({"name": "coords", "node": None}, engine, out_dir)
     for case in cases:
         if only is None or case["name"] in only:
+            if case.get("object"):  # the transformed plane's own coordinate image
+                render({"name": case["name"] + "_coords", "node": None,
+                        "object": case["object"]}, engine, out_dir)
             render(case, engine, out_dir)
 
 
