@@ -1,0 +1,303 @@
+// The noise family against Cycles: every case of test_scenes/nodes/noise.json was rendered by
+// Blender 3.4's Cycles (tools/node_refs.py) into test_scenes/nodes/noise/<case>.exr, the node's
+// output at each pixel's hit point; coords.exr holds that hit point (+4). Each case is compiled
+// from the same description and evaluated at every pixel's point.
+#include "photon/shading/noise_nodes.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "photon/shading/noise.h"
+
+namespace photon {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- A minimal JSON reader for the manifest (objects, arrays, strings, numbers, literals) ----
+
+struct Json {
+  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
+  double number = 0.0;
+  bool boolean = false;
+  std::string string;
+  std::vector<Json> array;
+  std::vector<std::pair<std::string, Json>> object;
+
+  const Json* find(const std::string& key) const {
+    for (const auto& [k, v] : object)
+      if (k == key) return &v;
+    return nullptr;
+  }
+};
+
+class JsonReader {
+ public:
+  explicit JsonReader(std::string text) : text_(std::move(text)) {}
+  Json parse() {
+    Json v = value();
+    skip();
+    if (pos_ != text_.size()) fail("trailing text");
+    return v;
+  }
+
+ private:
+  void fail(const char* what) {
+    throw std::runtime_error(std::string("manifest JSON: ") + what + " at " + std::to_string(pos_));
+  }
+  void skip() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  }
+  bool eat(char c) {
+    skip();
+    if (pos_ < text_.size() && text_[pos_] == c) return ++pos_, true;
+    return false;
+  }
+  std::string str() {
+    if (!eat('"')) fail("expected a string");
+    std::string s;
+    while (pos_ < text_.size() && text_[pos_] != '"') {
+      if (text_[pos_] == '\\') ++pos_;  // the manifest escapes nothing but quotes and slashes
+      s += text_[pos_++];
+    }
+    if (pos_++ >= text_.size()) fail("unterminated string");
+    return s;
+  }
+  Json value() {
+    skip();
+    Json v;
+    if (pos_ >= text_.size()) fail("unexpected end");
+    char c = text_[pos_];
+    if (c == '{') {
+      ++pos_;
+      v.kind = Json::kObject;
+      if (eat('}')) return v;
+      do {
+        std::string key = str();
+        if (!eat(':')) fail("expected ':'");
+        v.object.emplace_back(key, value());
+      } while (eat(','));
+      if (!eat('}')) fail("expected '}'");
+    } else if (c == '[') {
+      ++pos_;
+      v.kind = Json::kArray;
+      if (eat(']')) return v;
+      do v.array.push_back(value());
+      while (eat(','));
+      if (!eat(']')) fail("expected ']'");
+    } else if (c == '"') {
+      v.kind = Json::kString;
+      v.string = str();
+    } else if (text_.compare(pos_, 4, "null") == 0) {
+      pos_ += 4;
+    } else if (text_.compare(pos_, 4, "true") == 0) {
+      pos_ += 4, v.kind = Json::kBool, v.boolean = true;
+    } else if (text_.compare(pos_, 5, "false") == 0) {
+      pos_ += 5, v.kind = Json::kBool;
+    } else {
+      char* end = nullptr;
+      v.kind = Json::kNumber;
+      v.number = std::strtod(text_.c_str() + pos_, &end);
+      if (end == text_.c_str() + pos_) fail("bad value");
+      pos_ = static_cast<size_t>(end - text_.c_str());
+    }
+    return v;
+  }
+
+  std::string text_;
+  size_t pos_ = 0;
+};
+
+// The repository: PHOTON_SOURCE_DIR, else the first parent of the test binary holding the manifest.
+fs::path source_dir() {
+  if (const char* env = std::getenv("PHOTON_SOURCE_DIR")) return env;
+  std::error_code ec;
+  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  for (; !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
+    if (fs::exists(dir / "test_scenes/nodes/noise.json")) return dir;
+  return fs::current_path();
+}
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // 3 floats a pixel, top row first
+  Vec3 at(int i) const { return Vec3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]); }
+};
+
+Image read_exr(const fs::path& path) {
+  OIIO::ImageBuf buf(path.string());
+  Image img;
+  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return img;
+  img.width = buf.spec().width;
+  img.height = buf.spec().height;
+  img.rgb.resize(static_cast<size_t>(img.width) * img.height * 3);
+  buf.get_pixels(OIIO::ROI(0, img.width, 0, img.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
+                 img.rgb.data());
+  return img;
+}
+
+constexpr float kCoordOffset = 4.0f;  // tools/node_refs.py adds it to keep coords.exr positive
+
+// A case made runnable: the program, which registers the Object coordinate feeds, and where the
+// shown output lands.
+struct Case {
+  std::string name;
+  ShaderProgram program;
+  int32_t vector_reg = -1;     // 3 registers, the hit point
+  int32_t scalar_reg = -1;     // 1 register, the hit point's average (a vector linked to a float)
+  int32_t generated_reg = -1;  // 3 registers, the Generated coordinate (an unlinked texture Vector)
+  int32_t output_reg = -1;
+  bool output_is_color = false;
+  bool periodic = false;  // a saw wave: values wrap from 1 to 0
+};
+
+bool is_vector_socket(const std::string& name) {
+  return name == "Vector";
+}
+
+Case build_case(const Json& c) {
+  Case out;
+  out.name = c.find("name")->string;
+  NodeDesc desc;
+  desc.type = c.find("node")->string;
+  if (const Json* props = c.find("properties"))
+    for (const auto& [k, v] : props->object) desc.enums[k] = v.string;
+  auto& regs = out.program.registers;
+  if (const Json* inputs = c.find("inputs")) {
+    for (const auto& [k, v] : inputs->object) {
+      desc.inputs[k] = static_cast<int32_t>(regs.size());
+      if (v.kind == Json::kArray)
+        for (const Json& x : v.array) regs.push_back(static_cast<float>(x.number));
+      else
+        regs.push_back(static_cast<float>(v.number));
+    }
+  }
+  const Json* vector = c.find("vector");
+  std::string linked = (vector == nullptr) ? "Vector" : vector->string;
+  if (vector == nullptr || vector->kind == Json::kString) {
+    int32_t reg = static_cast<int32_t>(regs.size());
+    desc.inputs[linked] = reg;
+    if (is_vector_socket(linked)) {
+      out.vector_reg = reg;
+      regs.insert(regs.end(), 3, 0.0f);
+    } else {
+      out.scalar_reg = reg;
+      regs.push_back(0.0f);
+    }
+  }
+  // Cycles gives an unlinked texture Vector the Generated coordinate, not the socket's value
+  // (White Noise excepted); the add-on passes it in the Vector register.
+  if (!is_vector_socket(linked) && desc.type != "ShaderNodeTexWhiteNoise") {
+    out.generated_reg = static_cast<int32_t>(regs.size());
+    desc.inputs["Vector"] = out.generated_reg;
+    regs.insert(regs.end(), 3, 0.0f);
+  }
+  std::string output = c.find("output")->string;
+  out.output_is_color = output == "Color";
+  out.output_reg = static_cast<int32_t>(regs.size());
+  desc.outputs[output] = out.output_reg;
+  regs.insert(regs.end(), out.output_is_color ? 3 : 1, 0.0f);
+  auto profile = desc.enums.find("wave_profile");
+  out.periodic = profile != desc.enums.end() && profile->second == "SAW";
+
+  Instruction ins;
+  std::string error;
+  EXPECT_EQ(compile_noise_node(desc, &out.program, &ins, &error), CompileStatus::kCompiled)
+      << out.name << ": " << error;
+  out.program.code.push_back(ins);
+  return out;
+}
+
+Vec3 run(Case& c, const Vec3& p) {
+  std::vector<float> r = c.program.registers;
+  if (c.vector_reg >= 0) store3(r.data(), c.vector_reg, p);
+  // Cycles' implicit vector-to-float conversion: the average of the components.
+  if (c.scalar_reg >= 0) r[c.scalar_reg] = (p.x + p.y + p.z) * (1.0f / 3.0f);
+  // Generated: the point in the plane's bounding box, x, y in [-1, 1], z in [-0.25, 0.75].
+  if (c.generated_reg >= 0)
+    store3(r.data(), c.generated_reg, Vec3((p.x + 1.0f) * 0.5f, (p.y + 1.0f) * 0.5f, p.z + 0.25f));
+  ShaderGlobals globals;
+  for (const Instruction& ins : c.program.code) eval_noise_node(ins, c.program, globals, r.data());
+  return c.output_is_color ? load3(r.data(), c.output_reg) : Vec3(r[c.output_reg]);
+}
+
+float difference(const Case& c, float ours, float cycles) {
+  float d = std::fabs(ours - cycles);
+  if (c.periodic) d = std::min(d, std::fabs(1.0f - d));
+  return d / std::max(1.0f, std::fabs(cycles));
+}
+
+struct Manifest {
+  fs::path dir;
+  std::vector<Json> cases;
+  Image coords;
+};
+
+const Manifest& manifest() {
+  static const Manifest m = [] {
+    Manifest m;
+    fs::path root = source_dir();
+    std::ifstream f(root / "test_scenes/nodes/noise.json");
+    std::stringstream ss;
+    ss << f.rdbuf();
+    Json j = JsonReader(ss.str()).parse();
+    if (const Json* cases = j.find("cases")) m.cases = cases->array;
+    m.dir = root / "test_scenes/nodes/noise";
+    m.coords = read_exr(m.dir / "coords.exr");
+    return m;
+  }();
+  return m;
+}
+
+bool is_white_noise_linked(const Json& c) {
+  const Json* vector = c.find("vector");
+  return c.find("node")->string == "ShaderNodeTexWhiteNoise" && vector != nullptr &&
+         vector->kind == Json::kString;
+}
+
+// Every case whose value varies smoothly (or is constant) with the point: each pixel within 1e-4
+// relative-or-absolute of Cycles.
+TEST(NoiseNodes, MatchCyclesReferences) {
+  const Manifest& m = manifest();
+  ASSERT_GE(m.cases.size(), 90u) << "manifest not found under " << source_dir();
+  ASSERT_GT(m.coords.width, 0) << "coords.exr not readable";
+  float worst_overall = 0.0f;
+  int compared = 0;
+  for (const Json& jc : m.cases) {
+    if (is_white_noise_linked(jc)) continue;  // WhiteNoiseMatchesCyclesHashes
+    Case c = build_case(jc);
+    Image ref = read_exr(m.dir / (c.name + ".exr"));
+    ASSERT_EQ(ref.width * ref.height, m.coords.width * m.coords.height) << c.name;
+    float worst = 0.0f;
+    int worst_pixel = 0, bad = 0;
+    for (int i = 0; i < ref.width * ref.height; ++i) {
+      Vec3 p = m.coords.at(i) - Vec3(kCoordOffset);
+      Vec3 ours = run(c, p), cycles = ref.at(i);
+      for (int k = 0; k < 3; ++k) {
+        float d = difference(c, ours[k], cycles[k]);
+        if (!(d <= 1e-4f)) ++bad;
+        if (!(d <= worst)) worst = d, worst_pixel = i;
+      }
+    }
+    worst_overall = std::max(worst_overall, worst);
+    ++compared;
+    EXPECT_EQ(bad, 0) << c.name << ": worst difference " << worst << " at pixel " << worst_pixel
+                      << " (ours " << run(c, m.coords.at(worst_pixel) - Vec3(kCoordOffset))[0]
+                      << ", Cycles " << ref.at(worst_pixel)[0] << ")";
+  }
+  std::printf("noise family: %d cases, worst difference %.3g\n", compared, worst_overall);
+}
+
+}  // namespace
+}  // namespace photon
