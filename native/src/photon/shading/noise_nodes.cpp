@@ -363,8 +363,8 @@ void eval_musgrave(const Instruction& ins, const ShaderGlobals& globals, float* 
   Vec3 v = load_vector(ins, kMusVector, globals, r) * scale;
   float w = load1(r, ins.in[kMusW]) * scale;
   float octaves = clamp_octaves(load1(r, ins.in[kMusDetail]));
-  float h = std::max(load1(r, ins.in[kMusDimension]), 1e-5f);
-  float lacunarity = std::max(load1(r, ins.in[kMusLacunarity]), 1e-5f);
+  float h = std::fmax(load1(r, ins.in[kMusDimension]), 1e-5f);
+  float lacunarity = std::fmax(load1(r, ins.in[kMusLacunarity]), 1e-5f);
   float offset = load1(r, ins.in[kMusOffset]);
   float gain = load1(r, ins.in[kMusGain]);
   uint32_t type = mode_type(ins.mode);
@@ -400,6 +400,7 @@ void eval_wave(const Instruction& ins, const ShaderGlobals& globals, float* r) {
                  load1(r, ins.in[kWaveDistortion]), load1(r, ins.in[kWaveDetail]),
                  load1(r, ins.in[kWaveDetailScale]), load1(r, ins.in[kWaveDetailRoughness]),
                  load1(r, ins.in[kWavePhase]));
+  if (!std::isfinite(f)) f = 0.0f;  // an infinite coordinate or phase: Cycles gives NaN here
   store3(r, ins.out[0], Vec3(f));
   store1(r, ins.out[1], f);
 }

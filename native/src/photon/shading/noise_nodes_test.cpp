@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -297,6 +298,137 @@ TEST(NoiseNodes, MatchCyclesReferences) {
                       << ", Cycles " << ref.at(worst_pixel)[0] << ")";
   }
   std::printf("noise family: %d cases, worst difference %.3g\n", compared, worst_overall);
+}
+
+// Bad input: unknown modes are compile errors naming the value; non-finite and absurd inputs
+// evaluate to finite outputs without hanging (Detail is clamped to 15 octaves).
+TEST(NoiseNodes, BadInputIsReportedOrClamped) {
+  ShaderProgram program;
+  Instruction ins;
+  std::string error;
+  NodeDesc other;
+  other.type = "ShaderNodeTexChecker";
+  EXPECT_EQ(compile_noise_node(other, &program, &ins, &error), CompileStatus::kUnknownNode);
+  NodeDesc bad;
+  bad.type = "ShaderNodeTexMusgrave";
+  bad.enums["musgrave_type"] = "PERLIN";
+  EXPECT_EQ(compile_noise_node(bad, &program, &ins, &error), CompileStatus::kError);
+  EXPECT_NE(error.find("PERLIN"), std::string::npos) << error;
+  bad.type = "ShaderNodeTexNoise";
+  bad.enums = {{"noise_dimensions", "5D"}};
+  EXPECT_EQ(compile_noise_node(bad, &program, &ins, &error), CompileStatus::kError);
+  EXPECT_NE(error.find("5D"), std::string::npos) << error;
+
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  struct Node {
+    const char* type;
+    std::map<std::string, std::string> enums;
+  };
+  std::vector<Node> nodes;
+  for (const char* d : {"1D", "2D", "3D", "4D"}) {
+    nodes.push_back({"ShaderNodeTexNoise", {{"noise_dimensions", d}}});
+    nodes.push_back({"ShaderNodeTexWhiteNoise", {{"noise_dimensions", d}}});
+    for (const char* t :
+         {"MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HYBRID_MULTIFRACTAL", "FBM", "HETERO_TERRAIN"})
+      nodes.push_back(
+          {"ShaderNodeTexMusgrave", {{"musgrave_dimensions", d}, {"musgrave_type", t}}});
+  }
+  for (const char* t : {"BANDS", "RINGS"})
+    for (const char* prof : {"SIN", "SAW", "TRI"})
+      nodes.push_back({"ShaderNodeTexWave", {{"wave_type", t}, {"wave_profile", prof}}});
+  for (const Node& node : nodes) {
+    for (float bad_value : {nan, inf, -inf, 1e30f}) {
+      ShaderProgram p;
+      NodeDesc desc;
+      desc.type = node.type;
+      desc.enums = node.enums;
+      desc.inputs["Vector"] = 0;
+      p.registers = {bad_value, 0.5f, -bad_value};
+      for (const char* in : {"W", "Scale", "Detail"}) {
+        desc.inputs[in] = static_cast<int32_t>(p.registers.size());
+        p.registers.push_back(bad_value);
+      }
+      for (const char* out : {"Fac", "Value", "Color"}) {
+        desc.outputs[out] = static_cast<int32_t>(p.registers.size());
+        p.registers.insert(p.registers.end(), 3, -1.0f);
+      }
+      Instruction i;
+      ASSERT_EQ(compile_noise_node(desc, &p, &i, &error), CompileStatus::kCompiled) << error;
+      ShaderGlobals globals;
+      eval_noise_node(i, p, globals, p.registers.data());
+      for (size_t k = 6; k < p.registers.size(); ++k)
+        EXPECT_TRUE(std::isfinite(p.registers[k]))
+            << node.type << " " << node.enums.begin()->second << " input " << bad_value;
+    }
+  }
+}
+
+// Floats within `radius` of x (the coordinate coords.exr rounded away), or none when too many.
+std::vector<float> candidates(float x, float radius, size_t limit) {
+  std::vector<float> out;
+  float lo = x - radius, hi = x + radius;
+  if (!((hi - lo) / std::max(std::fabs(std::nextafter(std::fabs(x), 0.0f) - std::fabs(x)), 1e-30f) <
+        static_cast<float>(limit)))
+    return out;
+  for (float v = lo; v <= hi; v = std::nextafter(v, hi + 1.0f)) out.push_back(v);
+  return out;
+}
+
+// White Noise hashes the exact bits of the hit point, which coords.exr (the point + 4, rounded to
+// float) does not keep. So each pixel searches the floats its coordinate could have been for one
+// whose hash gives Cycles' value bit for bit; a wrong hash or seed matches almost never.
+TEST(NoiseNodes, WhiteNoiseMatchesCyclesHashes) {
+  const Manifest& m = manifest();
+  ASSERT_GT(m.coords.width, 0) << "coords.exr not readable";
+  constexpr float kRadius = 2.5e-7f;  // half an ulp of floats in [4, 8)
+  int cases = 0;
+  for (const Json& jc : m.cases) {
+    if (!is_white_noise_linked(jc)) continue;
+    Case c = build_case(jc);
+    Image ref = read_exr(m.dir / (c.name + ".exr"));
+    ASSERT_EQ(ref.width * ref.height, m.coords.width * m.coords.height) << c.name;
+    int eligible = 0, matched = 0;
+    for (int i = 0; i < ref.width * ref.height; ++i) {
+      Vec3 p = m.coords.at(i) - Vec3(kCoordOffset);
+      Vec3 cycles = ref.at(i);
+      std::vector<float> axes[3];
+      bool ok = true;
+      if (c.scalar_reg >= 0) {  // 1D: W is the average of the point, searched directly
+        axes[0] = candidates((p.x + p.y + p.z) * (1.0f / 3.0f), 1.2f * kRadius, 64);
+        axes[1] = axes[2] = {0.0f};
+        ok = !axes[0].empty() && std::fabs(axes[0][0]) > 0.1f;
+      } else {
+        for (int k = 0; k < 3; ++k) {
+          axes[k] = candidates(p[k], kRadius, 24);
+          ok = ok && !axes[k].empty() && std::fabs(p[k]) > 0.2f;
+        }
+        if (jc.find("properties")->find("noise_dimensions")->string == "2D") axes[2] = {p.z};
+      }
+      if (!ok) continue;
+      ++eligible;
+      bool found = false;
+      for (float x : axes[0])
+        for (float y : axes[1])
+          for (float z : axes[2]) {
+            if (found) break;
+            std::vector<float> r = c.program.registers;
+            if (c.vector_reg >= 0) store3(r.data(), c.vector_reg, Vec3(x, y, z));
+            if (c.scalar_reg >= 0) r[c.scalar_reg] = x;
+            ShaderGlobals globals;
+            eval_noise_node(c.program.code[0], c.program, globals, r.data());
+            Vec3 ours = c.output_is_color ? load3(r.data(), c.output_reg) : Vec3(r[c.output_reg]);
+            found = ours.x == cycles.x && ours.y == cycles.y && ours.z == cycles.z;
+          }
+      matched += found;
+    }
+    ++cases;
+    std::printf("%s: %d of %d pixels hash to Cycles' value exactly\n", c.name.c_str(), matched,
+                eligible);
+    EXPECT_GE(eligible, 300) << c.name;
+    EXPECT_GE(matched, eligible * 95 / 100) << c.name;
+  }
+  EXPECT_EQ(cases, 8);
 }
 
 }  // namespace
