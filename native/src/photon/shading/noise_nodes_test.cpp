@@ -1,0 +1,443 @@
+// The noise family against Cycles: every case of test_scenes/nodes/noise.json was rendered by
+// Blender 3.4's Cycles (tools/node_refs.py) into test_scenes/nodes/noise/<case>.exr, the node's
+// output at each pixel's hit point; coords.exr holds that hit point (+4). Each case is compiled
+// from the same description and evaluated at every pixel's point.
+#include "photon/shading/noise_nodes.h"
+
+#include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "photon/shading/noise.h"
+
+namespace photon {
+namespace {
+
+namespace fs = std::filesystem;
+
+// ---- A minimal JSON reader for the manifest (objects, arrays, strings, numbers, literals) ----
+
+struct Json {
+  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
+  double number = 0.0;
+  bool boolean = false;
+  std::string string;
+  std::vector<Json> array;
+  std::vector<std::pair<std::string, Json>> object;
+
+  const Json* find(const std::string& key) const {
+    for (const auto& [k, v] : object)
+      if (k == key) return &v;
+    return nullptr;
+  }
+};
+
+class JsonReader {
+ public:
+  explicit JsonReader(std::string text) : text_(std::move(text)) {}
+  Json parse() {
+    Json v = value();
+    skip();
+    if (pos_ != text_.size()) fail("trailing text");
+    return v;
+  }
+
+ private:
+  void fail(const char* what) {
+    throw std::runtime_error(std::string("manifest JSON: ") + what + " at " + std::to_string(pos_));
+  }
+  void skip() {
+    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
+  }
+  bool eat(char c) {
+    skip();
+    if (pos_ < text_.size() && text_[pos_] == c) return ++pos_, true;
+    return false;
+  }
+  std::string str() {
+    if (!eat('"')) fail("expected a string");
+    std::string s;
+    while (pos_ < text_.size() && text_[pos_] != '"') {
+      if (text_[pos_] == '\\') ++pos_;  // the manifest escapes nothing but quotes and slashes
+      s += text_[pos_++];
+    }
+    if (pos_++ >= text_.size()) fail("unterminated string");
+    return s;
+  }
+  Json value() {
+    skip();
+    Json v;
+    if (pos_ >= text_.size()) fail("unexpected end");
+    char c = text_[pos_];
+    if (c == '{') {
+      ++pos_;
+      v.kind = Json::kObject;
+      if (eat('}')) return v;
+      do {
+        std::string key = str();
+        if (!eat(':')) fail("expected ':'");
+        v.object.emplace_back(key, value());
+      } while (eat(','));
+      if (!eat('}')) fail("expected '}'");
+    } else if (c == '[') {
+      ++pos_;
+      v.kind = Json::kArray;
+      if (eat(']')) return v;
+      do v.array.push_back(value());
+      while (eat(','));
+      if (!eat(']')) fail("expected ']'");
+    } else if (c == '"') {
+      v.kind = Json::kString;
+      v.string = str();
+    } else if (text_.compare(pos_, 4, "null") == 0) {
+      pos_ += 4;
+    } else if (text_.compare(pos_, 4, "true") == 0) {
+      pos_ += 4, v.kind = Json::kBool, v.boolean = true;
+    } else if (text_.compare(pos_, 5, "false") == 0) {
+      pos_ += 5, v.kind = Json::kBool;
+    } else {
+      char* end = nullptr;
+      v.kind = Json::kNumber;
+      v.number = std::strtod(text_.c_str() + pos_, &end);
+      if (end == text_.c_str() + pos_) fail("bad value");
+      pos_ = static_cast<size_t>(end - text_.c_str());
+    }
+    return v;
+  }
+
+  std::string text_;
+  size_t pos_ = 0;
+};
+
+// The repository: PHOTON_SOURCE_DIR, else the first parent of the test binary holding the manifest.
+fs::path source_dir() {
+  if (const char* env = std::getenv("PHOTON_SOURCE_DIR")) return env;
+  std::error_code ec;
+  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
+  for (; !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
+    if (fs::exists(dir / "test_scenes/nodes/noise.json")) return dir;
+  return fs::current_path();
+}
+
+struct Image {
+  int width = 0, height = 0;
+  std::vector<float> rgb;  // 3 floats a pixel, top row first
+  Vec3 at(int i) const { return Vec3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]); }
+};
+
+Image read_exr(const fs::path& path) {
+  OIIO::ImageBuf buf(path.string());
+  Image img;
+  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return img;
+  img.width = buf.spec().width;
+  img.height = buf.spec().height;
+  img.rgb.resize(static_cast<size_t>(img.width) * img.height * 3);
+  buf.get_pixels(OIIO::ROI(0, img.width, 0, img.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
+                 img.rgb.data());
+  return img;
+}
+
+constexpr float kCoordOffset = 4.0f;  // tools/node_refs.py adds it to keep coords.exr positive
+
+// A case made runnable: the program, which registers the Object coordinate feeds, and where the
+// shown output lands.
+struct Case {
+  std::string name;
+  ShaderProgram program;
+  int32_t vector_reg = -1;     // 3 registers, the hit point
+  int32_t scalar_reg = -1;     // 1 register, the hit point's average (a vector linked to a float)
+  int32_t generated_reg = -1;  // 3 registers, the Generated coordinate (an unlinked texture Vector)
+  int32_t output_reg = -1;
+  bool output_is_color = false;
+  bool periodic = false;  // a saw wave: values wrap from 1 to 0
+  // Nothing linked: every input is a constant the test knows exactly, so only float rounding
+  // order may differ from Cycles.
+  bool constant() const { return vector_reg < 0 && scalar_reg < 0 && generated_reg < 0; }
+};
+
+bool is_vector_socket(const std::string& name) {
+  return name == "Vector";
+}
+
+Case build_case(const Json& c) {
+  Case out;
+  out.name = c.find("name")->string;
+  NodeDesc desc;
+  desc.type = c.find("node")->string;
+  if (const Json* props = c.find("properties"))
+    for (const auto& [k, v] : props->object) desc.enums[k] = v.string;
+  auto& regs = out.program.registers;
+  if (const Json* inputs = c.find("inputs")) {
+    for (const auto& [k, v] : inputs->object) {
+      desc.inputs[k] = static_cast<int32_t>(regs.size());
+      if (v.kind == Json::kArray)
+        for (const Json& x : v.array) regs.push_back(static_cast<float>(x.number));
+      else
+        regs.push_back(static_cast<float>(v.number));
+    }
+  }
+  const Json* vector = c.find("vector");
+  std::string linked = (vector == nullptr) ? "Vector" : vector->string;
+  if (vector == nullptr || vector->kind == Json::kString) {
+    int32_t reg = static_cast<int32_t>(regs.size());
+    desc.inputs[linked] = reg;
+    if (is_vector_socket(linked)) {
+      out.vector_reg = reg;
+      regs.insert(regs.end(), 3, 0.0f);
+    } else {
+      out.scalar_reg = reg;
+      regs.push_back(0.0f);
+    }
+  }
+  // Cycles gives an unlinked texture Vector the Generated coordinate, not the socket's value
+  // (White Noise excepted); the add-on passes it in the Vector register.
+  bool one_d = enum_value(desc, "noise_dimensions", "") == "1D" ||
+               enum_value(desc, "musgrave_dimensions", "") == "1D";
+  if (!is_vector_socket(linked) && desc.type != "ShaderNodeTexWhiteNoise" && !one_d) {
+    out.generated_reg = static_cast<int32_t>(regs.size());
+    desc.inputs["Vector"] = out.generated_reg;
+    regs.insert(regs.end(), 3, 0.0f);
+  }
+  std::string output = c.find("output")->string;
+  out.output_is_color = output == "Color";
+  out.output_reg = static_cast<int32_t>(regs.size());
+  desc.outputs[output] = out.output_reg;
+  regs.insert(regs.end(), out.output_is_color ? 3 : 1, 0.0f);
+  auto profile = desc.enums.find("wave_profile");
+  out.periodic = profile != desc.enums.end() && profile->second == "SAW";
+
+  Instruction ins;
+  std::string error;
+  EXPECT_EQ(compile_noise_node(desc, &out.program, &ins, &error), CompileStatus::kCompiled)
+      << out.name << ": " << error;
+  out.program.code.push_back(ins);
+  return out;
+}
+
+Vec3 run(Case& c, const Vec3& p) {
+  std::vector<float> r = c.program.registers;
+  if (c.vector_reg >= 0) store3(r.data(), c.vector_reg, p);
+  // Cycles' implicit vector-to-float conversion: the average of the components.
+  if (c.scalar_reg >= 0) r[c.scalar_reg] = (p.x + p.y + p.z) * (1.0f / 3.0f);
+  // Generated: the point in the plane's bounding box, x, y in [-1, 1], z in [-0.25, 0.75].
+  if (c.generated_reg >= 0)
+    store3(r.data(), c.generated_reg, Vec3((p.x + 1.0f) * 0.5f, (p.y + 1.0f) * 0.5f, p.z + 0.25f));
+  ShaderGlobals globals;
+  for (const Instruction& ins : c.program.code) eval_noise_node(ins, c.program, globals, r.data());
+  return c.output_is_color ? load3(r.data(), c.output_reg) : Vec3(r[c.output_reg]);
+}
+
+float difference(const Case& c, float ours, float cycles) {
+  float d = std::fabs(ours - cycles);
+  if (c.periodic) d = std::min(d, std::fabs(1.0f - d));
+  return d / std::max(1.0f, std::fabs(cycles));
+}
+
+struct Manifest {
+  fs::path dir;
+  std::vector<Json> cases;
+  Image coords;
+};
+
+const Manifest& manifest() {
+  static const Manifest m = [] {
+    Manifest m;
+    fs::path root = source_dir();
+    std::ifstream f(root / "test_scenes/nodes/noise.json");
+    std::stringstream ss;
+    ss << f.rdbuf();
+    Json j = JsonReader(ss.str()).parse();
+    if (const Json* cases = j.find("cases")) m.cases = cases->array;
+    m.dir = root / "test_scenes/nodes/noise";
+    m.coords = read_exr(m.dir / "coords.exr");
+    return m;
+  }();
+  return m;
+}
+
+bool is_white_noise_linked(const Json& c) {
+  const Json* vector = c.find("vector");
+  return c.find("node")->string == "ShaderNodeTexWhiteNoise" && vector != nullptr &&
+         vector->kind == Json::kString;
+}
+
+// Every case whose value varies smoothly (or is constant) with the point: each pixel within 1e-4
+// relative-or-absolute of Cycles.
+TEST(NoiseNodes, MatchCyclesReferences) {
+  const Manifest& m = manifest();
+  ASSERT_GE(m.cases.size(), 90u) << "manifest not found under " << source_dir();
+  ASSERT_GT(m.coords.width, 0) << "coords.exr not readable";
+  float worst_overall = 0.0f;
+  int compared = 0;
+  for (const Json& jc : m.cases) {
+    if (is_white_noise_linked(jc)) continue;  // WhiteNoiseMatchesCyclesHashes
+    Case c = build_case(jc);
+    Image ref = read_exr(m.dir / (c.name + ".exr"));
+    ASSERT_EQ(ref.width * ref.height, m.coords.width * m.coords.height) << c.name;
+    float worst = 0.0f;
+    int worst_pixel = 0, bad = 0;
+    for (int i = 0; i < ref.width * ref.height; ++i) {
+      Vec3 p = m.coords.at(i) - Vec3(kCoordOffset);
+      Vec3 ours = run(c, p), cycles = ref.at(i);
+      for (int k = 0; k < 3; ++k) {
+        float d = difference(c, ours[k], cycles[k]);
+        if (!(d <= (c.constant() ? 1e-6f : 1e-4f))) ++bad;
+        if (!(d <= worst)) worst = d, worst_pixel = i;
+      }
+    }
+    // coords.exr stores the point + 4 as float (up to 2.4e-7 off); high octaves magnify that.
+    if (worst > 1e-5f || c.constant())
+      std::printf("%s: worst difference %.3g\n", c.name.c_str(), worst);
+    worst_overall = std::max(worst_overall, worst);
+    ++compared;
+    EXPECT_EQ(bad, 0) << c.name << ": worst difference " << worst << " at pixel " << worst_pixel
+                      << " (ours " << run(c, m.coords.at(worst_pixel) - Vec3(kCoordOffset))[0]
+                      << ", Cycles " << ref.at(worst_pixel)[0] << ")";
+  }
+  std::printf("noise family: %d cases, worst difference %.3g\n", compared, worst_overall);
+}
+
+// Bad input: unknown modes are compile errors naming the value; non-finite and absurd inputs
+// evaluate to finite outputs without hanging (Detail is clamped to 15 octaves).
+TEST(NoiseNodes, BadInputIsReportedOrClamped) {
+  ShaderProgram program;
+  Instruction ins;
+  std::string error;
+  NodeDesc other;
+  other.type = "ShaderNodeTexChecker";
+  EXPECT_EQ(compile_noise_node(other, &program, &ins, &error), CompileStatus::kUnknownNode);
+  NodeDesc bad;
+  bad.type = "ShaderNodeTexMusgrave";
+  bad.enums["musgrave_type"] = "PERLIN";
+  EXPECT_EQ(compile_noise_node(bad, &program, &ins, &error), CompileStatus::kError);
+  EXPECT_NE(error.find("PERLIN"), std::string::npos) << error;
+  bad.type = "ShaderNodeTexNoise";
+  bad.enums = {{"noise_dimensions", "5D"}};
+  EXPECT_EQ(compile_noise_node(bad, &program, &ins, &error), CompileStatus::kError);
+  EXPECT_NE(error.find("5D"), std::string::npos) << error;
+
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  struct Node {
+    const char* type;
+    std::map<std::string, std::string> enums;
+  };
+  std::vector<Node> nodes;
+  for (const char* d : {"1D", "2D", "3D", "4D"}) {
+    nodes.push_back({"ShaderNodeTexNoise", {{"noise_dimensions", d}}});
+    nodes.push_back({"ShaderNodeTexWhiteNoise", {{"noise_dimensions", d}}});
+    for (const char* t :
+         {"MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HYBRID_MULTIFRACTAL", "FBM", "HETERO_TERRAIN"})
+      nodes.push_back(
+          {"ShaderNodeTexMusgrave", {{"musgrave_dimensions", d}, {"musgrave_type", t}}});
+  }
+  for (const char* t : {"BANDS", "RINGS"})
+    for (const char* prof : {"SIN", "SAW", "TRI"})
+      nodes.push_back({"ShaderNodeTexWave", {{"wave_type", t}, {"wave_profile", prof}}});
+  for (const Node& node : nodes) {
+    for (float bad_value : {nan, inf, -inf, 1e30f}) {
+      ShaderProgram p;
+      NodeDesc desc;
+      desc.type = node.type;
+      desc.enums = node.enums;
+      desc.inputs["Vector"] = 0;
+      p.registers = {bad_value, 0.5f, -bad_value};
+      for (const char* in : {"W", "Scale", "Detail"}) {
+        desc.inputs[in] = static_cast<int32_t>(p.registers.size());
+        p.registers.push_back(bad_value);
+      }
+      for (const char* out : {"Fac", "Value", "Color"}) {
+        desc.outputs[out] = static_cast<int32_t>(p.registers.size());
+        p.registers.insert(p.registers.end(), 3, -1.0f);
+      }
+      Instruction i;
+      ASSERT_EQ(compile_noise_node(desc, &p, &i, &error), CompileStatus::kCompiled) << error;
+      ShaderGlobals globals;
+      eval_noise_node(i, p, globals, p.registers.data());
+      for (size_t k = 6; k < p.registers.size(); ++k)
+        EXPECT_TRUE(std::isfinite(p.registers[k]))
+            << node.type << " " << node.enums.begin()->second << " input " << bad_value;
+    }
+  }
+}
+
+// Floats within `radius` of x (the coordinate coords.exr rounded away), or none when too many.
+std::vector<float> candidates(float x, float radius, size_t limit) {
+  std::vector<float> out;
+  float lo = x - radius, hi = x + radius;
+  if (!((hi - lo) / std::max(std::fabs(std::nextafter(std::fabs(x), 0.0f) - std::fabs(x)), 1e-30f) <
+        static_cast<float>(limit)))
+    return out;
+  for (float v = lo; v <= hi; v = std::nextafter(v, hi + 1.0f)) out.push_back(v);
+  return out;
+}
+
+// White Noise hashes the exact bits of the hit point, which coords.exr (the point + 4, rounded to
+// float) does not keep. So each pixel searches the floats its coordinate could have been for one
+// whose hash gives Cycles' value bit for bit; a wrong hash or seed matches almost never.
+TEST(NoiseNodes, WhiteNoiseMatchesCyclesHashes) {
+  const Manifest& m = manifest();
+  ASSERT_GT(m.coords.width, 0) << "coords.exr not readable";
+  constexpr float kRadius = 2.5e-7f;  // half an ulp of floats in [4, 8)
+  int cases = 0;
+  for (const Json& jc : m.cases) {
+    if (!is_white_noise_linked(jc)) continue;
+    Case c = build_case(jc);
+    Image ref = read_exr(m.dir / (c.name + ".exr"));
+    ASSERT_EQ(ref.width * ref.height, m.coords.width * m.coords.height) << c.name;
+    int eligible = 0, matched = 0;
+    for (int i = 0; i < ref.width * ref.height; ++i) {
+      Vec3 p = m.coords.at(i) - Vec3(kCoordOffset);
+      Vec3 cycles = ref.at(i);
+      std::vector<float> axes[3];
+      bool ok = true;
+      if (c.scalar_reg >= 0) {  // 1D: W is the average of the point, searched directly
+        axes[0] = candidates((p.x + p.y + p.z) * (1.0f / 3.0f), 1.2f * kRadius, 64);
+        axes[1] = axes[2] = {0.0f};
+        ok = !axes[0].empty() && std::fabs(axes[0][0]) > 0.1f;
+      } else {
+        for (int k = 0; k < 3; ++k) {
+          axes[k] = candidates(p[k], kRadius, 24);
+          ok = ok && !axes[k].empty() && std::fabs(p[k]) > 0.2f;
+        }
+        if (jc.find("properties")->find("noise_dimensions")->string == "2D") axes[2] = {p.z};
+      }
+      if (!ok) continue;
+      ++eligible;
+      bool found = false;
+      for (float x : axes[0])
+        for (float y : axes[1])
+          for (float z : axes[2]) {
+            if (found) break;
+            std::vector<float> r = c.program.registers;
+            if (c.vector_reg >= 0) store3(r.data(), c.vector_reg, Vec3(x, y, z));
+            if (c.scalar_reg >= 0) r[c.scalar_reg] = x;
+            ShaderGlobals globals;
+            eval_noise_node(c.program.code[0], c.program, globals, r.data());
+            Vec3 ours = c.output_is_color ? load3(r.data(), c.output_reg) : Vec3(r[c.output_reg]);
+            found = ours.x == cycles.x && ours.y == cycles.y && ours.z == cycles.z;
+          }
+      matched += found;
+    }
+    ++cases;
+    std::printf("%s: %d of %d pixels hash to Cycles' value exactly\n", c.name.c_str(), matched,
+                eligible);
+    EXPECT_GE(eligible, 300) << c.name;
+    EXPECT_GE(matched, eligible * 95 / 100) << c.name;
+  }
+  EXPECT_EQ(cases, 8);
+}
+
+}  // namespace
+}  // namespace photon
