@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -373,6 +374,33 @@ TEST(ColorNodesConformance, ManifestCoversEveryMode) {
     EXPECT_TRUE(seen.count(std::string("ShaderNodeSeparateColor.mode=") + s)) << s;
     EXPECT_TRUE(seen.count(std::string("ShaderNodeCombineColor.mode=") + s)) << s;
   }
+}
+
+// NaN and infinite inputs (a division by zero upstream) give some value, never undefined
+// behaviour: every float-to-int conversion is range-checked first (the sanitizer build runs
+// this), and a table lookup never leaves its table.
+TEST(ColorNodes, NonFiniteInputsAreSafe) {
+  const Manifest& m = manifest();
+  ASSERT_FALSE(m.dir.empty());
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  int evaluated = 0;
+  for (const Json& json : m.cases.array) {
+    Case c;
+    ASSERT_TRUE(build_case(json, &c).empty());
+    if (c.linked < 0) {
+      // Constant-input cases (Blackbody, Wavelength): make the constant non-finite.
+      c.linked = c.ins.in[0];
+      c.linked_vector = false;
+    }
+    for (float v : {nan, inf, -inf, 1e30f, -1e30f}) {
+      for (const Vec3& p : {Vec3(v), Vec3(v, 0.5f, 0.25f), Vec3(0.5f, v, -v)}) {
+        evaluate(c, p);
+        ++evaluated;
+      }
+    }
+  }
+  EXPECT_GT(evaluated, 1000);
 }
 
 // Bad data from the add-on is a clear compile error, never an out-of-bounds read.
