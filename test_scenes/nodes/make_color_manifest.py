@@ -160,7 +160,7 @@ def spectrum_cases():
     for kelvin in (500, 799, 800, 900, 1000, 1200, 1500, 2500, 4000, 6500, 11999, 12000, 20000):
         cases.append(case(f"blackbody_{kelvin}", "ShaderNodeBlackbody", None, "Color", None,
                           {"Temperature": float(kelvin)}))
-    for nm in (379.0, 380.0, 412.3, 455.0, 487.6, 532.7, 575.0, 610.2, 655.0, 700.0, 779.0,
+    for nm in (379.0, 380.0, 412.3, 455.0, 487.6, 532.7, 575.0, 610.2, 655.0, 700.0, 742.5, 779.0,
                779.9, 780.0, 790.0):
         cases.append(case(f"wavelength_{str(nm).replace('.', '_')}", "ShaderNodeWavelength",
                           None, "Color", None, {"Wavelength": nm}))
