@@ -21,6 +21,11 @@ A manifest is {"cases": [CASE, ...]} with CASE:
    "object": {"location": [0, 0, 0.5],       # optional: the plane object's transform (Euler XYZ
               "rotation": [0.3, 0, 0],       # radians); the case then gets its own coordinate
               "scale": [1, 2, 1]}}           # image OUT_DIR/<name>_coords.exr
+Ramp and curve nodes take their data from an optional "setup" (see _setup_data):
+  "setup": {"color_ramp": {"interpolation": "EASE", "color_mode": "HSV",
+                           "hue_interpolation": "FAR", "elements": [[0.1, [r, g, b, a]], ...]},
+            "mapping": {"extend": "EXTRAPOLATED",
+                        "curves": [[[x, y, "AUTO"], ...], ...]}}   # per curve, None = keep
 Every render also writes OUT_DIR/coords.exr: the Object coordinate of each pixel's hit point plus
 (4, 4, 4), so tests can evaluate a node at exactly the point the render shaded (Emission colours
 stay positive). The plane spans x, y in [-1, 1] with z = 0.3 x + 0.2 y + 0.25.
@@ -86,6 +91,39 @@ def _scene(engine):
     return scene, plane
 
 
+def _setup_data(node, setup):
+    """Colour ramp elements and curve-mapping points, which node attributes cannot set."""
+    ramp_setup = setup.get("color_ramp")
+    if ramp_setup:
+        ramp = node.color_ramp
+        for name in ("color_mode", "hue_interpolation", "interpolation"):
+            if name in ramp_setup:
+                setattr(ramp, name, ramp_setup[name])
+        elements = ramp_setup.get("elements", [])
+        if elements:
+            while len(ramp.elements) > 1:
+                ramp.elements.remove(ramp.elements[-1])
+            ramp.elements[0].position, ramp.elements[0].color = elements[0]
+            for position, color in elements[1:]:
+                ramp.elements.new(position).color = color
+    map_setup = setup.get("mapping")
+    if map_setup:
+        mapping = node.mapping
+        if "extend" in map_setup:
+            mapping.extend = map_setup["extend"]
+        for curve, points in zip(mapping.curves, map_setup.get("curves", [])):
+            if points is None:
+                continue
+            while len(curve.points) > 2:
+                curve.points.remove(curve.points[-1])
+            ends = (points[0], points[-1])
+            for point, (x, y, handle) in zip(curve.points, ends):
+                point.location, point.handle_type = (x, y), handle
+            for x, y, handle in points[1:-1]:
+                curve.points.new(x, y).handle_type = handle
+        mapping.update()
+
+
 def _material(case):
     mat = bpy.data.materials.new(case["name"])
     mat.use_nodes = True
@@ -106,6 +144,7 @@ def _material(case):
     node = tree.nodes.new(case["node"])
     for name, value in case.get("properties", {}).items():
         setattr(node, name, value)
+    _setup_data(node, case.get("setup", {}))
     for name, value in case.get("inputs", {}).items():
         _socket(node.inputs, name).default_value = value
     for name, value in case.get("output_values", {}).items():
