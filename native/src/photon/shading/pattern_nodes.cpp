@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <cstdlib>
 
+#include "photon/shading/sky.h"
+
 // SKYINC
 
 namespace photon {
@@ -229,11 +231,17 @@ CompileStatus compile_pattern_node(const NodeDesc& desc, ShaderProgram* program,
     const double depth = number_value(desc, "turbulence_depth", 2.0);
     ins.mode = static_cast<uint32_t>(std::isfinite(depth) ? std::clamp(depth, 0.0, 10.0) : 2.0);
     // SKYCOMPILE
+  } else if (desc.type == "ShaderNodeTexSky") {
+    name = "Sky Texture";
+    ins.kind = static_cast<uint16_t>(PatternKind::kSky);
+    ins.out[1] = -1;
+    const CompileStatus status = compile_sky_node(desc, program, &ins, error);
+    if (status != CompileStatus::kCompiled) return status;
   } else {
     return CompileStatus::kUnknownNode;
   }
   if (!registers_fit(ins, *program, error, name)) return CompileStatus::kError;
-  if (ins.data >= 0) {  // Brick's extra input registers
+  if (ins.kind == static_cast<uint16_t>(PatternKind::kBrick)) {  // extra input registers
     const ShaderProgram& p = *program;
     for (int i = 0; i < ins.data_size; ++i)
       if (p.data[ins.data + i] >= static_cast<float>(p.registers.size()))
@@ -248,6 +256,12 @@ void eval_pattern_node(const Instruction& ins, const ShaderProgram& program,
                        const ShaderGlobals& globals, float* r) {
   const auto kind = static_cast<PatternKind>(ins.kind);
   // SKYEVAL
+  if (kind == PatternKind::kSky) {
+    // Unlinked, the sky looks along the ray: a world shader's incoming points back along it.
+    const Vec3 dir = ins.in[0] >= 0 ? load3(r, ins.in[0]) : -globals.incoming;
+    store3(r, ins.out[0], eval_sky(ins, program, dir));
+    return;
+  }
   const Vec3 co = ins.in[0] >= 0 ? load3(r, ins.in[0]) : globals.generated;
   switch (kind) {
     case PatternKind::kChecker: {
