@@ -331,3 +331,46 @@ TEST(PatternNodes, MissingInputsTakeBlenderDefaultsAndBadEnumsFail) {
 
 }  // namespace
 }  // namespace photon
+
+namespace photon {
+namespace {
+
+TEST(PatternSky, BadSettingsFailOrClampInsteadOfCrashing) {
+  ShaderProgram program;
+  program.registers.assign(6, 0.0f);
+  Instruction ins;
+  std::string error;
+  NodeDesc sky;
+  sky.type = "ShaderNodeTexSky";
+  sky.inputs["Vector"] = 0;
+  sky.outputs["Color"] = 3;
+  sky.enums["sky_type"] = "PREETHAM";
+  sky.numbers["sun_direction[0]"] = 0.0;
+  sky.numbers["sun_direction[1]"] = 0.0;
+  sky.numbers["sun_direction[2]"] = 0.0;
+  EXPECT_EQ(compile_pattern_node(sky, &program, &ins, &error), CompileStatus::kError);
+  EXPECT_NE(error.find("sun direction"), std::string::npos);
+
+  sky.enums["sky_type"] = "SPECTRAL";
+  EXPECT_EQ(compile_pattern_node(sky, &program, &ins, &error), CompileStatus::kError);
+  EXPECT_NE(error.find("SPECTRAL"), std::string::npos);
+
+  // Out-of-range and NaN settings are clamped or defaulted; a NaN direction gives black.
+  sky.enums["sky_type"] = "HOSEK_WILKIE";
+  sky.numbers["sun_direction[2]"] = 1.0;
+  sky.numbers["turbidity"] = std::nan("");
+  sky.numbers["ground_albedo"] = 7.0;
+  ASSERT_EQ(compile_pattern_node(sky, &program, &ins, &error), CompileStatus::kCompiled) << error;
+  std::vector<float> r = program.registers;
+  store3(r.data(), 0, Vec3(0.0f, 0.6f, 0.8f));
+  ShaderGlobals g;
+  eval_pattern_node(ins, program, g, r.data());
+  const Vec3 c = load3(r.data(), 3);
+  EXPECT_TRUE(std::isfinite(c.x) && c.x > 0.0f && std::isfinite(c.z) && c.z > 0.0f);
+  store3(r.data(), 0, Vec3(std::nan(""), 0.0f, 1.0f));
+  eval_pattern_node(ins, program, g, r.data());
+  EXPECT_EQ(load3(r.data(), 3).x, 0.0f);
+}
+
+}  // namespace
+}  // namespace photon

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "photon/shading/sky_hosek_data.h"
+
 namespace photon {
 namespace {
 
@@ -356,6 +358,79 @@ void precompute_preetham(const Vec3& sun, float turbidity, float* d) {
 }
 constexpr int kPreethamSize = 20;
 
+// ---- Hosek-Wilkie (Hosek & Wilkie 2012, eq. 9) ----
+// data: sun phi, sun theta, radiance X, Y, Z, then the nine parameters A..I for X, Y and Z.
+constexpr int kHosekSize = 5 + 27;
+
+float hosek_distribution(const float* c, float theta, float gamma) {
+  const float cos_theta = std::cos(theta), cos_gamma = std::cos(gamma);
+  const float exp_m = std::exp(c[4] * gamma);
+  const float ray_m = cos_gamma * cos_gamma;
+  const float mie_m = (1.0f + ray_m) / std::pow(1.0f + c[8] * c[8] - 2.0f * c[8] * cos_gamma, 1.5f);
+  const float zenith = std::sqrt(cos_theta);
+  return (1.0f + c[0] * std::exp(c[1] / (cos_theta + 0.01f))) *
+         (c[2] + c[3] * exp_m + c[5] * ray_m + c[6] * mie_m + c[7] * zenith);
+}
+
+Vec3 eval_hosek(const float* d, const Vec3& dir) {
+  const float sun_phi = d[0], sun_theta = d[1];
+  const Vec2 sph = direction_to_spherical(dir);
+  float theta = sph.x;
+  const float cos_gamma = std::sin(theta) * std::sin(sun_theta) * std::cos(sun_phi - sph.y) +
+                          std::cos(theta) * std::cos(sun_theta);
+  const float gamma = std::acos(std::clamp(cos_gamma, -1.0f, 1.0f));
+  theta = std::min(theta, kHalfPi - 0.001f);
+  const Vec3 xyz(hosek_distribution(d + 5, theta, gamma) * d[2],
+                 hosek_distribution(d + 14, theta, gamma) * d[3],
+                 hosek_distribution(d + 23, theta, gamma) * d[4]);
+  // The model's XYZ are radiometric (W m^-2 sr^-1 summed over the observer's curves); Cycles
+  // scales them by 2 pi / 683.
+  return xyz_to_rgb_clamped(xyz) * (kTwoPi / 683.0f);
+}
+
+// A quantity fitted over (albedo, turbidity, elevation): quintic Bezier in
+// (elevation / (pi / 2))^(1/3) over the six control points of `stride`-spaced values, linear in
+// turbidity between the tables of floor(T) and floor(T) + 1, linear in albedo (Hosek & Wilkie
+// 2012, section 5).
+double hosek_cook(const double* dataset, int stride, int index, double turbidity, double albedo,
+                  double elevation) {
+  const int t_int = static_cast<int>(turbidity);
+  const double t_rem = turbidity - t_int;
+  const double s = std::pow(elevation / (M_PI / 2.0), 1.0 / 3.0);
+  auto bezier = [&](const double* m) {
+    return std::pow(1.0 - s, 5.0) * m[index] +
+           5.0 * std::pow(1.0 - s, 4.0) * s * m[index + stride] +
+           10.0 * std::pow(1.0 - s, 3.0) * std::pow(s, 2.0) * m[index + 2 * stride] +
+           10.0 * std::pow(1.0 - s, 2.0) * std::pow(s, 3.0) * m[index + 3 * stride] +
+           5.0 * (1.0 - s) * std::pow(s, 4.0) * m[index + 4 * stride] +
+           std::pow(s, 5.0) * m[index + 5 * stride];
+  };
+  const int block = 6 * stride;  // one (albedo, turbidity) table
+  double v = (1.0 - albedo) * (1.0 - t_rem) * bezier(dataset + block * (t_int - 1));
+  v += albedo * (1.0 - t_rem) * bezier(dataset + block * 10 + block * (t_int - 1));
+  if (t_int == 10) return v;
+  v += (1.0 - albedo) * t_rem * bezier(dataset + block * t_int);
+  v += albedo * t_rem * bezier(dataset + block * 10 + block * t_int);
+  return v;
+}
+
+void precompute_hosek(const Vec3& sun, float turbidity, float albedo, float* d) {
+  float theta = std::acos(std::clamp(sun.z, -1.0f, 1.0f));
+  const float phi = std::atan2(sun.x, sun.y);
+  theta = std::clamp(theta, 0.0f, kHalfPi);  // the model is fitted for suns above the horizon
+  d[0] = phi;
+  d[1] = theta;
+  const double elevation = static_cast<double>(kHalfPi - theta);
+  const double* datasets[3] = {hosek::kDatasetX, hosek::kDatasetY, hosek::kDatasetZ};
+  const double* radiances[3] = {hosek::kRadianceX, hosek::kRadianceY, hosek::kRadianceZ};
+  for (int c = 0; c < 3; ++c) {
+    for (int i = 0; i < 9; ++i)
+      d[5 + 9 * c + i] =
+          static_cast<float>(hosek_cook(datasets[c], 9, i, turbidity, albedo, elevation));
+    d[2 + c] = static_cast<float>(hosek_cook(radiances[c], 1, 0, turbidity, albedo, elevation));
+  }
+}
+
 float clamped_number(const NodeDesc& desc, const char* key, double fallback, double lo, double hi) {
   const double v = number_value(desc, key, fallback);
   return static_cast<float>(std::isfinite(v) ? std::clamp(v, lo, hi) : fallback);
@@ -437,8 +512,9 @@ CompileStatus compile_sky_node(const NodeDesc& desc, ShaderProgram* program, Ins
     program->data.insert(program->data.end(), header, header + kNishitaHeader);
     const std::vector<float> table = nishita_sky_table(elevation, altitude, air, dust, ozone);
     program->data.insert(program->data.end(), table.begin(), table.end());
-  } else if (type == "PREETHAM") {
-    ins->mode = static_cast<uint32_t>(SkyModel::kPreetham);
+  } else if (type == "PREETHAM" || type == "HOSEK_WILKIE") {
+    const bool preetham = type == "PREETHAM";
+    ins->mode = static_cast<uint32_t>(preetham ? SkyModel::kPreetham : SkyModel::kHosekWilkie);
     // Blender passes the normalised sun_direction vector (numbers "sun_direction[0..2]").
     Vec3 sun(static_cast<float>(number_value(desc, "sun_direction[0]", 0.0)),
              static_cast<float>(number_value(desc, "sun_direction[1]", 0.0)),
@@ -450,14 +526,15 @@ CompileStatus compile_sky_node(const NodeDesc& desc, ShaderProgram* program, Ins
     }
     sun = sun / len3(sun);
     const float turbidity = clamped_number(desc, "turbidity", 2.2, 1.0, 10.0);
-    float d[kPreethamSize];
-    precompute_preetham(sun, turbidity, d);
-    program->data.insert(program->data.end(), d, d + kPreethamSize);
-  } else if (type == "HOSEK_WILKIE") {
-    *error =
-        "Sky Texture: the Hosek / Wilkie model is not supported by Photon (use Nishita or "
-        "Preetham)";
-    return CompileStatus::kError;
+    if (preetham) {
+      float d[kPreethamSize];
+      precompute_preetham(sun, turbidity, d);
+      program->data.insert(program->data.end(), d, d + kPreethamSize);
+    } else {
+      float d[kHosekSize];
+      precompute_hosek(sun, turbidity, clamped_number(desc, "ground_albedo", 0.3, 0.0, 1.0), d);
+      program->data.insert(program->data.end(), d, d + kHosekSize);
+    }
   } else {
     *error = "Sky Texture: unknown sky type '" + type + "'";
     return CompileStatus::kError;
@@ -478,7 +555,7 @@ Vec3 eval_sky(const Instruction& ins, const ShaderProgram& program, const Vec3& 
     case SkyModel::kPreetham:
       return eval_preetham(d, dir);
     case SkyModel::kHosekWilkie:
-      break;
+      return eval_hosek(d, dir);
   }
   return Vec3(0.0f);
 }

@@ -5,8 +5,9 @@
 //     horizon), plus a limb-darkened sun disc from the sun's transmitted irradiance;
 //   PREETHAM: the Perez luminance distribution with Preetham's turbidity fits (Preetham, Shirley,
 //     Smits 1999, "A Practical Analytic Model for Daylight", appendix A.2).
-// HOSEK_WILKIE needs the published coefficient tables of Hosek & Wilkie 2012, which are not part
-// of Photon: the node compiles to an error saying so.
+//   HOSEK_WILKIE: the analytic sky-dome model of Hosek & Wilkie 2012 ("An Analytic Model for Full
+//     Spectral Sky-Dome Radiance"), CIE XYZ version, from its published coefficient tables
+//     (sky_hosek_data.*).
 #pragma once
 
 #include <string>
