@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <limits>
 
 #include "photon/shading/sky.h"
 
@@ -55,8 +56,13 @@ float brick_noise(uint32_t n) {
   return 0.5f * (static_cast<float>(nn) / 1073741824.0f);
 }
 
+// floor() as an int. Out of range or NaN (huge or broken coordinates, a zero brick size) gives
+// INT_MIN, what x86's truncating conversion returns to Cycles, without the C++ undefined
+// behaviour of casting such a float.
 int floor_to_int(float v) {
-  return static_cast<int>(std::floor(v));
+  const float f = std::floor(v);
+  if (!(f >= -2147483648.0f && f < 2147483648.0f)) return std::numeric_limits<int>::min();
+  return static_cast<int>(f);
 }
 
 }  // namespace
@@ -64,13 +70,14 @@ int floor_to_int(float v) {
 float checker_texture(const Vec3& p_in) {
   // Cycles nudges the point (+1e-6, then * 0.999999) so that integer coordinates, common on
   // unit-sized geometry, fall inside a cell rather than on its edge.
-  int cell[3];
+  // Cycles compares |cell| % 2 per axis; the parity of |i| is that of i (no abs(INT_MIN)).
+  uint32_t odd[3];
   for (int i = 0; i < 3; ++i) {
     const float v = (p_in[i] + 0.000001f) * 0.999999f;
-    cell[i] = std::abs(floor_to_int(v));
+    odd[i] = static_cast<uint32_t>(floor_to_int(v)) & 1u;
   }
-  const bool xy_same = (cell[0] % 2) == (cell[1] % 2);
-  return (static_cast<int>(xy_same) == (cell[2] % 2)) ? 1.0f : 0.0f;
+  const bool xy_same = odd[0] == odd[1];
+  return (static_cast<uint32_t>(xy_same) == odd[2]) ? 1.0f : 0.0f;
 }
 
 float gradient_texture(const Vec3& p, GradientType type) {

@@ -301,6 +301,19 @@ TEST(PatternNodes, CheckerKeepsIntegerCoordinatesOffEdges) {
   EXPECT_NE(checker_texture(Vec3(1.5f, 0.5f, 0.5f)), checker_texture(Vec3(0.5f, 0.5f, 0.5f)));
 }
 
+TEST(PatternNodes, DegenerateInputsStayDefined) {
+  // A zero row height or brick width (a linked input can be anything) and huge or NaN points
+  // must not reach an out-of-range float-to-int conversion (checked under UBSan).
+  const Vec2 zero_row =
+      brick_texture(Vec3(0.3f, 0.2f, 0.0f), 0.02f, 0.1f, 0.0f, 0.5f, 0.0f, 0.5f, 2, 1.0f, 2);
+  const Vec2 zero_width =
+      brick_texture(Vec3(0.3f, 0.2f, 0.0f), 0.02f, 0.1f, 0.0f, 0.0f, 0.25f, 0.5f, 2, 1.0f, 2);
+  EXPECT_TRUE(zero_row.x >= 0.0f && zero_row.x <= 1.0f);
+  EXPECT_TRUE(zero_width.x >= 0.0f && zero_width.x <= 1.0f);
+  const float huge = checker_texture(Vec3(3e9f, -3e9f, std::nanf("")));
+  EXPECT_TRUE(huge == 0.0f || huge == 1.0f);
+}
+
 TEST(PatternNodes, MissingInputsTakeBlenderDefaultsAndBadEnumsFail) {
   NodeDesc desc;
   desc.type = "ShaderNodeTexBrick";
