@@ -29,6 +29,12 @@ Ramp and curve nodes take their data from an optional "setup" (see _setup_data):
 Every render also writes OUT_DIR/coords.exr: the Object coordinate of each pixel's hit point plus
 (4, 4, 4), so tests can evaluate a node at exactly the point the render shaded (Emission colours
 stay positive). The plane spans x, y in [-1, 1] with z = 0.3 x + 0.2 y + 0.25.
+
+World cases ("world": true) render the node through the world's Background (strength 1) seen by
+an equirectangular panoramic camera with nothing in the scene, at "resolution": [w, h] (default
+64 x 32); "camera": {"latitude_min": ..., "longitude_max": ..., ...} narrows the panorama (to look
+at a sun disc) and "camera_rotation": [x, y, z] (radians) turns the camera. Each world case also
+writes OUT_DIR/<name>.coords.exr: every pixel's world ray direction plus (4, 4, 4).
 """
 
 import json
@@ -163,14 +169,64 @@ def _material(case):
     return mat
 
 
+def _world_nodes(case, scene):
+    """The world shows the case's node (or, with no node, the ray direction + 4)."""
+    world = scene.world
+    world.use_nodes = True
+    tree = world.node_tree
+    tree.nodes.clear()
+    out = tree.nodes.new("ShaderNodeOutputWorld")
+    background = tree.nodes.new("ShaderNodeBackground")
+    background.inputs["Strength"].default_value = 1.0
+    tree.links.new(background.outputs[0], out.inputs["Surface"])
+    coords = tree.nodes.new("ShaderNodeTexCoord")
+    if case.get("node") is None:  # in a world shader, Object is the ray direction
+        add = tree.nodes.new("ShaderNodeVectorMath")
+        add.operation = 'ADD'
+        add.inputs[1].default_value = (COORD_OFFSET,) * 3
+        tree.links.new(coords.outputs["Object"], add.inputs[0])
+        tree.links.new(add.outputs[0], background.inputs["Color"])
+        return
+    node = tree.nodes.new(case["node"])
+    for name, value in case.get("properties", {}).items():
+        setattr(node, name, value)
+    for name, value in case.get("inputs", {}).items():
+        _socket(node.inputs, name).default_value = value
+    vector = case.get("vector")
+    if vector is not None:
+        tree.links.new(coords.outputs["Object"], _socket(node.inputs, vector))
+    tree.links.new(_socket(node.outputs, case.get("output", "#0")), background.inputs["Color"])
+
+
+def _world_camera(case, scene, plane):
+    bpy.data.objects.remove(plane)
+    scene.render.resolution_x, scene.render.resolution_y = case.get("resolution", (64, 32))
+    cam_data = scene.camera.data
+    cam_data.type = 'PANO'
+    # Blender 3.4 keeps the panorama settings in Cycles' camera properties.
+    settings = cam_data.cycles if hasattr(cam_data, "cycles") and hasattr(
+        cam_data.cycles, "panorama_type") else cam_data
+    settings.panorama_type = 'EQUIRECTANGULAR'
+    for name, value in case.get("camera", {}).items():
+        setattr(settings, name, value)
+    scene.camera.rotation_euler = case.get("camera_rotation", (0.0, 0.0, 0.0))
+
+
 def render(case, engine, out_dir):
     scene, plane = _scene(engine)
-    transform = case.get("object")
-    if transform:
-        plane.location = transform.get("location", (0.0, 0.0, 0.0))
-        plane.rotation_euler = transform.get("rotation", (0.0, 0.0, 0.0))
-        plane.scale = transform.get("scale", (1.0, 1.0, 1.0))
-    plane.data.materials.append(_material(case))
+    if case.get("world"):
+        _world_camera(case, scene, plane)
+        _world_nodes({"node": None}, scene)
+        scene.render.filepath = os.path.join(out_dir, case["name"] + ".coords.exr")
+        bpy.ops.render.render(write_still=True)
+        _world_nodes(case, scene)
+    else:
+        transform = case.get("object")
+        if transform:
+            plane.location = transform.get("location", (0.0, 0.0, 0.0))
+            plane.rotation_euler = transform.get("rotation", (0.0, 0.0, 0.0))
+            plane.scale = transform.get("scale", (1.0, 1.0, 1.0))
+        plane.data.materials.append(_material(case))
     scene.render.filepath = os.path.join(out_dir, case["name"] + ".exr")
     bpy.ops.render.render(write_still=True)
 
