@@ -61,6 +61,9 @@ def _socket(sockets, key):
 
 def _scene(engine):
     bpy.ops.wm.read_factory_settings(use_empty=True)
+    if engine != 'CYCLES':  # factory settings disable add-ons: enable the engine's again
+        import addon_utils
+        addon_utils.enable(engine.lower(), default_set=True)
     scene = bpy.context.scene
     scene.render.engine = engine
     scene.render.resolution_x = scene.render.resolution_y = RESOLUTION
@@ -76,6 +79,10 @@ def _scene(engine):
         scene.cycles.pixel_filter_type = 'BOX'
         scene.cycles.filter_width = 0.01
         scene.cycles.max_bounces = 0
+    if engine == 'PHOTON':  # direct emission only, one sample per pixel
+        scene.photon.integrator = 'RAY_TRACE'
+        scene.photon.samples = 1
+        scene.photon.filter_width = 0.01  # the pixel's centre, as the references
     world = bpy.data.worlds.new("black")
     world.color = (0.0, 0.0, 0.0)
     scene.world = world

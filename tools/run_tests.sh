@@ -9,7 +9,7 @@ build
 cd "$BUILD"
 status=0
 ctest --output-on-failure -j1 "$@" || status=$?
-for suite in regression validation; do
+for suite in regression validation node_conformance; do
   if [ -f "$BUILD/$suite/report.html" ]; then
     echo "== $suite report: $BUILD/$suite/report.html"
   fi

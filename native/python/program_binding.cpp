@@ -52,6 +52,8 @@ ShaderProgram parse_program(const py::handle& handle) {
                             "): " + error);
     ++index;
   }
+  // Any register may be read as a vector: two spare floats keep a scalar at the end in range.
+  program.registers.resize(program.registers.size() + 2, 0.0f);
   return program;
 }
 

@@ -24,11 +24,12 @@ _BASE_PROPERTIES = None
 
 # Vector inputs that, unlinked, read a coordinate instead of their (hidden) value, as Cycles'
 # default links do: image textures their UV map, environment textures the position (the
-# direction for the world), every other texture the Generated coordinates.
+# direction for the world), every other texture but White Noise (which reads its socket's value)
+# the Generated coordinates.
 _DEFAULT_UV = {'TEX_IMAGE'}
 _DEFAULT_POSITION = {'TEX_ENVIRONMENT'}
 _DEFAULT_GENERATED = {'TEX_NOISE', 'TEX_VORONOI', 'TEX_MUSGRAVE', 'TEX_WAVE', 'TEX_MAGIC',
-                      'TEX_CHECKER', 'TEX_BRICK', 'TEX_GRADIENT', 'TEX_SKY', 'TEX_WHITE_NOISE'}
+                      'TEX_CHECKER', 'TEX_BRICK', 'TEX_GRADIENT', 'TEX_SKY'}
 # Inputs whose unlinked value means "the shading normal" (the native side reads N).
 _NORMAL_INPUTS = {'Normal', 'Clearcoat Normal', 'Tangent'}
 # Nodes whose approximation the artist should hear about.
@@ -77,6 +78,9 @@ def _settings(node):
             enums[name] = "True" if value else "False"
         elif prop.type in {'INT', 'FLOAT'} and getattr(prop, "array_length", 0) == 0:
             numbers[name] = float(value)
+        elif prop.type in {'INT', 'FLOAT'}:  # vectors as "name[i]" (the Sky's sun direction)
+            for i in range(prop.array_length):
+                numbers[f"{name}[{i}]"] = float(value[i])
     return enums, numbers
 
 
@@ -125,8 +129,7 @@ class ProgramBuilder:
     def program(self):
         if not self.nodes:
             return None
-        # Pad so that reading three floats from the last register stays inside.
-        return {"registers": self.registers + [0.0, 0.0], "nodes": self.nodes}
+        return {"registers": list(self.registers), "nodes": self.nodes}
 
     def _emit(self, desc):
         self.nodes.append(desc)

@@ -51,6 +51,15 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                            .description = "Random seed; the same seed renders the same image",
                            .min = 0,
                            .max = 9007199254740992.0}),  // 2^53: exact as a double
+          param(&S::filter_width,
+                {.name = "filter_width",
+                 .label = "Filter Width",
+                 .description = "Width in pixels of the box filter camera samples spread over "
+                                "(Cycles' Box pixel filter); 1 covers the pixel",
+                 .min = 0.01,
+                 .max = 10.0,
+                 .subtype = "PIXEL",
+                 .ui = {.column = 1}}),
       }};
   return schema;
 }

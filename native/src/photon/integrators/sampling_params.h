@@ -15,6 +15,9 @@ struct SamplingParams {
   int samples = 64;   // camera samples per pixel
   int max_depth = 8;  // specular bounces after the camera ray
   uint64_t seed = 0;
+  // Width in pixels of the box each pixel's camera samples spread over, centred on the pixel
+  // (Cycles' Box pixel filter): 1 covers the pixel; 0.01 samples its centre.
+  float filter_width = 1.0f;
 };
 
 struct PerformanceParams {

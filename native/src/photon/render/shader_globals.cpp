@@ -48,7 +48,9 @@ ShaderGlobals surface_globals(const SurfaceInteraction& si, const Vec3& wo, cons
   if (si.mat) g.material_pass_index = si.mat->pass_index;
   if (si.scene) {
     g.camera = &si.scene->camera;
+    // Cycles' camera space looks down +Z: Blender's camera space with Z negated.
     g.world_to_camera = inverse_affine(si.scene->camera.camera_to_world);
+    for (int c = 0; c < 4; ++c) g.world_to_camera.m[2][c] = -g.world_to_camera.m[2][c];
   }
   // Bump's finite-difference step: a small fraction of the distance the ray travelled (a
   // pixel's footprint is about a thousandth of it for common fields of view), never below a

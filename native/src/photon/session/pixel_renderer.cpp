@@ -50,7 +50,10 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
         samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
                               static_cast<uint32_t>(s.samples));
-        const Vec2 jitter = samplers[i].get_2d();
+        Vec2 jitter = samplers[i].get_2d();
+        if (s.filter_width != 1.0f)  // a box of that width around the pixel's centre
+          jitter = Vec2(0.5f + (jitter.x - 0.5f) * s.filter_width,
+                        0.5f + (jitter.y - 0.5f) * s.filter_width);
         const Vec2 lens = samplers[i].get_2d();
         rays[i] = generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h,
                                       lens);

@@ -50,21 +50,17 @@ const std::vector<OutputList>& output_lists() {
   return lists;
 }
 
-// Cycles' camera space: Blender's with Z pointing forward.
-Vec3 cycles_camera_point(const ShaderGlobals& g, const Vec3& p) {
-  const Vec3 c = g.world_to_camera.point(p);
-  return {c.x, c.y, -c.z};
-}
+Vec3 cycles_camera_point(const ShaderGlobals& g, const Vec3& p) { return g.world_to_camera.point(p); }
 
 Vec3 window_coordinates(const ShaderGlobals& g) {
   if (!g.camera) return Vec3(0.0f);
   const Camera& cam = *g.camera;
-  const Vec3 c = g.world_to_camera.point(g.p);
+  const Vec3 c = g.world_to_camera.point(g.p);  // +Z forward
   float x = c.x, y = c.y;
   if (cam.projection == Projection::kPerspective) {
-    if (!(c.z < 0.0f)) return Vec3(0.0f);
-    x /= -c.z;
-    y /= -c.z;
+    if (!(c.z > 0.0f)) return Vec3(0.0f);
+    x /= c.z;
+    y /= c.z;
   }
   const float w = cam.window_max_x - cam.window_min_x, h = cam.window_max_y - cam.window_min_y;
   return {(x - cam.window_min_x) / w, (y - cam.window_min_y) / h, 0.0f};

@@ -1,8 +1,12 @@
 #include "photon/shading/node_registry.h"
 
+#include "photon/shading/color_nodes.h"
 #include "photon/shading/image_nodes.h"
 #include "photon/shading/input_nodes.h"
+#include "photon/shading/math_nodes.h"
+#include "photon/shading/noise_nodes.h"
 #include "photon/shading/normal_nodes.h"
+#include "photon/shading/pattern_nodes.h"
 
 namespace photon {
 
@@ -10,6 +14,10 @@ const std::vector<NodeFamilyEntry>& node_families() {
   static const std::vector<NodeFamilyEntry> families = {
       {NodeFamily::kInput, compile_input_node, eval_input_node},
       {NodeFamily::kConvert, compile_convert_node, eval_convert_node},
+      {NodeFamily::kMath, compile_math_node, eval_math_node},
+      {NodeFamily::kNoise, compile_noise_node, eval_noise_node},
+      {NodeFamily::kColor, compile_color_node, eval_color_node},
+      {NodeFamily::kPattern, compile_pattern_node, eval_pattern_node},
       {NodeFamily::kImage, compile_image_node, eval_image_node},
       {NodeFamily::kNormal, compile_normal_node, eval_normal_node},
   };

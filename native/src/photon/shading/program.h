@@ -33,9 +33,9 @@ enum class NodeFamily : uint16_t {
   kConvert,    // implicit socket conversions, Value/RGB (shading/input_nodes.*)
   kMath,       // Math, Vector Math, Map Range, Clamp, Mapping, Vector Rotate (shading/math_nodes.*)
   kColor,      // Mix, MixRGB, HSV, Gamma, Invert, ... ColorRamp, curves (shading/color_nodes.*)
-  kNoise,      // Noise, Musgrave, White Noise (shading/noise_nodes.*)
+  kNoise,      // Noise, Musgrave, White Noise, Wave (shading/noise_nodes.*)
   kVoronoi,    // Voronoi (shading/voronoi_nodes.*)
-  kPattern,    // Checker, Gradient, Wave, Brick, Magic (shading/pattern_nodes.*)
+  kPattern,    // Checker, Gradient, Brick, Magic, Sky (shading/pattern_nodes.*)
   kImage,      // Image / Environment Texture (shading/image_nodes.*)
   kNormal,     // Bump, Normal Map (shading/normal_nodes.*)
   kCount,
@@ -74,7 +74,7 @@ struct ShaderGlobals {
   Vec3 generated_scale{1.0f};  // d generated / d object position (per axis)
   Transform object_to_world;
   Transform world_to_object;
-  Transform world_to_camera;  // Blender's camera space: looking down -Z
+  Transform world_to_camera;  // Cycles' camera space: looking down +Z (Blender's with Z negated)
   const Camera* camera = nullptr;  // for Window coordinates
   Vec3 object_location{0.0f};
   Vec3 object_color{1.0f};
