@@ -38,6 +38,7 @@ enum class NodeFamily : uint16_t {
   kPattern,    // Checker, Gradient, Brick, Magic, Sky (shading/pattern_nodes.*)
   kImage,      // Image / Environment Texture (shading/image_nodes.*)
   kNormal,     // Bump, Normal Map (shading/normal_nodes.*)
+  kAttribute,  // Attribute, Color Attribute, named UV Map (shading/attribute_nodes.*)
   kCount,
 };
 
