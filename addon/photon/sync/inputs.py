@@ -20,8 +20,9 @@ class MaterialContext:
     """State of one material's conversion: its name for warnings, the texture table, and what
     has already been reported."""
 
-    def __init__(self, material_name, reporter, textures):
+    def __init__(self, material_name, reporter, textures, kind="Material"):
         self.name = material_name
+        self.kind = kind  # what warnings call the owner: "Material" or "World"
         self.reporter = reporter
         self.textures = textures
         self.reported = set()
@@ -41,7 +42,7 @@ class MaterialContext:
         return self._program.program() if self._program is not None else None
 
     def where(self, node, stack):
-        return f"Material '{self.name}': node '{nodes.node_path(node, stack)}'"
+        return f"{self.kind} '{self.name}': node '{nodes.node_path(node, stack)}'"
 
     def warn_once(self, key, message):
         if key not in self.reported:

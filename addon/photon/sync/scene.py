@@ -13,6 +13,7 @@ from . import materials as sync_materials
 from . import mattes as sync_mattes
 from . import mesh as sync_mesh
 from . import origin as sync_origin
+from . import world as sync_world
 
 
 class SyncStats:
@@ -205,9 +206,8 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
                          f"{shown}")
 
     sync_camera.export_camera(native_scene, scene, depsgraph, reporter, origin=origin)
-    world = sync_materials.world_color(scene.world, reporter,
+    world, _ = sync_world.export_world(native_scene, scene.world, reporter, materials.textures,
                                        getattr(native, "MAX_EMISSION", None))
-    native_scene.set_world(world)
 
     if stats.triangles == 0:
         reporter.warning("The scene has no renderable geometry")

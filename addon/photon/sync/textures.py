@@ -83,15 +83,13 @@ class TextureTable:
         if path is None:
             return None
         srgb = colour_space(image, where, self._reporter)
-        extension = node.extension
+        # Environment textures wrap around horizontally (Cycles reads them with REPEAT).
+        extension = getattr(node, "extension", 'REPEAT')
         if extension not in EXTENSIONS:
             self._reporter.warning(f"{where}: extension '{extension}' is not supported; "
                                    f"using REPEAT")
             extension = 'REPEAT'
         interpolation = INTERPOLATIONS.get(node.interpolation, "Linear")
-        if getattr(node, "projection", 'FLAT') != 'FLAT':
-            self._reporter.warning(f"{where}: {node.projection.title()} projection is not "
-                                   f"supported; using the UV map (Flat)")
         key = (path if isinstance(path, str) else id(path), srgb, extension, interpolation)
         found = self._index.get(key)
         if found is None:

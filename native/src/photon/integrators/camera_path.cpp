@@ -68,7 +68,7 @@ class CameraVisitor {
       if (walk_.radiance) state.throughput *= shadow_catcher_ratio(context_, si, wo, sampler_);
       return VertexStep::pass_through();
     }
-    sp_ = shade(context_, si, wo);
+    sp_ = shade(context_, si, wo, camera_shade_ray(state, path_length_));
     if (primary_ && (matte == Matte::kHoldout || sp_.holdout > 0.0f)) {
       // Cycles' integrate_surface_holdout: the held-out share of the throughput leaves the
       // pixel's colour and alpha; a surface held out entirely ends the path.
@@ -104,6 +104,27 @@ class CameraVisitor {
 };
 
 }  // namespace
+
+ShadeRay camera_shade_ray(const PathState& state, float path_length) {
+  ShadeRay ray;
+  switch (state.mask) {
+    case kVisibleCamera:
+      ray.flags = kRayCamera;
+      break;
+    case kVisibleDiffuse:
+      ray.flags = kRayDiffuse | kRayReflect;
+      break;
+    case kVisibleTransmission:
+      ray.flags = kRayTransmit | (state.last_delta ? kRaySingular : kRayGlossy);
+      break;
+    default:
+      ray.flags = kRayReflect | (state.last_delta ? kRaySingular : kRayGlossy);
+      break;
+  }
+  ray.length = path_length;
+  ray.depth = static_cast<uint16_t>(std::min(state.depth, 65535));
+  return ray;
+}
 
 CameraWalk camera_render_walk(const RenderContext& context, uint8_t light_sampled) {
   CameraWalk walk;

@@ -66,10 +66,15 @@ inline void trace_camera_path(const RenderContext& context, const Ray& camera_ra
                    shade_diffuse, result);
 }
 
-// Shading of `si` as seen along -ray_direction, with the context's textures.
+// Shading of `si` as seen along -ray_direction, with the context's textures, for a ray of the
+// kind `ray` (Light Path node).
 inline ShadingPoint shade(const RenderContext& context, const SurfaceInteraction& si,
-                          const Vec3& wo) {
-  return shade_surface(si, wo, *context.accel, context.textures);
+                          const Vec3& wo, const ShadeRay& ray = ShadeRay{}) {
+  return shade_surface(si, wo, *context.accel, context.textures, ray);
 }
+
+// The Light Path view of a camera path's segment: its visibility class (camera, diffuse, glossy,
+// transmission), its bounce count, and the distance travelled from the camera.
+ShadeRay camera_shade_ray(const PathState& state, float path_length);
 
 }  // namespace photon

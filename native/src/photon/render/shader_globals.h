@@ -10,9 +10,10 @@ class Accel;
 class TextureSet;
 struct SurfaceInteraction;
 
-// The ray that reached a shading point, for the Light Path node. The default is a camera ray.
+// The ray that reached a shading point, for the Light Path node (and the Bump node's step). The
+// default is a diffusely reflected ray: what photons, gathers and light paths shade with.
 struct ShadeRay {
-  uint32_t flags = kRayCamera;
+  uint32_t flags = kRayDiffuse | kRayReflect;
   float length = 0.0f;
   uint16_t depth = 0, diffuse_depth = 0, glossy_depth = 0, transparent_depth = 0,
            transmission_depth = 0;

@@ -106,6 +106,12 @@ struct Camera {
 
 struct World {
   Vec3 color{0.0f, 0.0f, 0.0f};  // background radiance (colour x strength)
+  // A world node tree that is not a constant: its program, evaluated per direction with the
+  // background's globals, leaves the radiance in three registers from `radiance_reg`
+  // (render/world_shader.h). Empty: the constant colour.
+  ShaderProgram program;
+  int32_t radiance_reg = -1;
+  bool reads_ray_type = false;  // the tree reads Light Path: camera rays see another radiance
 };
 
 struct Scene {
