@@ -289,7 +289,7 @@ TEST(VoronoiNodes, MatchesCyclesOnEveryManifestCase) {
   ASSERT_TRUE(read_exr(kRefDir / "coords.exr", &coords)) << kRefDir / "coords.exr";
   ASSERT_GT(coords.size(), 0u);
 
-  size_t pixels = 0, sensitive_pixels = 0;
+  size_t pixels = 0, sensitive_pixels = 0, above_1e6 = 0, above_1e5 = 0;
   float worst = 0.0f;
   std::string worst_case;
   for (const Json& json : cases->array) {
@@ -303,36 +303,48 @@ TEST(VoronoiNodes, MatchesCyclesOnEveryManifestCase) {
     Image ref;
     ASSERT_TRUE(read_exr(kRefDir / (c.name + ".exr"), &ref)) << "missing reference " << c.name;
     ASSERT_EQ(ref.size(), coords.size());
-    size_t case_sensitive = 0, case_bad = 0;
+    float case_worst = 0.0f;
+    std::vector<size_t> mismatches;
     for (size_t i = 0; i < coords.size(); ++i) {
+      const float e = error(evaluate(c, ins, coords.at(i) - Vec3(kCoordOffset)), ref.at(i));
+      ++pixels;
+      above_1e6 += e > 1e-6f;
+      above_1e5 += e > 1e-5f;
+      if (e <= kTolerance) {
+        case_worst = std::max(case_worst, e);
+        if (e > worst) worst = e, worst_case = c.name;
+      } else {
+        mismatches.push_back(i);
+      }
+    }
+    if (case_worst > 1e-5f) std::printf("  %s: largest error %.3g\n", c.name.c_str(), case_worst);
+    // Pixels that coordinate rounding can explain are rare (the band it can cross is ~1e-6 wide),
+    // so more than a few mismatches fail at once.
+    constexpr size_t kMaxSensitive = 4;
+    size_t case_bad = 0, case_sensitive = 0;
+    for (size_t i : mismatches) {
       const Vec3 object = coords.at(i) - Vec3(kCoordOffset);
       const Vec3 expected = ref.at(i);
-      const Vec3 got = evaluate(c, ins, object);
-      const float e = error(got, expected);
-      ++pixels;
-      if (e <= kTolerance) {
-        if (e > worst) worst = e, worst_case = c.name;
-        continue;
-      }
-      if (explained_by_coordinate_rounding(c, ins, object, expected)) {
+      if (mismatches.size() <= kMaxSensitive &&
+          explained_by_coordinate_rounding(c, ins, object, expected)) {
         ++case_sensitive;
         continue;
       }
+      const Vec3 got = evaluate(c, ins, object);
       if (++case_bad <= 3)
         ADD_FAILURE() << "pixel " << i << " at (" << object.x << ", " << object.y << ", "
                       << object.z << "): got (" << got.x << ", " << got.y << ", " << got.z
                       << "), Cycles (" << expected.x << ", " << expected.y << ", " << expected.z
                       << ")";
     }
-    EXPECT_EQ(case_bad, 0u);
-    // Such pixels are rare: the band a coordinate's rounding can cross is ~1e-6 wide.
-    EXPECT_LE(case_sensitive, 4u);
+    EXPECT_EQ(case_bad, 0u) << "of " << mismatches.size() << " pixels beyond " << kTolerance;
     sensitive_pixels += case_sensitive;
   }
   std::printf(
       "voronoi: %zu cases, %zu pixels; largest error within tolerance %.3g (%s); "
-      "%zu pixels explained by coordinate rounding\n",
-      cases->array.size(), pixels, worst, worst_case.c_str(), sensitive_pixels);
+      "%zu pixels explained by coordinate rounding; error > 1e-6 at %zu pixels, > 1e-5 at %zu\n",
+      cases->array.size(), pixels, worst, worst_case.c_str(), sensitive_pixels, above_1e6,
+      above_1e5);
 }
 
 // Every dimension x feature x metric Blender offers is in the manifest, with every output the mode
