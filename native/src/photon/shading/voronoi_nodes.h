@@ -1,0 +1,34 @@
+// The Voronoi Texture node (ShaderNodeTexVoronoi) in shader programs: NodeFamily::kVoronoi.
+#pragma once
+
+#include <string>
+
+#include "photon/shading/program.h"
+
+namespace photon {
+
+// Instruction layout. mode: dimensions (1-4) in bits 0-3, voronoi::Feature in bits 4-7,
+// voronoi::Metric in bits 8-11. in[]: Vector, W, Scale, Smoothness, Exponent, Randomness.
+// out[]: Distance, Color, Position, W, Radius.
+enum VoronoiInput {
+  kVoronoiInVector,
+  kVoronoiInW,
+  kVoronoiInScale,
+  kVoronoiInSmoothness,
+  kVoronoiInExponent,
+  kVoronoiInRandomness
+};
+enum VoronoiOutput {
+  kVoronoiOutDistance,
+  kVoronoiOutColor,
+  kVoronoiOutPosition,
+  kVoronoiOutW,
+  kVoronoiOutRadius
+};
+
+CompileStatus compile_voronoi_node(const NodeDesc& desc, ShaderProgram* program, Instruction* out,
+                                   std::string* error);
+void eval_voronoi_node(const Instruction& ins, const ShaderProgram& program,
+                       const ShaderGlobals& globals, float* registers);
+
+}  // namespace photon
