@@ -78,7 +78,10 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
               warnings),
       emissive_(textures_.cancelled() || accel_.cancelled() ? nothing() : scene, accel_,
                 &textures_),
-      emitters_(lights_, emissive_, scene.world.color) {
+      // A cancelled render skips tabulating an environment (and keeps the constant colour).
+      emitters_(lights_, emissive_,
+                textures_.cancelled() || accel_.cancelled() ? World::uniform(scene.world.color)
+                                                            : scene.world) {
   warn_out_of_range(scene, textures_, warnings);
   context_.scene = &scene;
   context_.accel = &accel_;
