@@ -31,7 +31,7 @@ Vec3 direction_at(double z, double phi) {
 
 EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, int subsamples)
     : radiance_(std::move(radiance)) {
-  width_ = std::clamp(width, 4, 16384) & ~1;
+  width_ = clamped_width(width);
   height_ = width_ / 2;
   const int k = std::clamp(subsamples, 1, 8);
   z_edge_.resize(static_cast<size_t>(height_) + 1);

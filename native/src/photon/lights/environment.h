@@ -18,6 +18,7 @@
 // which keeps light-sampling-only estimates (photon emission, shadow catchers) unbiased.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -58,6 +59,9 @@ class EnvironmentEmitter final : public Emitter {
   void emit(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
             EmittedPhoton* out) const override;
   LightBounds bounds() const override;
+
+  // The map width a requested one is rendered with: in [4, 16384] and even.
+  static int clamped_width(int width) { return std::clamp(width, 4, 16384) & ~1; }
 
   // A direction for `u` in [0, 1)^2 and its solid-angle density (0 only if `u` is invalid).
   bool sample_direction(Vec2 u, Vec3* direction, float* pdf) const;

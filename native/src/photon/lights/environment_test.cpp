@@ -480,5 +480,32 @@ TEST(Environment, RadiosityFloorUnderALinearSkyReceivesItsIrradiance) {
     }
 }
 
+TEST(Environment, BadFunctionValuesAndMapWidthAreSanitizedWithAWarning) {
+  // NaN, infinite and negative radiance count as 0; a map width out of range is clamped, with
+  // a warning, and direct lighting stays finite.
+  auto broken = [](const Vec3& w) {
+    if (w.x > 0.5f) return Vec3(NAN, 1.0f, 1.0f);
+    if (w.y > 0.5f) return Vec3(INFINITY, -1.0f, 2.0f);
+    return Vec3(1.0f);
+  };
+  auto scene = floor_under(broken, 3);
+  std::vector<std::string> warnings;
+  RenderSettings settings;
+  const SceneResources resources(*scene, settings, &warnings);
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("sample map width 3"), std::string::npos) << warnings[0];
+  const Emitter* env = resources.emitters().world();
+  ASSERT_NE(env, nullptr);
+  const Vec3 l = env->radiance_at_infinity(normalize(Vec3(0.0f, 1.0f, 0.1f)));
+  EXPECT_EQ(l.x, 0.0f);
+  EXPECT_EQ(l.y, 0.0f);
+  EXPECT_EQ(l.z, 2.0f);
+  const SurfaceInteraction si = floor_point(*scene, Vec3(0.0f));
+  for (int i = 0; i < 1000; ++i) {
+    Sampler sampler(2, 0, static_cast<uint32_t>(i), 1000);
+    ASSERT_TRUE(is_finite(direct_irradiance(resources.context(), si, sampler)));
+  }
+}
+
 }  // namespace
 }  // namespace photon

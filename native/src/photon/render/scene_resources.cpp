@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <set>
+#include <string>
 
+#include "photon/lights/environment.h"
 #include "photon/render/material_eval.h"
 
 namespace photon {
@@ -83,6 +85,10 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
                 textures_.cancelled() || accel_.cancelled() ? World::uniform(scene.world.color)
                                                             : scene.world) {
   warn_out_of_range(scene, textures_, warnings);
+  const int map_width = EnvironmentEmitter::clamped_width(scene.world.sample_map_width);
+  if (warnings && scene.world.radiance && map_width != scene.world.sample_map_width)
+    warnings->push_back("World: sample map width " + std::to_string(scene.world.sample_map_width) +
+                        " out of range; using " + std::to_string(map_width));
   context_.scene = &scene;
   context_.accel = &accel_;
   context_.lights = &lights_;
