@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "photon/base/sampling.h"
+#include "photon/integrators/photon_map/caustic_targets.h"
 #include "photon/lights/emitters.h"
 
 namespace photon {
@@ -177,6 +178,36 @@ void EnvironmentEmitter::emit(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 
   out->ray.tmin = 0.0f;
   out->ray.tmax = INFINITY;
   if (pdf > 0.0f) out->power = radiance_at_infinity(w) * (kPi * frame.radius * frame.radius / pdf);
+}
+
+bool EnvironmentEmitter::emit_towards(const std::vector<BoundingSphere>& targets,
+                                      const PhotonFrame& frame, float u_pick, Vec2 u_pos,
+                                      Vec2 u_dir, Sampler&, EmittedPhoton* out) const {
+  Vec3 w;
+  float pdf_dir = 0.0f;
+  if (!sample_direction(u_dir, &w, &pdf_dir)) return false;
+  const Vec3 d = -w;
+  const DiscMixture discs(d, targets);
+  if (discs.empty()) return false;
+  Vec3 p;
+  float pdf_area = 0.0f;
+  discs.sample(u_pick, u_pos, &p, &pdf_area);
+  if (!(pdf_area > 0.0f)) return false;
+  // From the plane through the origin back to 2 R before the scene's centre along the beam.
+  const float back = dot(frame.center, d) - 2.0f * frame.radius;
+  out->ray.origin = p + d * back;
+  out->ray.direction = d;
+  out->ray.tmin = 0.0f;
+  out->ray.tmax = INFINITY;
+  out->power = radiance_at_infinity(w) / (pdf_dir * pdf_area);
+  return is_finite(out->power) && !is_black(out->power);
+}
+
+float EnvironmentEmitter::coverage(const std::vector<BoundingSphere>& targets,
+                                   float scene_radius) const {
+  if (targets.empty()) return 0.0f;
+  const DiscMixture discs(Vec3(0.0f, 0.0f, 1.0f), targets);
+  return std::min(1.0f, discs.total_area() / (kPi * scene_radius * scene_radius));
 }
 
 LightBounds EnvironmentEmitter::bounds() const {

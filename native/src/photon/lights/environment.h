@@ -58,6 +58,13 @@ class EnvironmentEmitter final : public Emitter {
   // disc of the scene's bounding sphere perpendicular to it, flux L(w) / pdf(w) x pi R^2.
   void emit(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
             EmittedPhoton* out) const override;
+  // Caustic photons: a direction from the table, then a point of the targets' discs across it
+  // (as the sun's beam, light_emission.cpp): flux L(w) / (pdf(w) x area density).
+  bool emit_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,
+                    float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler& sampler,
+                    EmittedPhoton* out) const override;
+  // The targets' cross-sections over the scene's disc (a sphere's is the same from any side).
+  float coverage(const std::vector<BoundingSphere>& targets, float scene_radius) const override;
   LightBounds bounds() const override;
 
   // The map width a requested one is rendered with: in [4, 16384] and even.

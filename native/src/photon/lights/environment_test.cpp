@@ -433,6 +433,34 @@ TEST(Environment, EmittedPhotonsCarryTheIntegralAndTheIrradianceOfAPatch) {
   }
 }
 
+TEST(Environment, CausticPhotonsCarryTheFluxThroughTheirTarget) {
+  // Photons aimed at a sphere of radius r off the scene's centre: each passes through it, and
+  // their mean power is the flux the environment sends through its cross-section,
+  // pi r^2 x the integral of L (the same as unaimed photons that land in it).
+  const LinearSky sky;
+  const EnvironmentEmitter env(sky, 128);
+  const BoundingSphere target{Vec3(0.5f, -0.3f, 0.2f), 0.25f};
+  const PhotonFrame frame{Vec3(0.1f, 0.0f, 0.0f), 2.0f};
+  const float share = env.coverage({target}, frame.radius);
+  EXPECT_NEAR(share, 0.25f * 0.25f / 4.0f, 1e-6f);
+  const int n = 400000;
+  double sum[3] = {0, 0, 0};
+  for (int i = 0; i < n; ++i) {
+    Sampler sampler(6, 0, static_cast<uint32_t>(i), n);
+    const float u_pick = sampler.get_1d();
+    const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
+    EmittedPhoton photon;
+    ASSERT_TRUE(env.emit_towards({target}, frame, u_pick, u_pos, u_dir, sampler, &photon));
+    const Vec3 to_center = target.center - photon.ray.origin;
+    const float along = dot(to_center, photon.ray.direction);
+    ASSERT_GT(along, 0.0f);  // starts before the target
+    ASSERT_LE(length(to_center - photon.ray.direction * along), target.radius * 1.0001f);
+    for (int k = 0; k < 3; ++k) sum[k] += photon.power[k];
+  }
+  const Vec3 through = env.integral() * (kPi * target.radius * target.radius);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(sum[k] / n, through[k], 0.005 * through[k]);
+}
+
 TEST(Environment, PhotonSourcesSplitPowerWithTheEnvironment) {
   // The environment is one more photon source: total power = pi R^2 x the integral (R from
   // the scene's bounds), and the mean power of emitted global photons matches it.
