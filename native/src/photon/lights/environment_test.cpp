@@ -4,6 +4,7 @@
 #include "photon/lights/environment.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <cstdio>
@@ -118,6 +119,25 @@ TEST(Environment, PdfIsTheFunctionOverItsIntegralPlusTheUniformShare) {
       const double expected = (1.0 - share) * mean3(lobe_sky(d)) / total + share / (4.0 * kPiD);
       ASSERT_NEAR(env.pdf_at_infinity(d), expected, 1e-5 * expected) << "texel " << i << ", " << j;
     }
+}
+
+TEST(Environment, TableDoesNotDependOnTheThreadCount) {
+  std::unique_ptr<EnvironmentEmitter> one, two;
+  tbb::task_arena(1).execute([&] { one = std::make_unique<EnvironmentEmitter>(SunSky{}, 256); });
+  tbb::task_arena(2).execute([&] { two = std::make_unique<EnvironmentEmitter>(SunSky{}, 256); });
+  for (int k = 0; k < 3; ++k) ASSERT_EQ(one->integral()[k], two->integral()[k]);
+  for (int i = 0; i < 20000; ++i) {
+    Sampler sampler(3, 0, static_cast<uint32_t>(i), 20000);
+    const Vec2 u = sampler.get_2d();
+    Vec3 d1, d2;
+    float p1, p2;
+    ASSERT_TRUE(one->sample_direction(u, &d1, &p1));
+    ASSERT_TRUE(two->sample_direction(u, &d2, &p2));
+    ASSERT_EQ(p1, p2);
+    ASSERT_EQ(d1.x, d2.x);
+    ASSERT_EQ(d1.y, d2.y);
+    ASSERT_EQ(d1.z, d2.z);
+  }
 }
 
 TEST(Environment, SampledDirectionsFollowThePdf) {
