@@ -274,6 +274,35 @@ TEST(Environment, DirectIrradianceUnderALinearSkyIsAnalytic) {
   }
 }
 
+TEST(Environment, ShadowCatcherEstimatesSampleTheEnvironment) {
+  // The shadow catcher's pair of estimates (light sampling only) under a linear sky with
+  // nothing in the way: equal, and both the analytic irradiance (Lambert of albedo pi).
+  const LinearSky sky;
+  const auto scene = floor_under(sky, 128);
+  RenderSettings settings;
+  const SceneResources resources(*scene, settings, nullptr);
+  const SurfaceInteraction si = floor_point(*scene, Vec3(0.0f));
+  Bsdf lambert(si.ns, si.ng, true);
+  Lobe lobe;
+  lobe.type = LobeType::kLambert;
+  lobe.weight = Vec3(kPi);
+  lambert.add(lobe);
+  const int n = 40000;
+  double sum[3] = {0, 0, 0};
+  for (int i = 0; i < n; ++i) {
+    Sampler sampler(12, 0, static_cast<uint32_t>(i), n);
+    Vec3 unshadowed;
+    const Vec3 shadowed = direct_radiance_with_and_without_shadows(resources.context(), si, lambert,
+                                                                   si.ns, sampler, &unshadowed);
+    for (int k = 0; k < 3; ++k) {
+      ASSERT_EQ(shadowed[k], unshadowed[k]);
+      sum[k] += shadowed[k];
+    }
+  }
+  const Vec3 exact = sky.irradiance(1.0f);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(sum[k] / n, exact[k], 0.01 * exact[k]);
+}
+
 TEST(Environment, SunIrradianceNoiseWithImportanceSamplingAgainstBsdfSamplingAlone) {
   // Relative RMSE of 64-sample irradiance estimates on a +z plane under a 1e4 sun 0.5 degrees
   // across: with the table (light samples + BSDF samples, MIS) and with cosine-distributed BSDF
