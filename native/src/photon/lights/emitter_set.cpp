@@ -10,7 +10,7 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
     : EmitterSet(lamps, emissive, World::uniform(world_color), every_light_max) {}
 
 EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const World& world,
-                       size_t every_light_max)
+                       size_t every_light_max, const std::atomic<bool>* cancel)
     : emissive_(&emissive), lamps_(&lamps) {
   auto own = [&](std::unique_ptr<Emitter> e) {
     owned_.push_back(std::move(e));
@@ -23,7 +23,8 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, co
   if (!emissive.empty())
     every_light_.push_back(own(std::make_unique<EmissiveGroupEmitter>(emissive)));
   if (world.radiance) {
-    world_ = own(std::make_unique<EnvironmentEmitter>(world.radiance, world.sample_map_width));
+    world_ = own(
+        std::make_unique<EnvironmentEmitter>(world.radiance, world.sample_map_width, 1, cancel));
     every_light_.push_back(world_);
   } else if (!is_black(world.color)) {
     world_ = own(std::make_unique<WorldEmitter>(world.color));

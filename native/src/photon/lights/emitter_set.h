@@ -8,6 +8,7 @@
 // Photon emission always uses every_light() (power-proportional selection, photon_sources.h).
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -31,8 +32,9 @@ class EmitterSet {
              size_t every_light_max = kEveryLightMax);
   // The world as the scene gives it: an environment function (World::radiance, importance
   // sampled: environment.h) when set, else the constant colour.
+  // `cancel` stops tabulating the environment early (the render is being abandoned).
   EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const World& world,
-             size_t every_light_max = kEveryLightMax);
+             size_t every_light_max = kEveryLightMax, const std::atomic<bool>* cancel = nullptr);
   EmitterSet(const EmitterSet&) = delete;
   EmitterSet& operator=(const EmitterSet&) = delete;
 

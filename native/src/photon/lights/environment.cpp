@@ -30,7 +30,8 @@ Vec3 direction_at(double z, double phi) {
 
 }  // namespace
 
-EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, int subsamples)
+EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, int subsamples,
+                                       const std::atomic<bool>* cancel)
     : radiance_(std::move(radiance)) {
   width_ = clamped_width(width);
   height_ = width_ / 2;
@@ -49,6 +50,7 @@ EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, 
         tbb::blocked_range<int>(0, height_, 1), [&](const tbb::blocked_range<int>& r) {
           std::vector<double> weights(width_);
           for (int i = r.begin(); i != r.end(); ++i) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return;
             double red = 0.0, green = 0.0, blue = 0.0, row_sum = 0.0;
             for (int j = 0; j < width_; ++j) {
               double texel[3] = {0.0, 0.0, 0.0};

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <functional>
 #include <vector>
 
@@ -38,9 +39,10 @@ class EnvironmentEmitter final : public Emitter {
   // `radiance` must be thread-safe: the table is built in parallel (TBB; each texel's value
   // depends on its own evaluations only, so the table does not depend on the thread count).
   // `width` is clamped to [4, 16384] and made even; the height is width / 2. `subsamples`
-  // (clamped to [1, 8]) evaluations per texel axis.
+  // (clamped to [1, 8]) evaluations per texel axis. When `cancel` becomes true the remaining
+  // rows are left black (the render is being abandoned; a row takes well under 100 ms).
   explicit EnvironmentEmitter(EnvironmentFunction radiance, int width = kDefaultWidth,
-                              int subsamples = 1);
+                              int subsamples = 1, const std::atomic<bool>* cancel = nullptr);
 
   EmitterKind kind() const override { return EmitterKind::kWorld; }
   // One 2D sample: a direction from the table; pdf in solid angle, weight L / pdf with L the

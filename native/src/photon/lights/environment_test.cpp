@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -555,6 +556,23 @@ TEST(Environment, RadiosityFloorUnderALinearSkyReceivesItsIrradiance) {
       const float expected = albedo[k] * e[k] / kPi;
       EXPECT_NEAR(image[i + k], expected, 0.02f * expected) << "pixel " << i / 4;
     }
+}
+
+TEST(Environment, CancelStopsTabulating) {
+  // With the render already cancelled the function is not evaluated (the table is black and the
+  // density uniform); otherwise once per texel.
+  std::atomic<int> calls{0};
+  auto counted = [&calls](const Vec3&) {
+    calls.fetch_add(1, std::memory_order_relaxed);
+    return Vec3(1.0f);
+  };
+  const std::atomic<bool> cancelled{true};
+  const EnvironmentEmitter abandoned(counted, 64, 1, &cancelled);
+  EXPECT_EQ(calls.load(), 0);
+  EXPECT_FLOAT_EQ(abandoned.pdf_at_infinity(Vec3(0, 0, 1)), 1.0f / (4.0f * kPi));
+  const std::atomic<bool> running{false};
+  const EnvironmentEmitter built(counted, 64, 1, &running);
+  EXPECT_EQ(calls.load(), 64 * 32);
 }
 
 TEST(Environment, BadFunctionValuesAndMapWidthAreSanitizedWithAWarning) {

@@ -83,7 +83,8 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
       // A cancelled render skips tabulating an environment (and keeps the constant colour).
       emitters_(lights_, emissive_,
                 textures_.cancelled() || accel_.cancelled() ? World::uniform(scene.world.color)
-                                                            : scene.world) {
+                                                            : scene.world,
+                EmitterSet::kEveryLightMax, cancel) {
   warn_out_of_range(scene, textures_, warnings);
   const int map_width = EnvironmentEmitter::clamped_width(scene.world.sample_map_width);
   if (warnings && scene.world.radiance && map_width != scene.world.sample_map_width)
