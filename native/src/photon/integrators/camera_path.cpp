@@ -20,7 +20,7 @@ bool add_escaped_or_lamp(const RenderContext& context, const Ray& ray, bool foun
   if (!found && count_emission) {
     // The ray left the scene (camera rays too, whatever their clip distance): world and suns.
     if (!(camera_primary && context.settings->transparent_background))
-      *direct += throughput * context.scene->world.color;
+      *direct += throughput * context.emitters->world_radiance(ray.direction);
     *direct += throughput * context.lights->distant_radiance(ray.direction, mask);
   }
   return false;

@@ -78,6 +78,17 @@ Vec3 bsdf_sample_term(const RenderContext& context, const SurfaceInteraction& si
   return Vec3(0.0f);
 }
 
+// The world along a BSDF-sampled direction, if nothing occludes it. An environment map's light
+// sample covers the same directions: weighted against it by MIS; a uniform world has no light
+// sample, so the BSDF sample takes all of it.
+Vec3 world_bsdf_term(const RenderContext& context, const SurfaceInteraction& si, const Emitter& e,
+                     const BsdfSample& bs) {
+  const Vec3 le = e.radiance_at_infinity(bs.wi);
+  if (is_black(le) || !unoccluded(context, si, bs.wi, INFINITY)) return Vec3(0.0f);
+  const float pdf_light = e.pdf_at_infinity(bs.wi);
+  return pdf_light > 0.0f ? le * bs.weight * power_heuristic(bs.pdf, pdf_light) : le * bs.weight;
+}
+
 // The emissive surface a BSDF-sampled ray hits (if any), weighted against light sampling with
 // density `surface_pdf(hit, light_si)`.
 template <class SurfacePdf>
@@ -118,9 +129,7 @@ Vec3 every_light_radiance(const RenderContext& context, const SurfaceInteraction
         });
         break;
       case EmitterKind::kWorld:
-        // A uniform world has no light sample: the BSDF sample and one shadow ray.
-        if (unoccluded(context, si, bs.wi, INFINITY))
-          l += e->radiance_at_infinity(bs.wi) * bs.weight;
+        l += world_bsdf_term(context, si, *e, bs);
         break;
     }
   }
@@ -194,11 +203,13 @@ Vec3 tree_radiance(const RenderContext& context, const SurfaceInteraction& si, c
     }
   }
   if (const Emitter* world = set.world()) {
+    LightSample ls;
+    if (world->sampled_at_infinity() && world->sample(si.p, sampler, &ls))
+      l += light_sample_term(context, si, bsdf, wo, lobes, ls);
     BsdfSample bs;
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
-    if (bsdf.sample(wo, u_lobe, u, lobes, &bs) && unoccluded(context, si, bs.wi, INFINITY))
-      l += world->radiance_at_infinity(bs.wi) * bs.weight;
+    if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) l += world_bsdf_term(context, si, *world, bs);
   }
   return l;
 }
@@ -261,7 +272,12 @@ Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
     }
     world = set.world();
   }
-  if (world) {
+  if (world && world->sampled_at_infinity()) {
+    // An environment map by light sampling alone, as the lamps (its density is positive in
+    // every direction, environment.h).
+    LightSample ls;
+    if (world->sample(si.p, sampler, &ls)) light_term(ls);
+  } else if (world) {
     BsdfSample bs;
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();

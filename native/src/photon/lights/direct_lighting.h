@@ -1,7 +1,7 @@
 // Direct light at a surface point: one sample of every light, plus multiple importance
 // sampling (Veach 1997, power heuristic) with a BSDF sample for lights that have an area (area
-// lights, point and spot lights with a radius, emissive meshes), and a BSDF sample of a uniform
-// world. Only the BSDF's non-delta lobes see direct light this way; delta lobes reach lights
+// lights, point and spot lights with a radius, emissive meshes, an environment map), and a BSDF
+// sample of a uniform world. Only the BSDF's non-delta lobes see direct light this way; delta lobes reach lights
 // by ray tracing.
 #pragma once
 
@@ -18,8 +18,8 @@ Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
                      uint8_t lobes = kLobeDiffuse | kLobeGlossy);
 
 // Two estimates of direct_radiance from the same samples, one with shadow rays and one without
-// (`*unshadowed`); returns the shadowed one. Light sampling only (plus a BSDF sample of the
-// world), no MIS, so the estimates differ exactly by the occluders' share: their ratio is what a
+// (`*unshadowed`); returns the shadowed one. Light sampling only (plus a BSDF sample of a
+// uniform world), no MIS, so the estimates differ exactly by the occluders' share: their ratio is what a
 // shadow catcher shows (matte.h).
 Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
                                               const SurfaceInteraction& si, const Bsdf& bsdf,

@@ -17,7 +17,8 @@ namespace photon {
 enum class EmitterKind : uint8_t {
   kLamp,     // analytic, not in the BVH: eval() intersects it
   kSurface,  // scene geometry: the ray's hit is looked up with surface_pdf()
-  kWorld,    // at infinity, reached by rays that leave the scene; sampled through the BSDF only
+  kWorld,    // at infinity, reached by rays that leave the scene; a uniform world is sampled
+             // through the BSDF only, an environment map also by sample() (environment.h)
 };
 
 // Scene extent for photon emission from lights at infinity.
@@ -50,6 +51,11 @@ class Emitter {
   }
   // kWorld: radiance arriving along a ray that left the scene.
   virtual Vec3 radiance_at_infinity(const Vec3& /*direction*/) const { return Vec3(0.0f); }
+  // kWorld: whether sample() draws directions (an environment map), so direct lighting weights
+  // it against BSDF samples by MIS; false for a uniform world, reached through the BSDF only.
+  virtual bool sampled_at_infinity() const { return false; }
+  // kWorld: sample()'s solid-angle density of `direction` (0 when not sampled_at_infinity()).
+  virtual float pdf_at_infinity(const Vec3& /*direction*/) const { return 0.0f; }
 
   // Photon emission (Jensen 2001 sec. 5.1). power(): emitted flux, W per channel.
   virtual Vec3 power(float scene_radius) const = 0;

@@ -1,11 +1,16 @@
 #include "photon/lights/emitter_set.h"
 
 #include "photon/lights/emitters.h"
+#include "photon/lights/environment.h"
 
 namespace photon {
 
 EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
                        const Vec3& world_color, size_t every_light_max)
+    : EmitterSet(lamps, emissive, World::uniform(world_color), every_light_max) {}
+
+EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const World& world,
+                       size_t every_light_max, const std::atomic<bool>* cancel)
     : emissive_(&emissive), lamps_(&lamps) {
   auto own = [&](std::unique_ptr<Emitter> e) {
     owned_.push_back(std::move(e));
@@ -17,8 +22,12 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
   every_light_ = lamp_emitters;
   if (!emissive.empty())
     every_light_.push_back(own(std::make_unique<EmissiveGroupEmitter>(emissive)));
-  if (!is_black(world_color)) {
-    world_ = own(std::make_unique<WorldEmitter>(world_color));
+  if (world.radiance) {
+    world_ = own(
+        std::make_unique<EnvironmentEmitter>(world.radiance, world.sample_map_width, 1, cancel));
+    every_light_.push_back(world_);
+  } else if (!is_black(world.color)) {
+    world_ = own(std::make_unique<WorldEmitter>(world.color));
     every_light_.push_back(world_);
   }
 

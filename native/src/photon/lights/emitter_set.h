@@ -1,13 +1,14 @@
 // Every emitter of a scene, and how direct lighting picks among them:
 //  - few emitters (at most `every_light_max` lamps, the emissive meshes counting as one): every
 //    one is sampled at every shading point, as Photon always did (every_light());
-//  - more: lamps at infinity (suns) are still sampled one by one, the world through the BSDF,
+//  - more: lamps at infinity (suns) and the world are still sampled one by one,
 //    and one emitter among the other lamps and the emissive triangles is picked per shading
 //    point by the light tree (Conty Estevez & Kulla 2018), so the cost no longer grows with
 //    the number of lights.
 // Photon emission always uses every_light() (power-proportional selection, photon_sources.h).
 #pragma once
 
+#include <atomic>
 #include <memory>
 #include <vector>
 
@@ -29,6 +30,11 @@ class EmitterSet {
   // `lamps` and `emissive` must outlive the set.
   EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const Vec3& world_color,
              size_t every_light_max = kEveryLightMax);
+  // The world as the scene gives it: an environment function (World::radiance, importance
+  // sampled: environment.h) when set, else the constant colour.
+  // `cancel` stops tabulating the environment early (the render is being abandoned).
+  EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const World& world,
+             size_t every_light_max = kEveryLightMax, const std::atomic<bool>* cancel = nullptr);
   EmitterSet(const EmitterSet&) = delete;
   EmitterSet& operator=(const EmitterSet&) = delete;
 
@@ -38,8 +44,13 @@ class EmitterSet {
   bool use_tree() const { return use_tree_; }
   // Tree mode: suns, sampled one by one.
   const std::vector<const Emitter*>& distant() const { return distant_; }
-  // Tree mode: the world (null if black).
+  // The world (null if black): in tree mode direct lighting samples it beside the tree.
   const Emitter* world() const { return world_; }
+  // Radiance along a ray that left the scene (0 without a world): what the background,
+  // reflections and refractions show.
+  Vec3 world_radiance(const Vec3& direction) const {
+    return world_ ? world_->radiance_at_infinity(direction) : Vec3(0.0f);
+  }
   const LightTree& tree() const { return tree_; }
   const Emitter& tree_emitter(uint32_t i) const { return *tree_emitters_[i]; }
   // Tree entry of emissive triangle `triangle` (EmissiveMeshes index).

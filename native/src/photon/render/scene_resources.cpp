@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cstdio>
 #include <set>
+#include <string>
 
+#include "photon/lights/environment.h"
 #include "photon/render/material_eval.h"
 
 namespace photon {
@@ -78,8 +80,16 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
               warnings),
       emissive_(textures_.cancelled() || accel_.cancelled() ? nothing() : scene, accel_,
                 &textures_),
-      emitters_(lights_, emissive_, scene.world.color) {
+      // A cancelled render skips tabulating an environment (and keeps the constant colour).
+      emitters_(lights_, emissive_,
+                textures_.cancelled() || accel_.cancelled() ? World::uniform(scene.world.color)
+                                                            : scene.world,
+                EmitterSet::kEveryLightMax, cancel) {
   warn_out_of_range(scene, textures_, warnings);
+  const int map_width = EnvironmentEmitter::clamped_width(scene.world.sample_map_width);
+  if (warnings && scene.world.radiance && map_width != scene.world.sample_map_width)
+    warnings->push_back("World: sample map width " + std::to_string(scene.world.sample_map_width) +
+                        " out of range; using " + std::to_string(map_width));
   context_.scene = &scene;
   context_.accel = &accel_;
   context_.lights = &lights_;

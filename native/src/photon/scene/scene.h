@@ -3,11 +3,12 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
-#include "photon/scene/material.h"
 #include "photon/base/math.h"
+#include "photon/scene/material.h"
 
 namespace photon {
 
@@ -112,6 +113,18 @@ struct World {
   ShaderProgram program;
   int32_t radiance_reg = -1;
   bool reads_ray_type = false;  // the tree reads Light Path: camera rays see another radiance
+  // Radiance arriving from a direction (world space, unit, pointing away from the scene), for
+  // worlds that vary with direction (an HDRI, a sky); it replaces `color` when set. Called from
+  // many threads at once. Importance sampled through a table of sample_map_width x
+  // sample_map_width / 2 texels (lights/environment.h).
+  std::function<Vec3(const Vec3& direction)> radiance;
+  int sample_map_width = 1024;
+
+  static World uniform(const Vec3& color) {
+    World w;
+    w.color = color;
+    return w;
+  }
 };
 
 struct Scene {

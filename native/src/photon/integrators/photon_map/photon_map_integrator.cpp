@@ -323,7 +323,7 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
         }
         if (!found) {
           sum = sum + state.throughput *
-                          (context.scene->world.color +
+                          (context.emitters->world_radiance(state.ray.direction) +
                            context.lights->distant_radiance(state.ray.direction, state.mask));
           return false;
         }

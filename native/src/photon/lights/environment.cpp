@@ -1,0 +1,223 @@
+#include "photon/lights/environment.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "photon/base/sampling.h"
+#include "photon/integrators/photon_map/caustic_targets.h"
+#include "photon/lights/emitters.h"
+
+namespace photon {
+namespace {
+
+constexpr double kTwoPiD = 6.28318530717958647692;
+
+// Negative, NaN and infinite channels (a broken node tree) count as 0: they would poison the
+// table and every estimate that meets them.
+Vec3 sanitized(const Vec3& v) {
+  auto ok = [](float c) { return std::isfinite(c) && c > 0.0f ? c : 0.0f; };
+  return {ok(v.x), ok(v.y), ok(v.z)};
+}
+
+Vec3 direction_at(double z, double phi) {
+  const double sin_theta = std::sqrt(std::max(0.0, 1.0 - z * z));
+  return {static_cast<float>(sin_theta * std::cos(phi)),
+          static_cast<float>(sin_theta * std::sin(phi)), static_cast<float>(z)};
+}
+
+}  // namespace
+
+EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, int subsamples,
+                                       const std::atomic<bool>* cancel)
+    : radiance_(std::move(radiance)) {
+  width_ = clamped_width(width);
+  height_ = width_ / 2;
+  const int k = std::clamp(subsamples, 1, 8);
+  z_edge_.resize(static_cast<size_t>(height_) + 1);
+  for (int i = 0; i <= height_; ++i) z_edge_[i] = std::cos(kTwoPiD * 0.5 * i / height_);
+  z_edge_.front() = 1.0;
+  z_edge_.back() = -1.0;
+
+  value_.assign(static_cast<size_t>(width_) * height_, 0.0f);
+  columns_.resize(height_);
+  std::vector<double> row_value(height_, 0.0);
+  std::vector<Vec3> row_color(height_, Vec3(0.0f));
+  if (radiance_) {
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, height_, 1), [&](const tbb::blocked_range<int>& r) {
+          std::vector<double> weights(width_);
+          for (int i = r.begin(); i != r.end(); ++i) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return;
+            double red = 0.0, green = 0.0, blue = 0.0, row_sum = 0.0;
+            for (int j = 0; j < width_; ++j) {
+              double texel[3] = {0.0, 0.0, 0.0};
+              for (int a = 0; a < k; ++a) {
+                const double z = z_edge_[i] + (a + 0.5) / k * (z_edge_[i + 1] - z_edge_[i]);
+                for (int b = 0; b < k; ++b) {
+                  const double phi = kTwoPiD * (j + (b + 0.5) / k) / width_;
+                  const Vec3 l = sanitized(radiance_(direction_at(z, phi)));
+                  texel[0] += l.x;
+                  texel[1] += l.y;
+                  texel[2] += l.z;
+                }
+              }
+              red += texel[0];
+              green += texel[1];
+              blue += texel[2];
+              const double mean = (texel[0] + texel[1] + texel[2]) / (3.0 * k * k);
+              value_[static_cast<size_t>(i) * width_ + j] = static_cast<float>(mean);
+              // The float that pdfs read, so the sampled and looked-up densities agree.
+              weights[j] = value_[static_cast<size_t>(i) * width_ + j];
+              row_sum += weights[j];
+            }
+            columns_[i] = Distribution1D(weights);
+            row_value[i] = row_sum;
+            row_color[i] =
+                Vec3(static_cast<float>(red), static_cast<float>(green), static_cast<float>(blue)) *
+                (1.0f / static_cast<float>(k * k));
+          }
+        });
+  }
+  // Each row's texels share one solid angle: (2 pi / width) (cos theta_top - cos theta_bottom).
+  std::vector<double> row_weight(height_);
+  double total = 0.0, integral[3] = {0.0, 0.0, 0.0};
+  for (int i = 0; i < height_; ++i) {
+    const double solid_angle = kTwoPiD / width_ * (z_edge_[i] - z_edge_[i + 1]);
+    row_weight[i] = row_value[i] * solid_angle;
+    total += row_weight[i];
+    for (int c = 0; c < 3; ++c) integral[c] += row_color[i][c] * solid_angle;
+  }
+  rows_ = Distribution1D(row_weight);
+  integral_ = Vec3(static_cast<float>(integral[0]), static_cast<float>(integral[1]),
+                   static_cast<float>(integral[2]));
+  if (total > 0.0 && std::isfinite(total)) {
+    inv_total_ = 1.0 / total;
+    uniform_share_ = kUniformShare;
+  }
+}
+
+Vec3 EnvironmentEmitter::radiance_at_infinity(const Vec3& direction) const {
+  return radiance_ ? sanitized(radiance_(direction)) : Vec3(0.0f);
+}
+
+float EnvironmentEmitter::mixed_pdf(int row, int col) const {
+  const float uniform = uniform_share_ * kInv4Pi;
+  if (uniform_share_ >= 1.0f) return uniform;
+  return (1.0f - uniform_share_) * map_pdf(row, col) + uniform;
+}
+
+float EnvironmentEmitter::pdf_at_infinity(const Vec3& direction) const {
+  if (!is_finite(direction)) return 0.0f;
+  double phi = std::atan2(static_cast<double>(direction.y), static_cast<double>(direction.x));
+  if (phi < 0.0) phi += kTwoPiD;
+  const int col = std::clamp(static_cast<int>(phi / kTwoPiD * width_), 0, width_ - 1);
+  const double z = std::clamp(static_cast<double>(direction.z), -1.0, 1.0);
+  int row = std::clamp(static_cast<int>(std::acos(z) / (0.5 * kTwoPiD) * height_), 0, height_ - 1);
+  // The rows sample() draws from are bounded by z_edge_: settle rounding at an edge with them.
+  while (row > 0 && z > z_edge_[row]) --row;
+  while (row + 1 < height_ && z < z_edge_[row + 1]) ++row;
+  return mixed_pdf(row, col);
+}
+
+bool EnvironmentEmitter::sample_direction(Vec2 u, Vec3* direction, float* pdf) const {
+  if (!(u.x >= 0.0f && u.x < 1.0f && u.y >= 0.0f && u.y < 1.0f)) return false;
+  if (u.x < uniform_share_) {
+    const float ux = std::min(u.x / uniform_share_, 0.99999994f);
+    *direction = sample_uniform_sphere(Vec2(ux, u.y));
+    *pdf = pdf_at_infinity(*direction);
+    return *pdf > 0.0f;
+  }
+  const float u_row = std::min((u.x - uniform_share_) / (1.0f - uniform_share_), 0.99999994f);
+  float r_row, r_col;
+  const size_t row = rows_.sample(u_row, &r_row);
+  const size_t col = columns_[row].sample(u.y, &r_col);
+  // Uniform in solid angle inside the texel: cos(theta) and phi uniform.
+  const double z = z_edge_[row] + r_row * (z_edge_[row + 1] - z_edge_[row]);
+  const double phi = kTwoPiD * (col + static_cast<double>(r_col)) / width_;
+  *direction = direction_at(z, phi);
+  *pdf = mixed_pdf(static_cast<int>(row), static_cast<int>(col));
+  return *pdf > 0.0f;
+}
+
+bool EnvironmentEmitter::sample(const Vec3&, Sampler& sampler, LightSample* out) const {
+  Vec3 wi;
+  float pdf;
+  if (!sample_direction(sampler.get_2d(), &wi, &pdf)) return false;
+  const Vec3 l = radiance_at_infinity(wi);
+  if (is_black(l)) return false;
+  out->wi = wi;
+  out->distance = INFINITY;
+  out->pdf = pdf;
+  out->weight = l / pdf;
+  out->surface_normal = Vec3(0.0f);
+  return is_finite(out->weight);
+}
+
+Vec3 EnvironmentEmitter::power(float scene_radius) const {
+  return integral_ * (kPi * scene_radius * scene_radius);
+}
+
+void EnvironmentEmitter::emit(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir,
+                              EmittedPhoton* out) const {
+  out->power = Vec3(0.0f);
+  Vec3 w;
+  float pdf = 0.0f;
+  if (!sample_direction(u_dir, &w, &pdf)) {
+    w = Vec3(0.0f, 0.0f, 1.0f);
+    pdf = 0.0f;
+  }
+  // The light arrives from w, so the photon travels along -w, entering through a disc
+  // perpendicular to it that covers the scene (as WorldEmitter::emit).
+  const Vec3 d = -w;
+  const Frame f(d);
+  const Vec2 q = sample_concentric_disk(u_pos);
+  out->ray.origin =
+      frame.center + (f.t * q.x + f.b * q.y) * frame.radius - d * (2.0f * frame.radius);
+  out->ray.direction = d;
+  out->ray.tmin = 0.0f;
+  out->ray.tmax = INFINITY;
+  if (pdf > 0.0f) out->power = radiance_at_infinity(w) * (kPi * frame.radius * frame.radius / pdf);
+}
+
+bool EnvironmentEmitter::emit_towards(const std::vector<BoundingSphere>& targets,
+                                      const PhotonFrame& frame, float u_pick, Vec2 u_pos,
+                                      Vec2 u_dir, Sampler&, EmittedPhoton* out) const {
+  Vec3 w;
+  float pdf_dir = 0.0f;
+  if (!sample_direction(u_dir, &w, &pdf_dir)) return false;
+  const Vec3 d = -w;
+  const DiscMixture discs(d, targets);
+  if (discs.empty()) return false;
+  Vec3 p;
+  float pdf_area = 0.0f;
+  discs.sample(u_pick, u_pos, &p, &pdf_area);
+  if (!(pdf_area > 0.0f)) return false;
+  // From the plane through the origin back to 2 R before the scene's centre along the beam.
+  const float back = dot(frame.center, d) - 2.0f * frame.radius;
+  out->ray.origin = p + d * back;
+  out->ray.direction = d;
+  out->ray.tmin = 0.0f;
+  out->ray.tmax = INFINITY;
+  out->power = radiance_at_infinity(w) / (pdf_dir * pdf_area);
+  return is_finite(out->power) && !is_black(out->power);
+}
+
+float EnvironmentEmitter::coverage(const std::vector<BoundingSphere>& targets,
+                                   float scene_radius) const {
+  if (targets.empty()) return 0.0f;
+  const DiscMixture discs(Vec3(0.0f, 0.0f, 1.0f), targets);
+  return std::min(1.0f, discs.total_area() / (kPi * scene_radius * scene_radius));
+}
+
+LightBounds EnvironmentEmitter::bounds() const {
+  LightBounds b;
+  b.infinite = true;
+  b.lo = b.hi = Vec3(0.0f);
+  b.power = mean_power(integral_) * kInv4Pi;  // mean radiance, as WorldEmitter's
+  return b;
+}
+
+}  // namespace photon
