@@ -392,6 +392,25 @@ PYBIND11_MODULE(_photon, m) {
             scene.world.color = {clamp(c.x), clamp(c.y), clamp(c.z)};
           },
           py::arg("color"))
+      .def(
+          "set_world_program",
+          [](Scene& scene, const py::object& program, int32_t radiance_reg, bool reads_ray_type) {
+            scene.world.program = photon_python::parse_program(program);
+            std::string error;
+            if (!scene.world.program.empty() &&
+                (!validate_program(scene.world.program, &error) || radiance_reg < 0 ||
+                 static_cast<size_t>(radiance_reg) + 3 > scene.world.program.registers.size())) {
+              scene.world.program = ShaderProgram{};
+              scene.world.radiance_reg = -1;
+              throw py::value_error("the world's node program is invalid: " +
+                                    (error.empty() ? std::string("bad radiance register") : error));
+            }
+            scene.world.radiance_reg = radiance_reg;
+            scene.world.reads_ray_type = reads_ray_type;
+          },
+          py::arg("program"), py::arg("radiance_reg"), py::arg("reads_ray_type") = false,
+          "Sets the world's node program (program_binding.h); the radiance is in three registers "
+          "from radiance_reg. set_world's colour stays the fallback.")
       .def_property_readonly("mesh_count", [](const Scene& s) { return s.meshes.size(); })
       .def_property_readonly("instance_count", [](const Scene& s) { return s.instances.size(); })
       .def_property_readonly("light_count", [](const Scene& s) { return s.lights.size(); })
@@ -448,25 +467,6 @@ PYBIND11_MODULE(_photon, m) {
   bind_persistent(m);  // before RenderSession, whose blas_cache argument is a BlasCache
 
   py::class_<RenderSession>(m, "RenderSession")
-      .def(
-          "set_world_program",
-          [](Scene& scene, const py::object& program, int32_t radiance_reg, bool reads_ray_type) {
-            scene.world.program = photon_python::parse_program(program);
-            std::string error;
-            if (!scene.world.program.empty() &&
-                (!validate_program(scene.world.program, &error) || radiance_reg < 0 ||
-                 static_cast<size_t>(radiance_reg) + 3 > scene.world.program.registers.size())) {
-              scene.world.program = ShaderProgram{};
-              scene.world.radiance_reg = -1;
-              throw py::value_error("the world's node program is invalid: " +
-                                    (error.empty() ? std::string("bad radiance register") : error));
-            }
-            scene.world.radiance_reg = radiance_reg;
-            scene.world.reads_ray_type = reads_ray_type;
-          },
-          py::arg("program"), py::arg("radiance_reg"), py::arg("reads_ray_type") = false,
-          "Sets the world's node program (program_binding.h); the radiance is in three registers "
-          "from radiance_reg. set_world's colour stays the fallback.")
       .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings,
                        std::shared_ptr<BlasCache> blas_cache) {
              return std::make_unique<RenderSession>(std::move(scene), settings,

@@ -3,6 +3,7 @@
 #include "photon/lights/direct_lighting.h"
 #include "photon/lights/emitter_set.h"
 #include "photon/render/matte.h"
+#include "photon/render/world_shader.h"
 
 namespace photon {
 namespace {
@@ -19,8 +20,14 @@ bool add_escaped_or_lamp(const RenderContext& context, const Ray& ray, bool foun
   }
   if (!found && count_emission) {
     // The ray left the scene (camera rays too, whatever their clip distance): world and suns.
-    if (!(camera_primary && context.settings->transparent_background))
-      *direct += throughput * context.emitters->world_radiance(ray.direction);
+    if (!(camera_primary && context.settings->transparent_background)) {
+      // A world that tells camera rays apart (Light Path) shows them its camera branch.
+      const World& world = context.scene->world;
+      *direct += throughput * (mask == kVisibleCamera && world.reads_ray_type
+                                   ? world_radiance(world, ray.direction, kRayCamera,
+                                                    context.textures)
+                                   : context.emitters->world_radiance(ray.direction));
+    }
     *direct += throughput * context.lights->distant_radiance(ray.direction, mask);
   }
   return false;

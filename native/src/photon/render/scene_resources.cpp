@@ -7,6 +7,7 @@
 
 #include "photon/lights/environment.h"
 #include "photon/render/material_eval.h"
+#include "photon/render/world_shader.h"
 
 namespace photon {
 namespace {
@@ -70,6 +71,18 @@ BvhQuality bvh_quality_for(const Scene& scene, const RenderSettings& settings) {
                                                           : BvhQuality::kFastTrace;
 }
 
+// The world as the lights see it: a node program becomes the radiance function the environment
+// light tabulates and samples, evaluated for lighting rays (a Light Path "Is Camera Ray" trick
+// shows its other branch only to camera rays, camera_path.cpp).
+static World lit_world(const World& world, const TextureSet& textures) {
+  World lit = world;
+  if (!world.program.empty() && world.radiance_reg >= 0 && !world.radiance)
+    lit.radiance = [&world, &textures](const Vec3& direction) {
+      return world_radiance(world, direction, kWorldLightingRay, &textures);
+    };
+  return lit;
+}
+
 SceneResources::SceneResources(const Scene& scene, const RenderSettings& settings,
                                std::vector<std::string>* warnings, const std::atomic<bool>* cancel,
                                BlasCache* blas_cache)
@@ -83,7 +96,7 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
       // A cancelled render skips tabulating an environment (and keeps the constant colour).
       emitters_(lights_, emissive_,
                 textures_.cancelled() || accel_.cancelled() ? World::uniform(scene.world.color)
-                                                            : scene.world,
+                                                            : lit_world(scene.world, textures_),
                 EmitterSet::kEveryLightMax, cancel) {
   warn_out_of_range(scene, textures_, warnings);
   const int map_width = EnvironmentEmitter::clamped_width(scene.world.sample_map_width);

@@ -7,6 +7,7 @@
 #include "photon/shading/noise_nodes.h"
 #include "photon/shading/normal_nodes.h"
 #include "photon/shading/pattern_nodes.h"
+#include "photon/shading/voronoi_nodes.h"
 
 namespace photon {
 
@@ -18,6 +19,7 @@ const std::vector<NodeFamilyEntry>& node_families() {
       {NodeFamily::kNoise, compile_noise_node, eval_noise_node},
       {NodeFamily::kColor, compile_color_node, eval_color_node},
       {NodeFamily::kPattern, compile_pattern_node, eval_pattern_node},
+      {NodeFamily::kVoronoi, compile_voronoi_node, eval_voronoi_node},
       {NodeFamily::kImage, compile_image_node, eval_image_node},
       {NodeFamily::kNormal, compile_normal_node, eval_normal_node},
   };
