@@ -35,13 +35,19 @@ void eval_bump(const Instruction& ins, const ShaderProgram& program, const Shade
     const Vec3 dpdx = frame.t * g.bump_step, dpdy = frame.b * g.bump_step;
     // The height's nodes again, at the two offset points, on scratch copies of the registers
     // (the nodes' outputs at the shading point itself stay as they are for later readers).
-    std::vector<float> scratch(r, r + program.registers.size());
+    // One scratch buffer per thread (bumps nest only through their own blocks, which run on
+    // a copy made here before the inner bump takes the buffer: each level copies first).
+    thread_local std::vector<float> buffer;
+    std::vector<float> scratch;
+    scratch.swap(buffer);
+    scratch.assign(r, r + program.registers.size());
     const size_t begin = index - static_cast<size_t>(ins.skip);
     run_block(program, begin, index, offset_globals(g, dpdx), scratch.data());
     const float h_x = scratch[ins.in[2]];
     std::copy(r, r + program.registers.size(), scratch.begin());
     run_block(program, begin, index, offset_globals(g, dpdy), scratch.data());
     const float h_y = scratch[ins.in[2]];
+    scratch.swap(buffer);
     const Vec3 rx = cross(dpdy, normal_in), ry = cross(normal_in, dpdx);
     const float det = dot(dpdx, rx);
     const Vec3 surfgrad = rx * (h_x - h_c) + ry * (h_y - h_c);
