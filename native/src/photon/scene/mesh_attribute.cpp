@@ -34,8 +34,8 @@ bool add_mesh_attribute(Mesh* mesh, const std::string& name, uint32_t components
   if (remapped ? (mesh->source_triangles.size() != kept ||
                   (kept > 0 && mesh->source_triangles.back() >= given))
                : given != kept) {
-    *error = "attribute '" + name + "' has " + std::to_string(given) +
-             " triangles, the mesh " + std::to_string(kept);
+    *error = "attribute '" + name + "' has " + std::to_string(given) + " triangles, the mesh " +
+             std::to_string(kept);
     return false;
   }
   MeshAttribute attribute;

@@ -57,13 +57,12 @@ MeshCleanupReport clean_mesh(Mesh* mesh) {
   const bool has_uvs = mesh->corner_uvs.size() == tri_count * 3;
   const bool has_slots = mesh->material_slots.size() == tri_count;
   // Attributes that do not hold three corners per triangle cannot be read safely: dropped.
-  mesh->attributes.erase(
-      std::remove_if(mesh->attributes.begin(), mesh->attributes.end(),
-                     [&](const MeshAttribute& a) {
-                       return a.components < 1 || a.components > 4 ||
-                              a.values.size() != tri_count * 3 * a.components;
-                     }),
-      mesh->attributes.end());
+  mesh->attributes.erase(std::remove_if(mesh->attributes.begin(), mesh->attributes.end(),
+                                        [&](const MeshAttribute& a) {
+                                          return a.components < 1 || a.components > 4 ||
+                                                 a.values.size() != tri_count * 3 * a.components;
+                                        }),
+                         mesh->attributes.end());
   if (!has_normals) mesh->corner_normals.clear();
   if (!has_uvs) mesh->corner_uvs.clear();
   if (!has_slots) mesh->material_slots.clear();

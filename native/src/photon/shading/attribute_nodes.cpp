@@ -45,8 +45,8 @@ AttributeOutputs attribute_outputs(const float* v, uint32_t components, float mi
   return o;
 }
 
-CompileStatus compile_attribute_node(const NodeDesc& desc, ShaderProgram* program,
-                                     Instruction* out, std::string* error) {
+CompileStatus compile_attribute_node(const NodeDesc& desc, ShaderProgram* program, Instruction* out,
+                                     std::string* error) {
   AttributeKind kind;
   if (desc.type == "ShaderNodeAttribute")
     kind = AttributeKind::kAttribute;

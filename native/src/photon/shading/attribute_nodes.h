@@ -22,8 +22,8 @@ inline constexpr const char* kRenderColorAttribute = "\x01render_color";
 // Instruction::kind within NodeFamily::kAttribute.
 enum class AttributeKind : uint16_t { kAttribute, kVertexColor, kUvMap };
 
-CompileStatus compile_attribute_node(const NodeDesc& desc, ShaderProgram* program,
-                                     Instruction* out, std::string* error);
+CompileStatus compile_attribute_node(const NodeDesc& desc, ShaderProgram* program, Instruction* out,
+                                     std::string* error);
 void eval_attribute_node(const Instruction& ins, const ShaderProgram& program,
                          const ShaderGlobals& globals, float* registers);
 

@@ -35,9 +35,9 @@ TEST(MeshAttributeTest, CornerValuesInterpolateWithEmbreeBarycentrics) {
   std::string error;
   ASSERT_TRUE(add_mesh_attribute(&m, "c", 1, v.data(), v.size(), &error)) << error;
   const MeshAttribute& a = m.attributes[0];
-  EXPECT_FLOAT_EQ(at(a, 0, 0, 0), 1.0f);   // corner 0
-  EXPECT_FLOAT_EQ(at(a, 0, 1, 0), 2.0f);   // corner 1 weighs u
-  EXPECT_FLOAT_EQ(at(a, 0, 0, 1), 3.0f);   // corner 2 weighs v
+  EXPECT_FLOAT_EQ(at(a, 0, 0, 0), 1.0f);  // corner 0
+  EXPECT_FLOAT_EQ(at(a, 0, 1, 0), 2.0f);  // corner 1 weighs u
+  EXPECT_FLOAT_EQ(at(a, 0, 0, 1), 3.0f);  // corner 2 weighs v
   EXPECT_FLOAT_EQ(at(a, 1, 0.25f, 0.5f), 0.25f * 10 + 0.25f * 20 + 0.5f * 30);
   float out[4];
   EXPECT_FALSE(interpolate_attribute(a, 2, 0, 0, out));  // no third triangle
@@ -103,8 +103,8 @@ struct NodeRun {
   std::vector<float> registers;
 };
 
-NodeRun run_node(const std::string& type, const std::string& name, const Mesh* mesh,
-                 uint32_t tri, Vec2 bary, std::map<std::string, std::string> enums = {}) {
+NodeRun run_node(const std::string& type, const std::string& name, const Mesh* mesh, uint32_t tri,
+                 Vec2 bary, std::map<std::string, std::string> enums = {}) {
   NodeRun run;
   NodeDesc d;
   d.type = type;
