@@ -276,7 +276,8 @@ class ProgramBuilder:
 
     def _special(self, node, stack, desc):
         """Data a node needs beyond its sockets and settings."""
-        if node.type in ('ATTRIBUTE', 'VERTEX_COLOR', 'UVMAP'):
+        if node.type in ('ATTRIBUTE', 'VERTEX_COLOR', 'UVMAP') or (
+                node.type == 'NORMAL_MAP' and node.space == 'TANGENT' and node.uv_map):
             self._attribute_name(node, stack, desc)
         elif node.type in ('TEX_IMAGE', 'TEX_ENVIRONMENT'):
             index = None
@@ -308,6 +309,8 @@ class ProgramBuilder:
                 name = ""
         elif node.type == 'VERTEX_COLOR':
             name = node.layer_name or RENDER_COLOR
+        elif node.type == 'NORMAL_MAP':  # its tangents' UV map
+            name = node.uv_map
         else:
             name = node.uv_map
             if getattr(node, "from_instancer", False):

@@ -1,5 +1,7 @@
 #include "photon/shading/attribute_nodes.h"
 
+#include <cmath>
+
 #include "photon/scene/mesh_attribute.h"
 
 namespace photon {
@@ -7,8 +9,9 @@ namespace {
 
 constexpr uint32_t kNoAttribute = 0xFFFFFFFFu;
 
-// The program's slot for attribute `name` (one slot per distinct name).
-uint32_t attribute_slot(ShaderProgram* program, const std::string& name) {
+}  // namespace
+
+uint32_t program_attribute_slot(ShaderProgram* program, const std::string& name) {
   const uint64_t key = attribute_key(name);
   for (size_t i = 0; i < program->attributes.size(); ++i)
     if (program->attributes[i].key == key && program->attributes[i].name == name)
@@ -17,7 +20,26 @@ uint32_t attribute_slot(ShaderProgram* program, const std::string& name) {
   return static_cast<uint32_t>(program->attributes.size() - 1);
 }
 
-}  // namespace
+bool attribute_uv_tangents(const ShaderGlobals& g, const ShaderProgram& program, uint32_t slot,
+                           Vec3* dpdu, Vec3* dpdv) {
+  if (!g.mesh || slot >= program.attributes.size()) return false;
+  const ProgramAttribute& wanted = program.attributes[slot];
+  const MeshAttribute* a = find_mesh_attribute(*g.mesh, wanted.key, wanted.name);
+  const size_t tri = g.primitive;
+  if (!a || a->components < 2 || 3 * tri + 2 >= g.mesh->indices.size()) return false;
+  const uint32_t* idx = &g.mesh->indices[3 * tri];
+  const float* uv = &a->values[3 * tri * a->components];
+  const uint32_t n = a->components;
+  const Vec3 dp1 = g.mesh->positions[idx[1]] - g.mesh->positions[idx[0]];
+  const Vec3 dp2 = g.mesh->positions[idx[2]] - g.mesh->positions[idx[0]];
+  const float du1 = uv[n] - uv[0], dv1 = uv[n + 1] - uv[1];
+  const float du2 = uv[2 * n] - uv[0], dv2 = uv[2 * n + 1] - uv[1];
+  const float det = du1 * dv2 - dv1 * du2;
+  if (!(std::fabs(det) > 1e-12f)) return false;
+  *dpdu = g.object_to_world.vector((dp1 * dv2 - dp2 * dv1) / det);
+  *dpdv = g.object_to_world.vector((dp2 * du1 - dp1 * du2) / det);
+  return is_finite(*dpdu) && is_finite(*dpdv);
+}
 
 AttributeOutputs attribute_outputs(const float* v, uint32_t components, float missing_alpha) {
   AttributeOutputs o;
@@ -63,7 +85,7 @@ CompileStatus compile_attribute_node(const NodeDesc& desc, ShaderProgram* progra
   // which Photon does not export: they read nothing (the add-on warns), all outputs 0.
   const bool geometry = kind != AttributeKind::kAttribute ||
                         enum_value(desc, "attribute_type", "GEOMETRY") == "GEOMETRY";
-  out->mode = geometry && !name.empty() ? attribute_slot(program, name) : kNoAttribute;
+  out->mode = geometry && !name.empty() ? program_attribute_slot(program, name) : kNoAttribute;
   // A missing attribute's Alpha: Cycles gives 1 for the Attribute node's geometry attributes,
   // 0 for Color Attribute and the other attribute types.
   out->param[0] = kind == AttributeKind::kAttribute && geometry ? 1.0f : 0.0f;

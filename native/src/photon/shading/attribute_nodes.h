@@ -27,6 +27,15 @@ CompileStatus compile_attribute_node(const NodeDesc& desc, ShaderProgram* progra
 void eval_attribute_node(const Instruction& ins, const ShaderProgram& program,
                          const ShaderGlobals& globals, float* registers);
 
+// The slot of attribute `name` in program->attributes (added on first use; one per name).
+uint32_t program_attribute_slot(ShaderProgram* program, const std::string& name);
+
+// UV tangents d position / du, d position / dv (world space) of the shading point's triangle
+// in the 2-component attribute at `slot` (a named UV map), as Accel::uv_tangents computes them
+// for the active map; false when the mesh lacks it or its UVs are degenerate there.
+bool attribute_uv_tangents(const ShaderGlobals& globals, const ShaderProgram& program,
+                           uint32_t slot, Vec3* dpdu, Vec3* dpdv);
+
 // What an attribute node's outputs read from an attribute value of `components` floats (0: the
 // attribute is missing), as Cycles' svm_node_attr converts them: the vector / colour, the
 // float (Fac) and the alpha. `missing_alpha` is the Alpha of a missing attribute (1 for the

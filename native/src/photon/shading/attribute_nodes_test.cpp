@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "photon/render/accel.h"
 #include "photon/render/shader_globals.h"
 #include "photon/scene/mesh_attribute.h"
@@ -191,6 +193,47 @@ TEST(AttributeNodeTest, UnnamedUvMapStaysWithTheActiveMapAndNamesShareSlots) {
   EXPECT_EQ(p.code[1].family, NodeFamily::kAttribute);
   EXPECT_EQ(p.attributes.size(), 1u);  // one slot per name
   EXPECT_EQ(p.code[2].mode, p.code[1].mode);
+}
+
+// A tangent-space Normal Map's output with its UV map named `uv_map` (empty: the active map,
+// whose tangents `g` carries).
+Vec3 normal_map(const std::string& uv_map, const ShaderGlobals& g) {
+  NodeDesc d;
+  d.type = "ShaderNodeNormalMap";
+  d.enums["space"] = "TANGENT";
+  if (!uv_map.empty()) d.enums["photon_attribute"] = uv_map;
+  d.inputs = {{"Strength", 0}, {"Color", 1}};
+  d.outputs = {{"Normal", 4}};
+  ShaderProgram p;
+  p.registers = {1.0f, 0.9f, 0.5f, 0.7f, 0, 0, 0};
+  std::string error;
+  EXPECT_EQ(compile_node(d, &p, &error), CompileStatus::kCompiled) << error;
+  std::vector<float> r = p.registers;
+  run_program(p, g, r.data());
+  return load3(r.data(), 4);
+}
+
+TEST(AttributeNodeTest, NormalMapReadsTangentsOfItsNamedUvMap) {
+  Mesh m = square();
+  // "rot": the square's UVs turned a quarter: u runs along +y, v along -x.
+  std::vector<float> rot;
+  for (uint32_t i : m.indices) rot.insert(rot.end(), {m.positions[i].y, 1.0f - m.positions[i].x});
+  std::string error;
+  ASSERT_TRUE(add_mesh_attribute(&m, "rot", 2, rot.data(), rot.size(), &error));
+  ShaderGlobals g;
+  g.mesh = &m;
+  g.primitive = 1;
+  g.n = g.ng = Vec3(0, 0, 1);
+  g.dpdu = Vec3(0, 1, 0), g.dpdv = Vec3(-1, 0, 0);  // the same frame as the active map
+  const Vec3 active = normal_map("", g);
+  g.dpdu = Vec3(1, 0, 0), g.dpdv = Vec3(0, 1, 0);  // the active map now differs
+  const Vec3 named = normal_map("rot", g);
+  EXPECT_NEAR(named.x, active.x, 1e-6f);
+  EXPECT_NEAR(named.y, active.y, 1e-6f);
+  EXPECT_NEAR(named.z, active.z, 1e-6f);
+  EXPECT_GT(std::fabs(named.x - normal_map("", g).x), 0.1f);  // not the active map's answer
+  const Vec3 missing = normal_map("nope", g);                 // Cycles: the normal unperturbed
+  EXPECT_FLOAT_EQ(missing.z, 1.0f);
 }
 
 TEST(AttributeNodeTest, SurfaceGlobalsCarryTheMeshPoint) {
