@@ -12,6 +12,7 @@
 #include "photon/render/accel.h"
 #include "photon/render/shader_globals.h"
 #include "photon/scene/mesh_attribute.h"
+#include "photon/shading/normal_nodes.h"
 #include "photon/shading/program_eval.h"
 
 namespace photon {
@@ -234,6 +235,18 @@ TEST(AttributeNodeTest, NormalMapReadsTangentsOfItsNamedUvMap) {
   EXPECT_GT(std::fabs(named.x - normal_map("", g).x), 0.1f);  // not the active map's answer
   const Vec3 missing = normal_map("nope", g);                 // Cycles: the normal unperturbed
   EXPECT_FLOAT_EQ(missing.z, 1.0f);
+}
+
+TEST(AttributeNodeTest, BumpOffsetsMoveTheBarycentrics) {
+  // Bump evaluates its height at points offset along the surface: attributes must move too.
+  Mesh m = square();
+  ShaderGlobals g;
+  g.mesh = &m;
+  g.primitive = 0;  // corners (0,0), (1,0), (0,1): u along x, v along y
+  g.barycentric = Vec2(0.2f, 0.3f);
+  const ShaderGlobals s = offset_globals(g, Vec3(0.1f, -0.05f, 0.0f));
+  EXPECT_NEAR(s.barycentric.x, 0.3f, 1e-6f);
+  EXPECT_NEAR(s.barycentric.y, 0.25f, 1e-6f);
 }
 
 TEST(AttributeNodeTest, SurfaceGlobalsCarryTheMeshPoint) {

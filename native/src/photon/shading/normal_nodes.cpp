@@ -7,6 +7,7 @@
 #include "photon/shading/attribute_nodes.h"
 #include "photon/shading/input_nodes.h"
 #include "photon/shading/node_registry.h"
+#include "photon/scene/scene.h"
 
 namespace photon {
 namespace {
@@ -107,6 +108,20 @@ ShaderGlobals offset_globals(const ShaderGlobals& g, const Vec3& dp) {
   if (std::fabs(det) > 1e-30f) {
     const float pu = dot(dp, g.dpdu), pv = dot(dp, g.dpdv);
     s.uv = Vec2{g.uv.x + (c * pu - b * pv) / det, g.uv.y + (a * pv - b * pu) / det};
+  }
+  // Mesh attributes: the barycentrics move by the object-space offset written in the
+  // triangle's edges (least squares, as for the UVs), extrapolating past its edges.
+  if (g.mesh && 3 * static_cast<size_t>(g.primitive) + 2 < g.mesh->indices.size()) {
+    const uint32_t* idx = &g.mesh->indices[3 * static_cast<size_t>(g.primitive)];
+    const Vec3 e1 = g.mesh->positions[idx[1]] - g.mesh->positions[idx[0]];
+    const Vec3 e2 = g.mesh->positions[idx[2]] - g.mesh->positions[idx[0]];
+    const float a11 = dot(e1, e1), a12 = dot(e1, e2), a22 = dot(e2, e2);
+    const float d = a11 * a22 - a12 * a12;
+    if (std::fabs(d) > 1e-30f) {
+      const float p1 = dot(obj_dp, e1), p2 = dot(obj_dp, e2);
+      s.barycentric = Vec2{g.barycentric.x + (a22 * p1 - a12 * p2) / d,
+                           g.barycentric.y + (a11 * p2 - a12 * p1) / d};
+    }
   }
   return s;
 }
