@@ -141,42 +141,59 @@ TEST(AttributeNodeTest, OutputsPerComponentCountAsCycles) {
   ASSERT_TRUE(add_mesh_attribute(&m, "col", 4, f4.data(), f4.size(), &error));
   const Vec2 b{0.2f, 0.3f};
   auto r = run_node("ShaderNodeAttribute", "f", &m, 1, b).registers;
-  EXPECT_NEAR(r[0], 0.3f, 1e-6f), EXPECT_NEAR(r[2], 0.3f, 1e-6f), EXPECT_NEAR(r[6], 0.3f, 1e-6f);
+  EXPECT_NEAR(r[0], 0.3f, 1e-6f);
+  EXPECT_NEAR(r[2], 0.3f, 1e-6f);
+  EXPECT_NEAR(r[6], 0.3f, 1e-6f);
   EXPECT_FLOAT_EQ(r[7], 1.0f);
   r = run_node("ShaderNodeAttribute", "uv2", &m, 1, b).registers;
-  EXPECT_NEAR(r[3], 0.2f, 1e-6f), EXPECT_NEAR(r[4], 0.6f, 1e-6f), EXPECT_FLOAT_EQ(r[5], 0.0f);
+  EXPECT_NEAR(r[3], 0.2f, 1e-6f);
+  EXPECT_NEAR(r[4], 0.6f, 1e-6f);
+  EXPECT_FLOAT_EQ(r[5], 0.0f);
   EXPECT_NEAR(r[6], 0.2f, 1e-6f);  // Fac: x
   EXPECT_FLOAT_EQ(r[7], 1.0f);
   r = run_node("ShaderNodeAttribute", "vec", &m, 0, b).registers;
   EXPECT_NEAR(r[6], 0.5f, 1e-6f);  // Fac: the average
   EXPECT_FLOAT_EQ(r[7], 1.0f);
   r = run_node("ShaderNodeAttribute", "col", &m, 0, b).registers;
-  EXPECT_NEAR(r[1], 0.25f, 1e-6f), EXPECT_NEAR(r[6], 0.5f, 1e-6f), EXPECT_NEAR(r[7], 0.4f, 1e-6f);
+  EXPECT_NEAR(r[1], 0.25f, 1e-6f);
+  EXPECT_NEAR(r[6], 0.5f, 1e-6f);
+  EXPECT_NEAR(r[7], 0.4f, 1e-6f);
   r = run_node("ShaderNodeVertexColor", "col", &m, 0, b).registers;
-  EXPECT_NEAR(r[2], 0.75f, 1e-6f), EXPECT_NEAR(r[7], 0.4f, 1e-6f);
+  EXPECT_NEAR(r[2], 0.75f, 1e-6f);
+  EXPECT_NEAR(r[7], 0.4f, 1e-6f);
   r = run_node("ShaderNodeUVMap", "uv2", &m, 0, b).registers;
-  EXPECT_NEAR(r[8], 0.2f, 1e-6f), EXPECT_NEAR(r[9], 0.6f, 1e-6f), EXPECT_FLOAT_EQ(r[10], 0.0f);
+  EXPECT_NEAR(r[8], 0.2f, 1e-6f);
+  EXPECT_NEAR(r[9], 0.6f, 1e-6f);
+  EXPECT_FLOAT_EQ(r[10], 0.0f);
 }
 
 TEST(AttributeNodeTest, MissingAttributesReadAsCyclesReadsThem) {
   Mesh m = square();
   const Vec2 b{0.2f, 0.3f};
   auto r = run_node("ShaderNodeAttribute", "nope", &m, 0, b).registers;
-  EXPECT_FLOAT_EQ(r[0], 0.0f), EXPECT_FLOAT_EQ(r[6], 0.0f), EXPECT_FLOAT_EQ(r[7], 1.0f);
+  EXPECT_FLOAT_EQ(r[0], 0.0f);
+  EXPECT_FLOAT_EQ(r[6], 0.0f);
+  EXPECT_FLOAT_EQ(r[7], 1.0f);
   r = run_node("ShaderNodeAttribute", "", &m, 0, b).registers;  // no name: missing too
-  EXPECT_FLOAT_EQ(r[3], 0.0f), EXPECT_FLOAT_EQ(r[7], 1.0f);
+  EXPECT_FLOAT_EQ(r[3], 0.0f);
+  EXPECT_FLOAT_EQ(r[7], 1.0f);
   r = run_node("ShaderNodeVertexColor", "nope", &m, 0, b).registers;
-  EXPECT_FLOAT_EQ(r[0], 0.0f), EXPECT_FLOAT_EQ(r[7], 0.0f);
+  EXPECT_FLOAT_EQ(r[0], 0.0f);
+  EXPECT_FLOAT_EQ(r[7], 0.0f);
   r = run_node("ShaderNodeUVMap", "nope", &m, 0, b).registers;
-  EXPECT_FLOAT_EQ(r[8], 0.0f), EXPECT_FLOAT_EQ(r[9], 0.0f);
+  EXPECT_FLOAT_EQ(r[8], 0.0f);
+  EXPECT_FLOAT_EQ(r[9], 0.0f);
   r = run_node("ShaderNodeAttribute", "nope", nullptr, 0, b).registers;  // the world
-  EXPECT_FLOAT_EQ(r[0], 0.0f), EXPECT_FLOAT_EQ(r[7], 1.0f);
+  EXPECT_FLOAT_EQ(r[0], 0.0f);
+  EXPECT_FLOAT_EQ(r[7], 1.0f);
   // Object attributes are not exported: everything 0, Alpha too, even when the mesh has one.
   std::vector<float> f1(6, 0.3f);
   std::string error;
   ASSERT_TRUE(add_mesh_attribute(&m, "f", 1, f1.data(), f1.size(), &error));
   r = run_node("ShaderNodeAttribute", "f", &m, 0, b, {{"attribute_type", "OBJECT"}}).registers;
-  EXPECT_FLOAT_EQ(r[0], 0.0f), EXPECT_FLOAT_EQ(r[6], 0.0f), EXPECT_FLOAT_EQ(r[7], 0.0f);
+  EXPECT_FLOAT_EQ(r[0], 0.0f);
+  EXPECT_FLOAT_EQ(r[6], 0.0f);
+  EXPECT_FLOAT_EQ(r[7], 0.0f);
 }
 
 TEST(AttributeNodeTest, UnnamedUvMapStaysWithTheActiveMapAndNamesShareSlots) {
