@@ -57,7 +57,8 @@ def _mesh():
     pcol.data.foreach_set("color", [_hash(k, 7) * 2.0 for k in range(len(pcol.data) * 4)])
     # The active colour is not the render one: Color Attribute without a name reads "Col".
     mesh.color_attributes.active_color = pcol
-    mesh.color_attributes.render_color_index = 0
+    names = [a.name for a in mesh.color_attributes]  # listed by domain: not creation order
+    mesh.color_attributes.render_color_index = names.index("Col")
     f = mesh.attributes.new("f", 'FLOAT', 'FACE')
     f.data.foreach_set("value", [_hash(k, 11) for k in range(len(f.data))])
     vec = mesh.attributes.new("v", 'FLOAT_VECTOR', 'POINT')
