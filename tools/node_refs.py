@@ -26,6 +26,11 @@ Ramp and curve nodes take their data from an optional "setup" (see _setup_data):
                            "hue_interpolation": "FAR", "elements": [[0.1, [r, g, b, a]], ...]},
             "mapping": {"extend": "EXTRAPOLATED",
                         "curves": [[[x, y, "AUTO"], ...], ...]}}   # per curve, None = keep
+A manifest-level "mesh" replaces the plane (same plane, same extent) by a jittered triangle grid
+carrying attributes for the attribute nodes (see _attribute_mesh), and writes OUT_DIR/mesh.txt:
+its vertices, triangles and every attribute's values per triangle corner, as Blender holds them:
+  "mesh": {"grid": 7, "jitter": 0.1, "uv_maps": ["Second"], "render_color": "Col",
+           "attributes": [{"name": "Col", "type": "BYTE_COLOR", "domain": "CORNER"}, ...]}
 Every render also writes OUT_DIR/coords.exr: the Object coordinate of each pixel's hit point plus
 (4, 4, 4), so tests can evaluate a node at exactly the point the render shaded (Emission colours
 stay positive). The plane spans x, y in [-1, 1] with z = 0.3 x + 0.2 y + 0.25.
@@ -102,6 +107,110 @@ def _scene(engine):
     scene.collection.objects.link(camera)
     scene.camera = camera
     return scene, plane
+
+
+def _hash(i, seed):
+    """A deterministic value in [0, 1) per element."""
+    x = (i * 2654435761 + seed * 40503) & 0xFFFFFFFF
+    x ^= x >> 13
+    x = (x * 1274126177) & 0xFFFFFFFF
+    return (x ^ (x >> 16)) / 4294967296.0
+
+
+_ATTRIBUTE_PROPS = {'FLOAT': ("value", 1), 'FLOAT2': ("vector", 2), 'FLOAT_VECTOR': ("vector", 3),
+                    'FLOAT_COLOR': ("color", 4), 'BYTE_COLOR': ("color", 4),
+                    'INT': ("value", 1), 'BOOLEAN': ("value", 1)}
+
+
+def _attribute_mesh(spec):
+    """The plane as a grid of spec["grid"]^2 cells of two triangles (diagonals alternating),
+    interior vertices jittered within the plane, with the spec's UV maps and attributes filled
+    with hashed values (colours up to 2, vectors in [-0.25, 0.75))."""
+    import numpy as np
+    n, jitter = spec.get("grid", 7), spec.get("jitter", 0.1)
+    verts, faces = [], []
+    for j in range(n + 1):
+        for i in range(n + 1):
+            x, y = -1.0 + 2.0 * i / n, -1.0 + 2.0 * j / n
+            if 0 < i < n and 0 < j < n:
+                x += (_hash(j * 131 + i, 1) - 0.5) * jitter
+                y += (_hash(j * 131 + i, 2) - 0.5) * jitter
+            verts.append((x, y, 0.3 * x + 0.2 * y + 0.25))
+    for j in range(n):
+        for i in range(n):
+            a = j * (n + 1) + i
+            b, c, d = a + 1, a + n + 2, a + n + 1
+            faces += [(a, b, c), (a, c, d)] if (i + j) % 2 else [(a, b, d), (b, c, d)]
+    mesh = bpy.data.meshes.new("attribute_grid")
+    mesh.from_pydata(verts, [], faces)
+    mesh.uv_layers.new(name="UVMap")
+    for k, name in enumerate(spec.get("uv_maps", [])):
+        layer = mesh.uv_layers.new(name=name)
+        values = []
+        for loop in mesh.loops:
+            x, y, _ = verts[loop.vertex_index]
+            offset = 0.1 * _hash(loop.index, 20 + k)  # per corner: not a point attribute
+            values += [0.4 * x + 0.3 * y + 0.5 + offset, -0.5 * x + 0.45 * y + 0.5]
+        layer.data.foreach_set("uv", values)
+    mesh.uv_layers.active = mesh.uv_layers["UVMap"]
+    for k, attr in enumerate(spec.get("attributes", [])):
+        kind, domain = attr["type"], attr["domain"]
+        if kind in ('FLOAT_COLOR', 'BYTE_COLOR'):
+            layer = mesh.color_attributes.new(attr["name"], kind, domain)
+        else:
+            layer = mesh.attributes.new(attr["name"], kind, domain)
+        prop, comps = _ATTRIBUTE_PROPS[kind]
+        count = len(layer.data) * comps
+        if kind in ('FLOAT_COLOR',):
+            values = [2.0 * _hash(e, 40 + k) for e in range(count)]
+        elif kind == 'BYTE_COLOR':
+            values = [_hash(e, 40 + k) for e in range(count)]
+        elif kind == 'INT':
+            values = [int(_hash(e, 40 + k) * 10) for e in range(count)]
+        elif kind == 'BOOLEAN':
+            values = [_hash(e, 40 + k) < 0.5 for e in range(count)]
+        else:
+            values = [_hash(e, 40 + k) - 0.25 for e in range(count)]
+        layer.data.foreach_set(prop, values)
+    if spec.get("render_color"):
+        names = [a.name for a in mesh.color_attributes]
+        mesh.color_attributes.render_color_index = names.index(spec["render_color"])
+        mesh.color_attributes.active_color = mesh.color_attributes[
+            [a for a in names if a != spec["render_color"]][0] if len(names) > 1 else 0]
+    return mesh
+
+
+def _write_mesh(mesh, path):
+    """Vertices, loop triangles and each UV map / attribute per triangle corner (float32 values
+    as Blender reads them back) for the C++ conformance test."""
+    import numpy as np
+    mesh.calc_loop_triangles()
+    tris = [tuple(t.vertices) for t in mesh.loop_triangles]
+    loops = np.array([i for t in mesh.loop_triangles for i in t.loops])
+    points = np.array([i for t in tris for i in t])
+    faces = np.repeat([t.polygon_index for t in mesh.loop_triangles], 3)
+    lines = [f"vertices {len(mesh.vertices)}"]
+    lines += [" ".join(repr(float(c)) for c in v.co) for v in mesh.vertices]
+    lines += [f"triangles {len(tris)}"] + [" ".join(map(str, t)) for t in tris]
+    layers = [(uv.name, 'CORNER', uv.data, "uv", 2) for uv in mesh.uv_layers]
+    for attr in mesh.attributes:
+        if attr.data_type in _ATTRIBUTE_PROPS and attr.domain in ('POINT', 'CORNER', 'FACE') \
+                and not attr.name.startswith("."):
+            layers.append((attr.name, attr.domain, attr.data) + _ATTRIBUTE_PROPS[attr.data_type])
+    render = mesh.color_attributes[mesh.color_attributes.render_color_index] \
+        if len(mesh.color_attributes) else None
+    for name, domain, data, prop, comps in layers:
+        if any(name == uv.name for uv in mesh.uv_layers) and prop != "uv":
+            continue  # 3.4 lists UV maps among attributes too
+        values = np.empty(len(data) * comps, dtype=np.float32)
+        data.foreach_get(prop, values)
+        values = values.reshape(-1, comps)
+        index = {'CORNER': loops, 'POINT': points, 'FACE': faces}[domain]
+        tag = " render_color" if render is not None and name == render.name else ""
+        lines.append(f"attribute {name} {comps}{tag}")
+        lines += [" ".join(repr(float(c)) for c in row) for row in values[index]]
+    with open(path, "w") as f:
+        f.write("\n".join(lines) + "\n")
 
 
 def _setup_data(node, setup):
@@ -219,8 +328,12 @@ def _world_camera(case, scene, plane):
     scene.camera.rotation_euler = case.get("camera_rotation", (0.0, 0.0, 0.0))
 
 
-def render(case, engine, out_dir):
+def render(case, engine, out_dir, mesh_spec=None):
     scene, plane = _scene(engine)
+    if mesh_spec and not case.get("world"):
+        old = plane.data
+        plane.data = _attribute_mesh(mesh_spec)
+        bpy.data.meshes.remove(old)
     if case.get("world"):
         _world_camera(case, scene, plane)
         _world_nodes({"node": None}, scene)
@@ -244,15 +357,18 @@ def main():
     engine = args[args.index("--engine") + 1] if "--engine" in args else 'CYCLES'
     only = set(args[args.index("--cases") + 1].split(",")) if "--cases" in args else None
     with open(manifest) as f:
-        cases = json.load(f)["cases"]
+        data = json.load(f)
+    cases, mesh_spec = data["cases"], data.get("mesh")
     os.makedirs(out_dir, exist_ok=True)
-    render({"name": "coords", "node": None}, engine, out_dir)
+    render({"name": "coords", "node": None}, engine, out_dir, mesh_spec)
+    if mesh_spec:
+        _write_mesh(_attribute_mesh(mesh_spec), os.path.join(out_dir, "mesh.txt"))
     for case in cases:
         if only is None or case["name"] in only:
             if case.get("object"):  # the transformed plane's own coordinate image
                 render({"name": case["name"] + "_coords", "node": None,
-                        "object": case["object"]}, engine, out_dir)
-            render(case, engine, out_dir)
+                        "object": case["object"]}, engine, out_dir, mesh_spec)
+            render(case, engine, out_dir, mesh_spec)
 
 
 if __name__ == "__main__":

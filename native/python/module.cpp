@@ -10,6 +10,7 @@
 #include "material_binding.h"
 #include "program_binding.h"
 #include "photon/shading/program_eval.h"
+#include "photon/scene/mesh_attribute.h"
 #include "photon/scene/mesh_import.h"
 #include "photon/integrators/render_params.h"
 #include "photon/session/pixel_renderer.h"
@@ -255,6 +256,21 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("visibility") = static_cast<uint32_t>(kVisibleAll), py::arg("name") = "",
           py::arg("holdout") = false, py::arg("shadow_catcher") = false,
           "Adds many instances of one mesh from an (N, 4, 4) array of row-major matrices.")
+      .def(
+          "add_mesh_attribute",
+          [](Scene& scene, uint32_t mesh, const std::string& name, const FloatArray& values) {
+            if (mesh >= scene.meshes.size()) throw std::out_of_range("mesh index");
+            if (values.ndim() != 2) throw std::invalid_argument("values: (corners, components)");
+            std::string error;
+            if (!add_mesh_attribute(&scene.meshes[mesh], name,
+                                    static_cast<uint32_t>(values.shape(1)), values.data(),
+                                    static_cast<size_t>(values.size()), &error))
+              throw std::invalid_argument(error);
+          },
+          py::arg("mesh"), py::arg("name"), py::arg("values"),
+          "Adds a named attribute shader programs read (Attribute, Color Attribute, UV Map "
+          "nodes): a (3 x triangles, 1..4) float array, three corners per triangle in the order "
+          "the mesh's triangles were given (point and face values expanded to corners).")
       .def(
           "set_mesh_texspace",
           [](Scene& scene, uint32_t mesh, const std::vector<float>& location,

@@ -6,9 +6,6 @@ warning naming material, node and attribute)."""
 
 import pytest
 
-TOLERANCE = 1e-4  # relative or absolute, per channel
-
-
 @pytest.fixture(scope="module")
 def renders(blender):
     out = blender.out_dir / "mesh_attributes"
@@ -30,11 +27,13 @@ def test_photon_matches_cycles(renders, case):
         assert result["cycles_range"] == [0.0, 0.0]
     else:
         assert result["cycles_range"][1] > 0.05, result
-    # Face and corner values jump across triangle edges: a pixel centre within float rounding
-    # of an edge may land on the other triangle in one engine; allow 0.5% of the pixels.
-    assert result["over_1e4"] <= result["pixels"] // 200, result
-    if case not in ("face_float", "render_color", "byte_alpha", "second_uv_checker"):
-        assert result["max_rel"] <= TOLERANCE, result
+    # Per pixel within 1e-4 (relative or absolute) plus what the engines' 0.01-pixel sample
+    # offsets make of the image's gradient. Face and corner values (and the checker) jump at
+    # edges: a sample on the other side of an edge than the other engine's is allowed for 0.5%
+    # of the pixels; values continuous over the mesh allow none.
+    continuous = case in ("point_color", "point_color_fac", "point_vector", "missing_alpha",
+                          "missing_color")
+    assert result["over"] <= (0 if continuous else result["pixels"] // 200), result
 
 
 def test_missing_attribute_warns_once_naming_material_node_and_attribute(renders):

@@ -78,12 +78,14 @@ class MeshCache:
         self._lent = []
         self.reused = self.exported = 0
 
-    def export(self, native_scene, obj, reporter):
+    def export(self, native_scene, obj, reporter, attributes=(), on_missing=None):
         """As sync_mesh.export_object_mesh, from the cache when the mesh did not change."""
         data = obj.data
         key = (obj.name, data.name, data.as_pointer())
         entry = self._entries.get(key)
-        fingerprint = None if entry is _CHANGED else _fingerprint(data)
+        # The attributes read are part of what must not have changed.
+        fingerprint = (None if entry is _CHANGED else
+                       _fingerprint(data) + (tuple(sorted(attributes)),))
         # A kept mesh still lent to an earlier scene (its render never handed it back) is read
         # again.
         if (entry is not None and entry is not _CHANGED and entry[0] == fingerprint
@@ -94,17 +96,20 @@ class MeshCache:
             info = dict(info, index=native_scene.add_kept_mesh(kept))
             self._lent.append(kept)
         else:
-            arrays = sync_mesh.object_mesh_arrays(obj, reporter)
+            arrays = sync_mesh.object_mesh_arrays(obj, reporter, attributes)
             if arrays is None:
                 self._entries.pop(key, None)
                 return None, 0, (None, None)
             method, kwargs = arrays
             kwargs = dict(kwargs)
             texspace = kwargs.pop("texspace", None)
+            attribute_arrays = kwargs.pop("attributes", None)
             info = getattr(native_scene, method)(obj.name, **kwargs)
             if texspace is not None and info["triangles"]:
                 native_scene.set_mesh_texspace(info["index"], list(texspace[0]),
                                                list(texspace[1]))
+            sync_mesh.add_attributes(native_scene, obj.name, info, attribute_arrays, reporter,
+                                     on_missing)
             bounds = local_bounds(kwargs["positions"])
             if entry is not _CHANGED:
                 kept = native_scene.keep_mesh(info["index"])

@@ -15,6 +15,7 @@ import math
 from . import graph, nodes
 from .inputs import (DEFAULT_COLOR, MaterialContext, clamp_constant, closure_param,
                      closure_table, read_input, read_normal_map)
+from .shader_program import RENDER_COLOR, program_attributes
 from .textures import TextureTable
 
 MAX_BSDF_LOBES = 8  # Bsdf::kMaxLobes (native/src/photon/render/bsdf.h): lobes kept per point
@@ -193,6 +194,8 @@ class MaterialTable:
         self._scene = native_scene
         self._reporter = reporter
         self._index = {}
+        self._attributes = {}  # native index -> program_attributes() of its program
+        self._missing_reported = set()
         self.textures = TextureTable(native_scene, reporter, pixels_type)
 
     def index(self, material):
@@ -210,12 +213,35 @@ class MaterialTable:
                                        f"({error}); rendering its inputs' constant values")
                 found = self._scene.add_material(name, _without_registers(closures), None,
                                                  pass_index)
+                program = None
+            self._attributes[found] = program_attributes(program)
             self._index[key] = found
         return found
 
     def slot_indices(self, obj):
         slots = [self.index(slot.material) for slot in obj.material_slots]
         return slots or [self.index(None)]
+
+    def attribute_requests(self, slots):
+        """{attribute name: [node descriptions]} the materials of native indices `slots` read."""
+        requests = {}
+        for index in slots:
+            for name, where in self._attributes.get(index, {}).items():
+                requests.setdefault(name, []).extend(where)
+        return requests
+
+    def report_missing_attributes(self, object_name, missing, requests):
+        """Warns once per node and attribute name a mesh does not have (it renders as 0, as in
+        Cycles)."""
+        for name in missing:
+            shown = "the active colour attribute" if name == RENDER_COLOR else \
+                f"attribute '{name}'"
+            for where in requests.get(name, ()):
+                if (where, name) in self._missing_reported:
+                    continue
+                self._missing_reported.add((where, name))
+                self._reporter.warning(f"{where} reads {shown}, which object '{object_name}' "
+                                       f"does not have; it reads as 0, as in Cycles")
 
     def release(self):
         """Deletes the textures written for this render (call after the render ends)."""

@@ -57,8 +57,89 @@ def _evaluated_mesh(obj):
     return mesh
 
 
-def mesh_arrays(mesh):
+# Generic attribute types shader programs read: (foreach_get property, components, dtype).
+_ATTRIBUTE_TYPES = {'FLOAT': ("value", 1, np.float32), 'INT': ("value", 1, np.int32),
+                    'BOOLEAN': ("value", 1, bool), 'FLOAT2': ("vector", 2, np.float32),
+                    'FLOAT_VECTOR': ("vector", 3, np.float32),
+                    'FLOAT_COLOR': ("color", 4, np.float32),
+                    # Blender stores byte colours sRGB-encoded; "color" reads them linear, as
+                    # Cycles decodes them.
+                    'BYTE_COLOR': ("color", 4, np.float32)}
+
+
+def _render_color(mesh):
+    """The colour attribute marked for render (the camera icon), else the active one."""
+    colors = getattr(mesh, "color_attributes", None)
+    if colors is None or len(colors) == 0:
+        return None
+    index = getattr(colors, "render_color_index", -1)
+    if 0 <= index < len(colors):
+        return colors[index]
+    return colors.active_color
+
+
+def _attribute_source(mesh, name):
+    """(domain, data collection, property, components, dtype) of the attribute `name` of
+    `mesh` (a UV map, a colour or generic attribute), or a string saying why it cannot be read,
+    or None when the mesh has none of that name."""
+    from .shader_program import RENDER_COLOR
+    if name == RENDER_COLOR:
+        attribute = _render_color(mesh)
+    else:
+        uv = mesh.uv_layers.get(name)
+        if uv is not None:
+            return 'CORNER', uv.data, "uv", 2, np.float32
+        attribute = mesh.attributes.get(name)
+    if attribute is None:
+        return None
+    kind = _ATTRIBUTE_TYPES.get(attribute.data_type)
+    if kind is None:
+        return f"its type {attribute.data_type} is not supported"
+    if attribute.domain not in ('POINT', 'CORNER', 'FACE'):
+        return f"its domain {attribute.domain} is not supported"
+    return (attribute.domain, attribute.data) + kind
+
+
+def attribute_arrays(mesh, names):
+    """([(name, float32 array (3 x triangles, components))], [names the mesh lacks],
+    [(name, reason) not readable]): the named attributes of `mesh` (loop triangles computed)
+    expanded to the corners of its triangles, with numpy gathers."""
+    tri_count = len(mesh.loop_triangles)
+    corner_index = {}
+
+    def corners(domain):
+        if domain not in corner_index:
+            if domain == 'CORNER':
+                index = _get(mesh.loop_triangles, "loops", np.int32, tri_count, 3)
+            elif domain == 'POINT':
+                index = _get(mesh.loop_triangles, "vertices", np.int32, tri_count, 3)
+            else:
+                index = np.repeat(_get(mesh.loop_triangles, "polygon_index", np.int32,
+                                       tri_count), 3)
+            corner_index[domain] = index
+        return corner_index[domain]
+
+    arrays, missing, unreadable = [], [], []
+    for name in sorted(names):
+        source = _attribute_source(mesh, name)
+        if source is None:
+            missing.append(name)
+            continue
+        if isinstance(source, str):
+            unreadable.append((name, source))
+            continue
+        domain, data, prop, components, dtype = source
+        values = np.empty(len(data) * components, dtype=dtype)
+        data.foreach_get(prop, values)
+        values = values.astype(np.float32, copy=False).reshape(-1, components)
+        arrays.append((name, np.ascontiguousarray(values[corners(domain)])))
+    return arrays, missing, unreadable
+
+
+def mesh_arrays(mesh, attributes=()):
     """Returns (method name, keyword arguments) for the native Scene, or None without faces.
+    `attributes`: names of attributes shader programs read (kwargs "attributes" then holds
+    attribute_arrays()).
 
     Chooses the cheapest foreach_get route (measured on a 1M-triangle grid, Blender 3.4):
     triangle "vertices" costs about as much as triangle "loops", so when UVs or split normals
@@ -70,6 +151,8 @@ def mesh_arrays(mesh):
         return None
     # Generated coordinates: Blender's texture space (the bounds unless the artist set one).
     kwargs["texspace"] = (tuple(mesh.texspace_location), tuple(mesh.texspace_size))
+    if attributes:
+        kwargs["attributes"] = attribute_arrays(mesh, attributes)
     return method, kwargs
 
 
@@ -120,20 +203,21 @@ def _mesh_arrays(mesh):
         "material_slots": material_slots}
 
 
-def export_object_mesh(native_scene, obj, reporter):
-    """Converts an evaluated object's geometry; returns (mesh index or None, triangle count,
+def export_object_mesh(native_scene, obj, reporter, attributes=(), on_missing=None):
+    """Converts an evaluated object's geometry with the named `attributes` its materials read
+    (on_missing(names) hears of those it lacks); returns (mesh index or None, triangle count,
     (lo, hi) object-space bounds of its vertices in float64)."""
-    arrays = object_mesh_arrays(obj, reporter)
+    arrays = object_mesh_arrays(obj, reporter, attributes)
     if arrays is None:
         return None, 0, (None, None)
-    return add_mesh_arrays(native_scene, obj.name, arrays, reporter)
+    return add_mesh_arrays(native_scene, obj.name, arrays, reporter, on_missing)
 
 
-def object_mesh_arrays(obj, reporter):
+def object_mesh_arrays(obj, reporter, attributes=()):
     """mesh_arrays() of an evaluated object's geometry, or None (no faces, no mesh)."""
     mesh = _evaluated_mesh(obj)
     if mesh is not None:
-        return mesh_arrays(mesh)
+        return mesh_arrays(mesh, attributes)
     try:
         mesh = obj.to_mesh()
     except RuntimeError as exc:
@@ -142,20 +226,39 @@ def object_mesh_arrays(obj, reporter):
     if mesh is None:
         return None
     try:
-        return mesh_arrays(mesh)
+        return mesh_arrays(mesh, attributes)
     finally:
         obj.to_mesh_clear()
 
 
-def add_mesh_arrays(native_scene, name, arrays, reporter):
+def add_mesh_arrays(native_scene, name, arrays, reporter, on_missing=None):
     """Adds mesh_arrays() output to the native scene; returns as export_object_mesh."""
     method, kwargs = arrays
     kwargs = dict(kwargs)
     texspace = kwargs.pop("texspace", None)
+    attributes = kwargs.pop("attributes", None)
     info = getattr(native_scene, method)(name, **kwargs)
     if texspace is not None and info["triangles"]:
         native_scene.set_mesh_texspace(info["index"], list(texspace[0]), list(texspace[1]))
+    add_attributes(native_scene, name, info, attributes, reporter, on_missing)
     return mesh_result(name, info, local_bounds(kwargs["positions"]), reporter)
+
+
+def add_attributes(native_scene, name, info, attributes, reporter, on_missing=None):
+    """Adds attribute_arrays() output to the native mesh `info` describes and reports what
+    could not be read."""
+    if attributes is None:
+        return
+    arrays, missing, unreadable = attributes
+    for attribute, reason in unreadable:
+        reporter.warning(f"Object '{name}': attribute '{attribute}' cannot be read by shaders "
+                         f"({reason}); it reads as 0")
+    if missing and on_missing is not None:
+        on_missing(missing)
+    if not info["triangles"]:
+        return
+    for attribute, values in arrays:
+        native_scene.add_mesh_attribute(info["index"], attribute, values)
 
 
 def mesh_result(name, info, bounds, reporter):

@@ -141,9 +141,21 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
             continue
         # The evaluated data block identifies shared geometry: every instance of one mesh
         # (particles, geometry nodes, linked duplicates) maps to one native mesh and one BVH.
-        key = obj.data.as_pointer()
+        if override is None:
+            slots = tuple(materials.slot_indices(obj))
+        else:  # the view layer's Material Override replaces every slot, as in Cycles
+            slots = (materials.index(override),) * max(1, len(obj.material_slots))
+        # Named attributes the slots' shader programs read are exported with the mesh (a mesh
+        # shared by objects whose materials read different ones is exported once per set).
+        requests = materials.attribute_requests(slots)
+        key = (obj.data.as_pointer(), tuple(sorted(requests)))
         if key not in mesh_index:
-            index, triangles, local = export_mesh(native_scene, obj, reporter)
+            name = obj.name
+
+            def on_missing(missing, name=name, requests=requests):
+                materials.report_missing_attributes(name, missing, requests)
+            index, triangles, local = export_mesh(native_scene, obj, reporter, tuple(requests),
+                                                  on_missing)
             mesh_index[key] = index
             if index is not None:
                 mesh_bounds[index] = local
@@ -152,10 +164,6 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         index = mesh_index[key]
         if index is None:
             continue
-        if override is None:
-            slots = tuple(materials.slot_indices(obj))
-        else:  # the view layer's Material Override replaces every slot, as in Cycles
-            slots = (materials.index(override),) * max(1, len(obj.material_slots))
         visibility = layer_visibility.apply(inst, obj, sync_lights.visibility_bits(native, obj))
         owner = None if inst.is_instance else obj.name
         matte = mattes.of(obj, inst.parent if inst.is_instance else None)

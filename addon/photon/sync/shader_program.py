@@ -38,6 +38,21 @@ _APPROXIMATE_OUTPUTS = {('NEW_GEOMETRY', 'Pointiness'): "Pointiness is rendered 
                         ('NEW_GEOMETRY', 'Parametric'): "Parametric is rendered as 0"}
 # Nodes compiled by the add-on itself, without an instruction.
 _CONSTANT_NODES = {'RGB', 'VALUE'}
+# The name a mesh's active render colour attribute is exported under, read by Color Attribute
+# nodes without a layer name (kRenderColorAttribute in native/src/photon/shading/attribute_nodes.h).
+RENDER_COLOR = "\x01render_color"
+
+
+def program_attributes(program):
+    """{attribute name: [where, ...]} of the mesh attributes a program dict (ProgramBuilder's
+    program()) reads by name, with the nodes that read each (for warnings); the names are those
+    of NodeDesc enums "photon_attribute" (Attribute, Color Attribute, named UV Map nodes)."""
+    found = {}
+    for desc in (program or {}).get("nodes", ()):
+        name = desc.get("enums", {}).get("photon_attribute")
+        if name:
+            found.setdefault(name, []).append(desc.get("where", ""))
+    return found
 
 
 def _native():
@@ -261,7 +276,10 @@ class ProgramBuilder:
 
     def _special(self, node, stack, desc):
         """Data a node needs beyond its sockets and settings."""
-        if node.type in ('TEX_IMAGE', 'TEX_ENVIRONMENT'):
+        if node.type in ('ATTRIBUTE', 'VERTEX_COLOR', 'UVMAP') or (
+                node.type == 'NORMAL_MAP' and node.space == 'TANGENT' and node.uv_map):
+            self._attribute_name(node, stack, desc)
+        elif node.type in ('TEX_IMAGE', 'TEX_ENVIRONMENT'):
             index = None
             if node.image is not None and self.ctx.textures is not None:
                 index = self.ctx.textures.texture(node, self.ctx.where(node, stack))
@@ -277,6 +295,31 @@ class ProgramBuilder:
             table = node_table(node)
             if table is not None:
                 desc["table"] = [float(v) for v in table]
+
+    def _attribute_name(self, node, stack, desc):
+        """The mesh attribute an Attribute, Color Attribute or UV Map node reads, as
+        desc["enums"]["photon_attribute"] (an unnamed UV Map reads the active map natively)."""
+        where = self.ctx.where(node, stack)
+        if node.type == 'ATTRIBUTE':
+            name = node.attribute_name
+            if node.attribute_type != 'GEOMETRY':
+                self.ctx.warn_once(("attribute_type", where),
+                                   f"{where}: {node.attribute_type.replace('_', ' ').title()} "
+                                   f"attributes are not supported yet; its outputs are 0")
+                name = ""
+        elif node.type == 'VERTEX_COLOR':
+            name = node.layer_name or RENDER_COLOR
+        elif node.type == 'NORMAL_MAP':  # its tangents' UV map
+            name = node.uv_map
+        else:
+            name = node.uv_map
+            if getattr(node, "from_instancer", False):
+                self.ctx.warn_once(("from_instancer", where),
+                                   f"{where}: From Instancer is not supported; reading the "
+                                   f"object's own UV map")
+        if name:
+            desc["enums"]["photon_attribute"] = name
+            desc["where"] = where
 
     def _fallback(self, node, stack, where, verdict):
         """Nearest meaning of a node the native library cannot compile."""

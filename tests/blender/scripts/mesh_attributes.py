@@ -27,8 +27,11 @@ def _mesh():
     for j in range(GRID + 1):
         for i in range(GRID + 1):
             x, y = -1.0 + 2.0 * i / GRID, -1.0 + 2.0 * j / GRID
-            if 0 < i < GRID and 0 < j < GRID:  # jitter inside: no edge on a pixel centre
+            # Jittered (border vertices along the border) so that no triangle edge passes
+            # exactly through pixel centres, where the engines could pick different sides.
+            if 0 < i < GRID:
                 x += (_hash(j * 31 + i, 1) - 0.5) * 0.12
+            if 0 < j < GRID:
                 y += (_hash(j * 31 + i, 2) - 0.5) * 0.12
             verts.append((x, y, 0.0))
     for j in range(GRID):
@@ -44,19 +47,22 @@ def _mesh():
     first.data.foreach_get("uv", uv)
     # The second map: the first one rotated and stretched, so a checker on it is not the first's.
     u, v = uv[0::2].copy(), uv[1::2].copy()
-    uv[0::2], uv[1::2] = 0.8 * u + 0.6 * v, -1.3 * u + 0.9 * v + 0.2
+    # (Kept positive: Photon clamps negative emission, which is not what is tested here.)
+    uv[0::2], uv[1::2] = 0.8 * u + 0.6 * v, -1.3 * u + 0.9 * v + 1.4
     second.data.foreach_set("uv", uv)
     mesh.uv_layers.active = first
     col = mesh.color_attributes.new("Col", 'BYTE_COLOR', 'CORNER')
     col.data.foreach_set("color", [_hash(k, 3 + k % 4) for k in range(len(col.data) * 4)])
     pcol = mesh.color_attributes.new("PCol", 'FLOAT_COLOR', 'POINT')
     pcol.data.foreach_set("color", [_hash(k, 7) * 2.0 for k in range(len(pcol.data) * 4)])
-    mesh.color_attributes.render_color_index = 0  # "Col"
-    mesh.color_attributes.active_color = pcol  # not the render one: Color Attribute must not read it
+    # The active colour is not the render one: Color Attribute without a name reads "Col".
+    mesh.color_attributes.active_color = pcol
+    names = [a.name for a in mesh.color_attributes]  # listed by domain: not creation order
+    mesh.color_attributes.render_color_index = names.index("Col")
     f = mesh.attributes.new("f", 'FLOAT', 'FACE')
     f.data.foreach_set("value", [_hash(k, 11) for k in range(len(f.data))])
     vec = mesh.attributes.new("v", 'FLOAT_VECTOR', 'POINT')
-    vec.data.foreach_set("vector", [_hash(k, 13) - 0.25 for k in range(len(vec.data) * 3)])
+    vec.data.foreach_set("vector", [_hash(k, 13) + 0.25 for k in range(len(vec.data) * 3)])
     return mesh
 
 
@@ -150,10 +156,21 @@ def main(out_dir):
             scene.render.filepath = path
             bpy.ops.render.render(write_still=True)
             images[engine] = harness.read_image(path)[:, :, :3]
-        diff = np.abs(images['CYCLES'] - images['PHOTON'])
-        scale = np.maximum(1.0, np.abs(images['CYCLES']))
+        cycles, photon = images['CYCLES'], images['PHOTON']
+        # Both engines place their one sample within 0.01 pixel of the pixel centre (a Box
+        # filter of width 0.01): the values may differ by that offset times the image's
+        # gradient, estimated from the largest step to a 4-neighbour.
+        padded = np.pad(cycles, ((1, 1), (1, 1), (0, 0)), mode='edge')
+        step = np.max([np.abs(padded[1:-1, 1:-1] - padded[:-2, 1:-1]),
+                       np.abs(padded[1:-1, 1:-1] - padded[2:, 1:-1]),
+                       np.abs(padded[1:-1, 1:-1] - padded[1:-1, :-2]),
+                       np.abs(padded[1:-1, 1:-1] - padded[1:-1, 2:])], axis=0)
+        diff = np.abs(cycles - photon)
+        scale = np.maximum(1.0, np.abs(cycles))
+        over = diff > 1e-4 * scale + 0.03 * step  # margin for gradients that bend
         result[name] = {"max_rel": float((diff / scale).max()),
-                        "over_1e4": int(((diff / scale) > 1e-4).any(axis=2).sum()),
+                        "max_beyond_jitter": float(np.max(diff - 0.03 * step)),
+                        "over": int(over.any(axis=2).sum()),
                         "pixels": RESOLUTION * RESOLUTION,
                         "cycles_range": [float(images['CYCLES'].min()),
                                          float(images['CYCLES'].max())],

@@ -37,6 +37,9 @@ ShaderGlobals surface_globals(const SurfaceInteraction& si, const Vec3& wo, cons
     g.object_pass_index = si.object->pass_index;
   }
   if (si.mesh) {
+    g.mesh = si.mesh;
+    g.primitive = si.primitive;
+    g.barycentric = si.barycentric;
     // Generated: the object-space point in the mesh's texture space box, [0, 1]^3.
     const Vec3 size = si.mesh->texspace_size;
     const Vec3 safe{size.x != 0.0f ? size.x : 1.0f, size.y != 0.0f ? size.y : 1.0f,

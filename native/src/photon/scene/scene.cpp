@@ -3,6 +3,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
+#include <algorithm>
 #include <functional>
 
 namespace photon {
@@ -55,6 +56,13 @@ MeshCleanupReport clean_mesh(Mesh* mesh) {
   const bool has_normals = mesh->corner_normals.size() == tri_count * 3;
   const bool has_uvs = mesh->corner_uvs.size() == tri_count * 3;
   const bool has_slots = mesh->material_slots.size() == tri_count;
+  // Attributes that do not hold three corners per triangle cannot be read safely: dropped.
+  mesh->attributes.erase(std::remove_if(mesh->attributes.begin(), mesh->attributes.end(),
+                                        [&](const MeshAttribute& a) {
+                                          return a.components < 1 || a.components > 4 ||
+                                                 a.values.size() != tri_count * 3 * a.components;
+                                        }),
+                         mesh->attributes.end());
   if (!has_normals) mesh->corner_normals.clear();
   if (!has_uvs) mesh->corner_uvs.clear();
   if (!has_slots) mesh->material_slots.clear();
@@ -115,6 +123,10 @@ MeshCleanupReport clean_mesh(Mesh* mesh) {
         if (has_uvs) mesh->corner_uvs[3 * kept + c] = mesh->corner_uvs[3 * t + c];
       }
       if (has_slots) mesh->material_slots[kept] = mesh->material_slots[t];
+      for (MeshAttribute& a : mesh->attributes) {
+        const size_t n = 3 * a.components;
+        std::copy_n(a.values.begin() + t * n, n, a.values.begin() + kept * n);
+      }
       source.push_back(static_cast<uint32_t>(t));
       ++kept;
     }
@@ -123,6 +135,7 @@ MeshCleanupReport clean_mesh(Mesh* mesh) {
   if (has_normals) mesh->corner_normals.resize(kept * 3);
   if (has_uvs) mesh->corner_uvs.resize(kept * 3);
   if (has_slots) mesh->material_slots.resize(kept);
+  for (MeshAttribute& a : mesh->attributes) a.values.resize(kept * 3 * a.components);
   // Composes with an earlier cleanup's numbering, so cleaning twice keeps the caller's indices.
   const bool had_source = mesh->source_triangles.size() == tri_count;
   if (!had_source) mesh->source_triangles.clear();

@@ -22,6 +22,16 @@ enum Visibility : uint32_t {
   kVisibleAll = 0x1Fu,
 };
 
+// A named per-corner mesh attribute a shader program reads (a UV map, a colour attribute, a
+// generic attribute): `components` floats (1 to 4) per corner, three corners per triangle in
+// the mesh's triangle order. Point and face domains arrive expanded to corners.
+struct MeshAttribute {
+  std::string name;
+  uint64_t key = 0;         // attribute_key(name), compared before the name
+  uint32_t components = 0;  // 1 float, 2 UV, 3 vector, 4 RGBA
+  std::vector<float> values;
+};
+
 struct Mesh {
   std::string name;
   std::vector<Vec3> positions;
@@ -36,6 +46,8 @@ struct Mesh {
   // object space): the mesh's bounding box unless the artist set another.
   Vec3 texspace_location{0.0f};
   Vec3 texspace_size{1.0f};
+  // Named attributes (shading/attribute_nodes.h reads them; scene/mesh_attribute.h).
+  std::vector<MeshAttribute> attributes;
 
   size_t triangle_count() const { return indices.size() / 3; }
 };

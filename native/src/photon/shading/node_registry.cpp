@@ -1,5 +1,6 @@
 #include "photon/shading/node_registry.h"
 
+#include "photon/shading/attribute_nodes.h"
 #include "photon/shading/color_nodes.h"
 #include "photon/shading/image_nodes.h"
 #include "photon/shading/input_nodes.h"
@@ -13,6 +14,8 @@ namespace photon {
 
 const std::vector<NodeFamilyEntry>& node_families() {
   static const std::vector<NodeFamilyEntry> families = {
+      // First: it claims UV Map nodes that name their map (input nodes read the active one).
+      {NodeFamily::kAttribute, compile_attribute_node, eval_attribute_node},
       {NodeFamily::kInput, compile_input_node, eval_input_node},
       {NodeFamily::kConvert, compile_convert_node, eval_convert_node},
       {NodeFamily::kMath, compile_math_node, eval_math_node},

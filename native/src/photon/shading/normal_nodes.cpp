@@ -4,8 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include "photon/shading/attribute_nodes.h"
 #include "photon/shading/input_nodes.h"
 #include "photon/shading/node_registry.h"
+#include "photon/scene/scene.h"
 
 namespace photon {
 namespace {
@@ -62,16 +64,22 @@ void eval_bump(const Instruction& ins, const ShaderProgram& program, const Shade
 
 // Cycles' svm_node_normal_map: colour 2c - 1 in the tangent frame (T, sign B, N) of the
 // interpolated normal, or in object / world space; then N + (N' - N) strength.
-void eval_normal_map(const Instruction& ins, const ShaderGlobals& g, float* r) {
+void eval_normal_map(const Instruction& ins, const ShaderProgram& program, const ShaderGlobals& g,
+                     float* r) {
   const float strength = std::max(load1(r, ins.in[0]), 0.0f);
   Vec3 c = load3(r, ins.in[1]);
   c = Vec3(2.0f * (c.x - 0.5f), 2.0f * (c.y - 0.5f), 2.0f * (c.z - 0.5f));
   Vec3 n(0.0f);
   if (ins.mode == kTangent) {
-    if (length_squared(g.dpdu) > 0.0f) {
-      Vec3 t = safe_normalize(g.dpdu - g.n * dot(g.n, g.dpdu));
+    // The node's named UV map (param[0] = its attribute slot + 1) or the active one.
+    Vec3 dpdu = g.dpdu, dpdv = g.dpdv;
+    if (ins.param[0] > 0.0f &&
+        !attribute_uv_tangents(g, program, static_cast<uint32_t>(ins.param[0]) - 1, &dpdu, &dpdv))
+      dpdu = dpdv = Vec3(0.0f);  // a missing map: the unperturbed normal, as in Cycles
+    if (length_squared(dpdu) > 0.0f) {
+      Vec3 t = safe_normalize(dpdu - g.n * dot(g.n, dpdu));
       Vec3 b = cross(g.n, t);
-      if (dot(b, g.dpdv) < 0.0f) b = -b;
+      if (dot(b, dpdv) < 0.0f) b = -b;
       n = safe_normalize(t * c.x + b * c.y + g.n * c.z);
     }
   } else {
@@ -106,6 +114,20 @@ ShaderGlobals offset_globals(const ShaderGlobals& g, const Vec3& dp) {
   if (std::fabs(det) > 1e-30f) {
     const float pu = dot(dp, g.dpdu), pv = dot(dp, g.dpdv);
     s.uv = Vec2{g.uv.x + (c * pu - b * pv) / det, g.uv.y + (a * pv - b * pu) / det};
+  }
+  // Mesh attributes: the barycentrics move by the object-space offset written in the
+  // triangle's edges (least squares, as for the UVs), extrapolating past its edges.
+  if (g.mesh && 3 * static_cast<size_t>(g.primitive) + 2 < g.mesh->indices.size()) {
+    const uint32_t* idx = &g.mesh->indices[3 * static_cast<size_t>(g.primitive)];
+    const Vec3 e1 = g.mesh->positions[idx[1]] - g.mesh->positions[idx[0]];
+    const Vec3 e2 = g.mesh->positions[idx[2]] - g.mesh->positions[idx[0]];
+    const float a11 = dot(e1, e1), a12 = dot(e1, e2), a22 = dot(e2, e2);
+    const float d = a11 * a22 - a12 * a12;
+    if (std::fabs(d) > 1e-30f) {
+      const float p1 = dot(obj_dp, e1), p2 = dot(obj_dp, e2);
+      s.barycentric = Vec2{g.barycentric.x + (a22 * p1 - a12 * p2) / d,
+                           g.barycentric.y + (a11 * p2 - a12 * p1) / d};
+    }
   }
   return s;
 }
@@ -148,6 +170,9 @@ CompileStatus compile_normal_node(const NodeDesc& desc, ShaderProgram* program, 
                 : space == "BLENDER_OBJECT" ? kBlenderObject
                 : space == "BLENDER_WORLD"  ? kBlenderWorld
                                             : kTangent;
+    const std::string uv_map = enum_value(desc, "photon_attribute", "");
+    if (out->mode == kTangent && !uv_map.empty())
+      out->param[0] = static_cast<float>(program_attribute_slot(program, uv_map) + 1);
     if (out->in[0] < 0 || out->in[1] < 0) {
       *error = "Normal Map: Strength and Color need registers";
       return CompileStatus::kError;
@@ -163,7 +188,7 @@ void eval_normal_node(const Instruction& ins, const ShaderProgram& program,
     const size_t index = static_cast<size_t>(&ins - program.code.data());
     eval_bump(ins, program, g, r, index);
   } else {
-    eval_normal_map(ins, g, r);
+    eval_normal_map(ins, program, g, r);
   }
 }
 

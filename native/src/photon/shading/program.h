@@ -17,6 +17,7 @@ namespace photon {
 
 class TextureSet;
 struct Camera;
+struct Mesh;
 
 // One node as the add-on describes it (see addon/photon/sync/shader_program.py).
 struct NodeDesc {
@@ -54,10 +55,17 @@ struct Instruction {
   int32_t skip = 0;  // kNormal Bump: instructions of the height block that precede it
 };
 
+// A mesh attribute a program reads by name (shading/attribute_nodes.*).
+struct ProgramAttribute {
+  std::string name;
+  uint64_t key = 0;  // attribute_key(name) (scene/mesh_attribute.h)
+};
+
 struct ShaderProgram {
   std::vector<Instruction> code;
   std::vector<float> registers;  // initial values; size() is the register count
   std::vector<float> data;       // tables
+  std::vector<ProgramAttribute> attributes;  // named mesh attributes, by slot
 
   bool empty() const { return code.empty(); }
 };
@@ -89,6 +97,11 @@ struct ShaderGlobals {
         transparent_depth = 0.0f, transmission_depth = 0.0f;
   bool is_background = false;  // a world shader: p is irrelevant, incoming is -direction
   const TextureSet* textures = nullptr;
+  // The mesh point: named attributes are interpolated on triangle `primitive` of `mesh` at
+  // Embree barycentrics (null mesh: none, e.g. the world).
+  const Mesh* mesh = nullptr;
+  uint32_t primitive = 0;
+  Vec2 barycentric{0.0f, 0.0f};
   // Bump: a small step along the surface for finite differences (scene units).
   float bump_step = 1e-3f;
 };
