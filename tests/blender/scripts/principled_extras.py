@@ -72,8 +72,17 @@ FEATURES = {
 }
 
 
+def clear():
+    """Removes every datablock the previous feature made (reading factory settings again would
+    unregister the add-on)."""
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.materials, bpy.data.lights,
+                       bpy.data.cameras, bpy.data.worlds):
+        for item in list(collection):
+            collection.remove(item)
+
+
 def build(feature):
-    bpy.ops.wm.read_factory_settings(use_empty=True)
+    clear()
     scene = bpy.context.scene
     bpy.ops.mesh.primitive_uv_sphere_add(segments=96, ring_count=48, radius=1.0)
     sphere = bpy.context.active_object
@@ -122,15 +131,18 @@ def main(out_dir, photon_samples, cycles_samples, features):
         scene.render.engine = 'CYCLES'
         scene.cycles.samples = int(cycles_samples)
         scene.cycles.use_denoising = False
-        scene.cycles.max_bounces = 16
-        scene.cycles.transmission_bounces = 16
+        # Deep enough that both engines converge inside the glass sphere (internal glossy
+        # reflections), whatever each counts as a bounce.
+        scene.cycles.max_bounces = 64
+        scene.cycles.transmission_bounces = 64
+        scene.cycles.glossy_bounces = 64
         scene.cycles.pixel_filter_type = 'BOX'
         scene.cycles.seed = 1
         cycles = os.path.join(out_dir, f"{feature}_cycles.exr")
         render(scene, cycles)
         scene.render.engine = 'PHOTON'
         scene.photon.samples = int(photon_samples)
-        scene.photon.max_depth = 16
+        scene.photon.max_depth = 64
         scene.photon.seed = 1
         photon = os.path.join(out_dir, f"{feature}_photon.exr")
         render(scene, photon)

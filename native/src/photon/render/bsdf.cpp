@@ -345,12 +345,11 @@ void Bsdf::add(const Lobe& lobe) {
     l.f0[c] = std::isfinite(f) ? std::clamp(f, 0.0f, 1.0f) : 0.0f;
   }
   if (is_black(l.weight)) return;
-  // Anisotropic alphas exceed 1 along their long axis (Cycles' r^2 / aspect), up to 100 for the
-  // Anisotropic BSDF's Anisotropy 0.99; isotropic ones stay within Blender's range.
-  const float max_alpha = l.anisotropic() ? 100.0f : 1.0f;
-  l.alpha = std::isfinite(l.alpha) ? std::clamp(l.alpha, 0.0f, max_alpha) : 0.0f;
+  // GGX alphas within [0, 1], as Cycles 3.4's microfacet setup saturates both (an anisotropic
+  // lobe's long axis, r^2 / aspect, is cut at 1 there too).
+  l.alpha = std::isfinite(l.alpha) ? std::clamp(l.alpha, 0.0f, 1.0f) : 0.0f;
   if (l.anisotropic())
-    l.alpha_y = std::isfinite(l.alpha_y) ? std::clamp(l.alpha_y, 0.0f, max_alpha) : l.alpha;
+    l.alpha_y = std::isfinite(l.alpha_y) ? std::clamp(l.alpha_y, 0.0f, 1.0f) : l.alpha;
   l.roughness = std::isfinite(l.roughness) ? std::clamp(l.roughness, 0.0f, 1.0f) : 0.0f;
   if (!(l.ior > 0.0f) || !std::isfinite(l.ior)) l.ior = 1.45f;
   l.ior = std::clamp(l.ior, 1e-3f, 1e3f);

@@ -100,7 +100,7 @@ std::vector<Case> cases() {
       {"Sheen_80", {sheen()}, 80},
       {"SheenOnBurley_60", {lambert(Vec3(0.5f)), sheen(Vec3(0.7f))}, 60},
       {"AnisoGgx_45", {aniso_ggx(0.3f, 0.05f, tangent_at(40))}, 45},
-      {"AnisoGgxWide_70", {aniso_ggx(2.0f, 0.1f, tangent_at(-25))}, 70},
+      {"AnisoGgxWide_70", {aniso_ggx(1.0f, 0.1f, tangent_at(-25))}, 70},
       {"ClearcoatNormal_50", {lambert(Vec3(0.5f)), coat}, 50},
       {"GlassSplit_40", {refl, refr}, 40},
   };
@@ -177,7 +177,7 @@ TEST(PrincipledExtrasFurnace, OrenNayarSheenAndAnisotropicGgxConserveEnergy) {
       {"oren-nayar 1", oren_nayar(1.0f)},
       {"sheen", sheen()},
       {"aniso 0.5/0.02", aniso_ggx(0.5f, 0.02f, tangent_at(30))},
-      {"aniso 3.16/0.32", aniso_ggx(3.16f, 0.316f, tangent_at(-60))},
+      {"aniso 1/0.32", aniso_ggx(1.0f, 0.316f, tangent_at(-60))},
   };
   for (const auto& [name, lobe] : lobes)
     for (float theta : {0.0f, 45.0f, 80.0f}) {
@@ -283,7 +283,7 @@ TEST(PrincipledExtrasMaterial, AnisotropicHighlightFollowsTheRotatedUvTangent) {
     const Lobe& s = sp.bsdf.lobe(0);
     ASSERT_TRUE(s.anisotropic());
     const float aspect = std::sqrt(1.0f - 0.9f * 0.9f);
-    EXPECT_NEAR(s.alpha, 0.16f / aspect, 1e-5f);
+    EXPECT_NEAR(s.alpha, std::min(0.16f / aspect, 1.0f), 1e-5f);
     EXPECT_NEAR(s.alpha_y, 0.16f * aspect, 1e-6f);
     // The highlight is long along dP/du turned by rotation x 360 degrees about the normal.
     const Vec3 n(0, 0, 1), t = normalize(dpdu), b = cross(n, t);
