@@ -246,7 +246,7 @@ def test_describe_material_defaults_clamps_and_fallbacks(native):
 @pytest.mark.parametrize("closure, message", [
     ({"type": "TOON"}, "unknown closure type 'TOON'"),
     ({"type": "DIFFUSE", "colour": [1, 1, 1]}, "unknown key 'colour'"),
-    ({"type": "DIFFUSE", "params": {"sheen": 1.0}}, "unknown param 'sheen'"),
+    ({"type": "DIFFUSE", "params": {"velvet": 1.0}}, "unknown param 'velvet'"),
     ({"type": "DIFFUSE", "params": {"color": {"texture": 0, "channel": "RED"}}},
      "unknown channel 'RED'"),
     ({"type": "DIFFUSE", "params": {"roughness": [1, 2, 3]}}, "expects a number or a texture"),
