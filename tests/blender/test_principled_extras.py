@@ -65,3 +65,20 @@ def test_only_the_subsurface_fallback_is_reported(renders):
                        "supported yet are rendered at their defaults: Subsurface Radius"], log
     fallback = [line for line in warnings if "subsurface scattering is not supported" in line]
     assert len(fallback) == 1, log
+
+
+def test_clearcoat_normal_and_anisotropic_bsdf_convert(blender):
+    result, proc = blender.run_script("principled_extras_closures.py")
+    assert "exception" not in result, result.get("exception")
+    coat = result["Coat"]
+    (closure,) = coat["closures"]
+    # The bumped Clearcoat Normal is a program register; the base normal stays unlinked.
+    assert coat["program"] and isinstance(closure["clearcoat_normal"]["register"], int)
+    assert "normal" not in closure and coat["warnings"] == []
+    brushed = result["Brushed"]
+    (closure,) = brushed["closures"]
+    assert closure["type"] == "ANISOTROPIC"
+    assert abs(closure["params"]["anisotropic"] + 0.4) < 1e-6
+    assert abs(closure["params"]["anisotropic_rotation"] - 0.2) < 1e-6
+    assert brushed["warnings"] == ["Material 'Brushed': node 'Anisotropic BSDF': a linked "
+                                   "Tangent is not supported; using the UV map's tangent"]
