@@ -96,7 +96,8 @@ Input parse_input(const py::handle& value, ParamKind kind, const Input& fallback
 Closure parse_closure(const py::handle& item, const std::string& what) {
   if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
   py::dict d = py::reinterpret_borrow<py::dict>(item);
-  check_keys(d, {"type", "sharp", "params", "normal_map", "normal", "weight"}, what);
+  check_keys(d, {"type", "sharp", "params", "normal_map", "normal", "clearcoat_normal", "weight"},
+             what);
   if (!d.contains("type")) fail(what + " has no 'type'");
   const std::string type = py::str(d["type"]);
   const ClosureSpec* found = find_closure(type.c_str());
@@ -131,6 +132,13 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
     py::dict n = d["normal"];
     check_keys(n, {"register"}, what + " normal");
     closure.normal_reg =
+        static_cast<int32_t>(std::clamp<int64_t>(n["register"].cast<int64_t>(), -1, INT32_MAX));
+  }
+
+  if (d.contains("clearcoat_normal") && !d["clearcoat_normal"].is_none()) {
+    py::dict n = d["clearcoat_normal"];
+    check_keys(n, {"register"}, what + " clearcoat_normal");
+    closure.clearcoat_normal_reg =
         static_cast<int32_t>(std::clamp<int64_t>(n["register"].cast<int64_t>(), -1, INT32_MAX));
   }
 

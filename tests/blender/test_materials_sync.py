@@ -37,7 +37,7 @@ def close(a, b, tol=1e-5):
     return np.allclose(np.asarray(a, dtype=float), np.asarray(b, dtype=float), atol=tol)
 
 
-def test_principled_metal_reads_its_inputs_and_lists_ignored_ones_once(converted):
+def test_principled_metal_reads_its_inputs_and_reports_the_subsurface_fallback_once(converted):
     closure = only_closure(converted, "Metal")
     assert closure["type"] == "PRINCIPLED" and closure["weight"] == []
     p = closure["params"]
@@ -46,9 +46,11 @@ def test_principled_metal_reads_its_inputs_and_lists_ignored_ones_once(converted
                  [1.0, 0.2, 0.4, 0.1])
     assert close(p["emission"], [1.0, 0.5, 0.0]) and close(p["strength"], 3.0)
     assert close([p["specular"], p["ior"], p["alpha"], p["transmission"]], [0.5, 1.45, 1.0, 0])
+    assert close([p["sheen"], p["sheen_tint"], p["subsurface"]], [0.3, 0.5, 0.1])
     warnings = material(converted, "Metal")["warnings"]
-    assert warnings == ["Material 'Metal': Principled BSDF inputs not supported yet are "
-                        "rendered at their defaults: Subsurface, Sheen"]
+    assert warnings == ["Material 'Metal': subsurface scattering is not supported; Subsurface "
+                        "is rendered as diffuse mixed towards Subsurface Color (as Cycles "
+                        "renders it without subsurface scattering)"]
 
 
 def test_mix_by_image_alpha_gives_complementary_weights_on_the_texture(converted):
@@ -244,7 +246,7 @@ def test_describe_material_defaults_clamps_and_fallbacks(native):
 @pytest.mark.parametrize("closure, message", [
     ({"type": "TOON"}, "unknown closure type 'TOON'"),
     ({"type": "DIFFUSE", "colour": [1, 1, 1]}, "unknown key 'colour'"),
-    ({"type": "DIFFUSE", "params": {"sheen": 1.0}}, "unknown param 'sheen'"),
+    ({"type": "DIFFUSE", "params": {"velvet": 1.0}}, "unknown param 'velvet'"),
     ({"type": "DIFFUSE", "params": {"color": {"texture": 0, "channel": "RED"}}},
      "unknown channel 'RED'"),
     ({"type": "DIFFUSE", "params": {"roughness": [1, 2, 3]}}, "expects a number or a texture"),

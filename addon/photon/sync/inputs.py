@@ -266,9 +266,10 @@ def _identity_mapping(node):
     return True
 
 
-def read_normal_map(socket, stack, ctx):
+def read_normal_map(socket, stack, ctx, program_only=False):
     """{"texture", "strength"} for a Normal input fed by a tangent-space Normal Map node with an
-    image, or None (the interpolated normal)."""
+    image, {"register"} for any other normal the shader program computes (always, with
+    `program_only`), or None (the interpolated normal)."""
     src = nodes.source(socket, stack, ctx.links)
     if src.node is None:
         return None
@@ -278,7 +279,7 @@ def read_normal_map(socket, stack, ctx):
              if node.type == 'NORMAL_MAP' else None)
     strength_src = (nodes.source(node.inputs["Strength"], src.stack, ctx.links)
                     if node.type == 'NORMAL_MAP' else None)
-    if (node.type != 'NORMAL_MAP' or node.space != 'TANGENT' or node.uv_map or
+    if (program_only or node.type != 'NORMAL_MAP' or node.space != 'TANGENT' or node.uv_map or
             color.node is None or color.node.type != 'TEX_IMAGE' or
             color.output_name != "Color" or strength_src.node is not None or
             not _plain_image(color.node, color.stack, ctx)):

@@ -29,14 +29,13 @@ GGX_LIKE = {'GGX', 'MULTI_GGX'}
 # itself is ignored, inputs that only matter when this one is active: (name, default or None
 # for "only a link counts")). Linked counts as active.
 PRINCIPLED_IGNORED = [
-    (("Subsurface", "Subsurface Weight"), 0.0, True,
-     [("Subsurface Radius", (1.0, 0.2, 0.1)), ("Subsurface Color", (0.8, 0.8, 0.8, 1.0)),
-      ("Subsurface IOR", 1.4), ("Subsurface Anisotropy", 0.0)]),
-    (("Anisotropic",), 0.0, True, [("Anisotropic Rotation", 0.0), ("Tangent", None)]),
-    (("Sheen", "Sheen Weight"), 0.0, True, [("Sheen Tint", 0.5)]),
-    (("Transmission Roughness",), 0.0, True, []),
-    (("Clearcoat", "Coat Weight"), 0.0, False, [("Clearcoat Normal", None)]),
+    (("Subsurface", "Subsurface Weight"), 0.0, False,
+     [("Subsurface Radius", (1.0, 0.2, 0.1)), ("Subsurface IOR", 1.4),
+      ("Subsurface Anisotropy", 0.0)]),
+    (("Anisotropic",), 0.0, False, [("Tangent", None)]),
 ]
+# Nodes whose Tangent input, when linked, is ignored (the UV map's tangent is used).
+TANGENT_NODES = {'BSDF_PRINCIPLED', 'BSDF_ANISOTROPIC'}
 
 
 def _differs(socket, default):
@@ -55,6 +54,12 @@ def _differs(socket, default):
 
 
 def _note_ignored_principled(node, stack, ctx):
+    subsurface = nodes.find_input(node, "Subsurface", "Subsurface Weight")
+    if _differs(subsurface, 0.0):
+        ctx.warn_once(("subsurface", ctx.name),
+                      f"Material '{ctx.name}': subsurface scattering is not supported; "
+                      f"Subsurface is rendered as diffuse mixed towards Subsurface Color (as "
+                      f"Cycles renders it without subsurface scattering)")
     for names, default, ignored, dependents in PRINCIPLED_IGNORED:
         main = nodes.find_input(node, *names)
         if not _differs(main, default):
@@ -100,6 +105,17 @@ def _bsdf_closure(node, stack, ctx):
         normal_map = read_normal_map(normal, stack, ctx)
         if normal_map is not None:
             closure["normal" if "register" in normal_map else "normal_map"] = normal_map
+    if kind == 'BSDF_PRINCIPLED':
+        coat_normal = nodes.find_input(node, "Clearcoat Normal", "Coat Normal")
+        if coat_normal is not None and coat_normal.is_linked:
+            found = read_normal_map(coat_normal, stack, ctx, program_only=True)
+            if found is not None:
+                closure["clearcoat_normal"] = found
+    tangent = node.inputs.get("Tangent") if kind in TANGENT_NODES else None
+    if kind == 'BSDF_ANISOTROPIC' and tangent is not None and tangent.is_linked:
+        where = ctx.where(node, stack)
+        ctx.warn_once(("tangent", where), f"{where}: a linked Tangent is not supported; "
+                                          f"using the UV map's tangent")
     return closure
 
 
@@ -177,6 +193,7 @@ def _without_registers(closures):
         c["params"] = {k: plain(v) for k, v in c.get("params", {}).items()}
         c["weight"] = [dict(w, fac=plain(w["fac"])) for w in c.get("weight", [])]
         c.pop("normal", None)
+        c.pop("clearcoat_normal", None)
         result.append(c)
     return result
 

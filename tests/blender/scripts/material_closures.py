@@ -79,7 +79,7 @@ def build(folder):
                            (0.5, 0.5, 1.0, 1.0))
     normal_png.colorspace_settings.name = 'Non-Color'
 
-    # Principled metal, with Sheen and Subsurface set (not rendered: one warning).
+    # Principled metal, with Sheen and Subsurface set (subsurface falls back to diffuse: one warning).
     mat, nodes, links, bsdf, out = new_material("Metal")
     bsdf.inputs["Base Color"].default_value = (0.9, 0.6, 0.2, 1.0)
     bsdf.inputs["Metallic"].default_value = 1.0

@@ -1,5 +1,5 @@
-// Isotropic GGX (Trowbridge-Reitz) microfacet distribution and Schlick's Fresnel. Every
-// direction is in the local shading frame (normal +z), unit length, pointing away from the
+// GGX (Trowbridge-Reitz) microfacet distribution, isotropic and anisotropic, and Schlick's Fresnel.
+// Every direction is in the local shading frame (normal +z), unit length, pointing away from the
 // surface; `alpha` is the GGX roughness (Blender roughness squared).
 #pragma once
 
@@ -30,6 +30,15 @@ Vec3 ggx_sample_visible_normal(const Vec3& wo, float alpha, Vec2 u);
 // Density of ggx_sample_visible_normal over the solid angle of h:
 // D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z (Heitz 2018, eq. 2).
 float ggx_visible_normal_pdf(const Vec3& wo, const Vec3& h, float alpha);
+
+// Anisotropic GGX, `ax` along the local x axis and `ay` along y (Heitz 2014, eq. 85 for D and
+// eq. 86 for Lambda; the visible normals sampled by stretching the view direction with both
+// alphas, Heitz 2018, listing 1). With ax == ay they equal the isotropic functions above.
+float ggx_d(const Vec3& h, float ax, float ay);
+float ggx_lambda(const Vec3& w, float ax, float ay);
+float ggx_g1(const Vec3& w, const Vec3& h, float ax, float ay);
+Vec3 ggx_sample_visible_normal(const Vec3& wo, float ax, float ay, Vec2 u);
+float ggx_visible_normal_pdf(const Vec3& wo, const Vec3& h, float ax, float ay);
 
 // Schlick 1994: F0 + (1 - F0)(1 - cos)^5, per channel.
 inline float schlick_weight(float cos_theta) {

@@ -25,10 +25,15 @@ Vec3 unit(const Vec3& w) {
   return std::fabs(l2 - 1.0f) < 4e-7f ? w : w / std::sqrt(l2);
 }
 
+// The largest GGX alpha of a lobe (both axes of an anisotropic one).
+float max_alpha(const Lobe& l) {
+  return l.anisotropic() ? std::max(l.alpha, l.alpha_y) : l.alpha;
+}
+
 bool is_delta(const Lobe& l) {
   switch (l.type) {
     case LobeType::kGgxReflection:
-      return l.alpha < kDeltaAlpha;
+      return max_alpha(l) < kDeltaAlpha;
     case LobeType::kGgxGlass:
     case LobeType::kGgxRefraction:
       return l.alpha < kDeltaAlpha || std::fabs(l.ior - 1.0f) < kUnitEtaEpsilon;
@@ -37,6 +42,24 @@ bool is_delta(const Lobe& l) {
     default:
       return false;
   }
+}
+
+// The GGX functions of a lobe: anisotropic ones with both alphas (the isotropic path keeps the
+// isotropic functions, so isotropic lobes are unchanged to the bit).
+float lobe_d(const Lobe& l, const Vec3& h) {
+  return l.anisotropic() ? ggx_d(h, l.alpha, l.alpha_y) : ggx_d(h, l.alpha);
+}
+float lobe_g2(const Lobe& l, const Vec3& wo, const Vec3& wi, const Vec3& h) {
+  if (!l.anisotropic()) return ggx_g2(wo, wi, h, l.alpha);
+  return ggx_g1(wo, h, l.alpha, l.alpha_y) * ggx_g1(wi, h, l.alpha, l.alpha_y);
+}
+float lobe_visible_normal_pdf(const Lobe& l, const Vec3& wo, const Vec3& h) {
+  return l.anisotropic() ? ggx_visible_normal_pdf(wo, h, l.alpha, l.alpha_y)
+                         : ggx_visible_normal_pdf(wo, h, l.alpha);
+}
+Vec3 lobe_sample_visible_normal(const Lobe& l, const Vec3& wo, Vec2 u) {
+  return l.anisotropic() ? ggx_sample_visible_normal(wo, l.alpha, l.alpha_y, u)
+                         : ggx_sample_visible_normal(wo, l.alpha, u);
 }
 
 // Fresnel of a kGgxReflection lobe at the microfacet cosine `cos_oh`.
@@ -90,13 +113,13 @@ LobeEval ggx_reflection(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta
   const Vec3 h = normalize(wo + wi);
   const float cos_oh = dot(wo, h);
   if (cos_oh <= 0.0f) return r;
-  const float d = ggx_d(h, l.alpha);
-  const float g = ggx_g2(wo, wi, h, l.alpha);
+  const float d = lobe_d(l, h);
+  const float g = lobe_g2(l, wo, wi, h);
   const bool glass = l.type == LobeType::kGgxGlass;
   const Vec3 fr =
       glass ? Vec3(fresnel_dielectric(cos_oh, eta)) : reflection_fresnel(l, cos_oh, eta);
   r.f = l.weight * fr * (d * g / (4.0f * wo.z * wi.z));
-  r.pdf = ggx_visible_normal_pdf(wo, h, l.alpha) / (4.0f * cos_oh) * (glass ? fr.x : 1.0f);
+  r.pdf = lobe_visible_normal_pdf(l, wo, h) / (4.0f * cos_oh) * (glass ? fr.x : 1.0f);
   return r;
 }
 
@@ -107,12 +130,12 @@ LobeEval ggx_transmission(const Lobe& l, const Vec3& wo, const Vec3& wi, float e
   LobeEval r;
   const RefractionGeometry geo = refraction_geometry(wo, wi, eta);
   if (!geo.valid) return r;
-  const float d = ggx_d(geo.h, l.alpha);
-  const float g = ggx_g2(wo, wi, geo.h, l.alpha);
+  const float d = lobe_d(l, geo.h);
+  const float g = lobe_g2(l, wo, wi, geo.h);
   const float t = l.type == LobeType::kGgxGlass ? 1.0f - fresnel_dielectric(geo.cos_oh, eta) : 1.0f;
   const float jacobian = eta * eta * std::fabs(geo.cos_ih) / geo.denom2;  // d(h) / d(wi)
   r.f = l.weight * (t * d * g * jacobian * geo.cos_oh / (wo.z * std::fabs(wi.z)));
-  r.pdf = t * ggx_visible_normal_pdf(wo, geo.h, l.alpha) * jacobian;
+  r.pdf = t * lobe_visible_normal_pdf(l, wo, geo.h) * jacobian;
   return r;
 }
 
@@ -145,6 +168,26 @@ LobeEval eval_lobe(const Lobe& l, const Vec3& wo, const Vec3& wi, bool reflect, 
       r.f = l.weight * kInvPi;
       r.pdf = cosine_hemisphere_pdf(-wi.z);
       break;
+    case LobeType::kOrenNayar: {
+      if (!shading_reflect) break;
+      // Cycles 3.4 bsdf_oren_nayar: f = A + B t with s = wi.wo - cos_i cos_o, t = s / max(cos_i,
+      // cos_o) where s > 0 (else s), A = 1 / (pi + (3 pi - 4) / 6 sigma), B = sigma A.
+      const float sigma = l.roughness;
+      const float a = 1.0f / (kPi + ((3.0f * kPi - 4.0f) / 6.0f) * sigma);
+      const float b = sigma * a;
+      float t = dot(wi, wo) - wi.z * wo.z;
+      if (t > 0.0f) t /= std::max(wi.z, wo.z);
+      r.f = l.weight * std::max(a + b * t, 0.0f);
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    }
+    case LobeType::kSheen: {
+      if (!shading_reflect) break;
+      const Vec3 h = normalize(wo + wi);
+      r.f = l.weight * schlick_weight(dot(wi, h));
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    }
     case LobeType::kGgxReflection:
       if (shading_reflect) r = ggx_reflection(l, wo, wi, eta);
       break;
@@ -170,6 +213,8 @@ bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 
   switch (l.type) {
     case LobeType::kLambert:
     case LobeType::kBurleyDiffuse:
+    case LobeType::kOrenNayar:
+    case LobeType::kSheen:
       *wi = sample_cosine_hemisphere(u);
       return true;
     case LobeType::kTranslucent:
@@ -177,13 +222,13 @@ bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 
       *reflection = false;
       return true;
     case LobeType::kGgxReflection: {
-      const Vec3 h = ggx_sample_visible_normal(wo, l.alpha, u);
+      const Vec3 h = lobe_sample_visible_normal(l, wo, u);
       *wi = reflect(wo, h);
       return true;
     }
     case LobeType::kGgxGlass:
     case LobeType::kGgxRefraction: {
-      const Vec3 h = ggx_sample_visible_normal(wo, l.alpha, u);
+      const Vec3 h = lobe_sample_visible_normal(l, wo, u);
       const float f = l.type == LobeType::kGgxGlass ? fresnel_dielectric(dot(wo, h), eta) : 0.0f;
       if (u_choice < f) {
         *wi = reflect(wo, h);
@@ -247,6 +292,9 @@ bool sample_delta_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice,
 // The albedo estimate of one lobe at wo (local), used for lobe selection.
 Vec3 lobe_albedo(const Lobe& l, const Vec3& wo, float eta) {
   if (l.type == LobeType::kGgxReflection) return l.weight * reflection_fresnel(l, wo.z, eta);
+  // Sheen grows towards grazing; Cycles picks it by (1 - cos_o)^5 (its avg_value). A floor
+  // keeps it selectable at normal incidence, where it still reflects light.
+  if (l.type == LobeType::kSheen) return l.weight * std::max(schlick_weight(wo.z), 0.02f);
   return l.weight;
 }
 
@@ -257,7 +305,12 @@ uint8_t Lobe::flags() const {
   switch (type) {
     case LobeType::kLambert:
     case LobeType::kBurleyDiffuse:
+    case LobeType::kOrenNayar:
       return kLobeReflection | kLobeDiffuse;
+    case LobeType::kSheen:
+      // Not Lambertian: its weight is no hemispherical reflectance, so the photon map's
+      // irradiance estimate must not stand in for it; it is sampled and ray traced.
+      return kLobeReflection | kLobeGlossy;
     case LobeType::kTranslucent:
       return kLobeTransmission | kLobeGlossy;
     case LobeType::kGgxReflection:
@@ -292,11 +345,37 @@ void Bsdf::add(const Lobe& lobe) {
     l.f0[c] = std::isfinite(f) ? std::clamp(f, 0.0f, 1.0f) : 0.0f;
   }
   if (is_black(l.weight)) return;
+  // GGX alphas within [0, 1], as Cycles 3.4's microfacet setup saturates both (an anisotropic
+  // lobe's long axis, r^2 / aspect, is cut at 1 there too).
   l.alpha = std::isfinite(l.alpha) ? std::clamp(l.alpha, 0.0f, 1.0f) : 0.0f;
+  if (l.anisotropic())
+    l.alpha_y = std::isfinite(l.alpha_y) ? std::clamp(l.alpha_y, 0.0f, 1.0f) : l.alpha;
   l.roughness = std::isfinite(l.roughness) ? std::clamp(l.roughness, 0.0f, 1.0f) : 0.0f;
   if (!(l.ior > 0.0f) || !std::isfinite(l.ior)) l.ior = 1.45f;
   l.ior = std::clamp(l.ior, 1e-3f, 1e3f);
+  // The lobe's own frame: its normal (when above the geometric surface) and tangent.
+  Frame own = frame_;
+  bool has_own = false;
+  if (is_unit_direction(l.normal) && is_finite(l.normal)) {
+    const Vec3 n = normalize(l.normal);
+    if (dot(n, ng_) > 1e-3f && dot(n, frame_.n) < 1.0f) {
+      own = Frame(n);
+      has_own = true;
+    }
+  }
+  if (l.anisotropic() && is_finite(l.tangent)) {
+    const Vec3 t = l.tangent - own.n * dot(own.n, l.tangent);
+    if (length_squared(t) > 1e-12f) {
+      own.t = normalize(t);
+      own.b = cross(own.n, own.t);
+      has_own = true;
+    }
+  }
+  l.normal = Vec3(0.0f);
+  l.tangent = Vec3(0.0f);
   if (count_ < kMaxLobes) {
+    lobe_frames_[count_] = own;
+    own_frame_[count_] = has_own;
     lobes_[count_++] = l;
     return;
   }
@@ -305,7 +384,11 @@ void Bsdf::add(const Lobe& lobe) {
   int lightest = 0;
   for (int i = 1; i < count_; ++i)
     if (max_component(lobes_[i].weight) < max_component(lobes_[lightest].weight)) lightest = i;
-  if (max_component(l.weight) > max_component(lobes_[lightest].weight)) lobes_[lightest] = l;
+  if (max_component(l.weight) > max_component(lobes_[lightest].weight)) {
+    lobes_[lightest] = l;
+    lobe_frames_[lightest] = own;
+    own_frame_[lightest] = has_own;
+  }
 }
 
 uint8_t Bsdf::flags() const {
@@ -322,6 +405,18 @@ bool Bsdf::to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const {
   return wo_local->z > 1e-7f && dot(*wo_world, ng_) != 0.0f;
 }
 
+bool Bsdf::lobe_local(int i, const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world,
+                      const Vec3& wi, Vec3* lwo, Vec3* lwi) const {
+  if (!own_frame_[i]) {
+    *lwo = wo;
+    *lwi = wi;
+    return true;
+  }
+  *lwo = lobe_frames_[i].to_local(wo_world);
+  *lwi = lobe_frames_[i].to_local(wi_world);
+  return lwo->z > 1e-7f;
+}
+
 float Bsdf::eta(const Lobe& l) const {
   return front_facing_ ? l.ior : 1.0f / l.ior;
 }
@@ -332,7 +427,12 @@ int Bsdf::selection_probabilities(const Vec3& wo_local, uint8_t mask, float* pro
   for (int i = 0; i < count_; ++i) {
     probs[i] = 0.0f;
     if (!(lobes_[i].flags() & mask)) continue;
-    probs[i] = std::max(0.0f, max_component(lobe_albedo(lobes_[i], wo_local, eta(lobes_[i]))));
+    Vec3 lwo = wo_local;
+    if (own_frame_[i]) {
+      lwo = lobe_frames_[i].to_local(frame_.to_world(wo_local));
+      if (!(lwo.z > 1e-7f)) continue;  // wo below the lobe's own normal: it cannot scatter
+    }
+    probs[i] = std::max(0.0f, max_component(lobe_albedo(lobes_[i], lwo, eta(lobes_[i]))));
     total += probs[i];
   }
   if (!(total > 0.0f) || !std::isfinite(total)) return 0;
@@ -351,7 +451,9 @@ void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_wor
   for (int i = 0; i < count_; ++i) {
     const Lobe& l = lobes_[i];
     if (!(l.flags() & mask) || is_delta(l)) continue;
-    const LobeEval e = eval_lobe(l, wo, wi, reflect, eta(l));
+    Vec3 lwo, lwi;
+    if (!lobe_local(i, wo_world, wo, wi_world, wi, &lwo, &lwi)) continue;
+    const LobeEval e = eval_lobe(l, lwo, lwi, reflect, eta(l));
     *f += e.f;
     if (probs) *pdf += probs[i] * e.pdf;
   }
@@ -401,11 +503,14 @@ bool Bsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample
   const Lobe& lobe = lobes_[k];
   const float lobe_eta = eta(lobe);
   const float wo_ng = dot(wo_w, ng_);
+  // wo in the chosen lobe's frame (its selection probability is zero when wo is below it).
+  const Frame& lobe_frame = own_frame_[k] ? lobe_frames_[k] : frame_;
+  const Vec3 lobe_wo = own_frame_[k] ? lobe_frame.to_local(wo_w) : wo_l;
 
   if (is_delta(lobe)) {
     DeltaSample s;
-    if (!sample_delta_lobe(lobe, wo_l, lobe_eta, u_choice, &s)) return false;
-    const Vec3 wi = normalize(frame_.to_world(s.wi));
+    if (!sample_delta_lobe(lobe, lobe_wo, lobe_eta, u_choice, &s)) return false;
+    const Vec3 wi = normalize(lobe_frame.to_world(s.wi));
     // The geometric normal must agree with the event (Veach 1997, sec. 5.3).
     const bool reflect = dot(wi, ng_) * wo_ng > 0.0f;
     if (reflect != ((s.flags & kLobeReflection) != 0)) return false;
@@ -420,16 +525,17 @@ bool Bsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample
 
   Vec3 wi_l;
   bool reflection;
-  if (!sample_lobe(lobe, wo_l, lobe_eta, u_choice, u, &wi_l, &reflection)) return false;
-  const Vec3 wi = normalize(frame_.to_world(wi_l));
+  if (!sample_lobe(lobe, lobe_wo, lobe_eta, u_choice, u, &wi_l, &reflection)) return false;
+  const Vec3 wi = normalize(lobe_frame.to_world(wi_l));
   wi_l = frame_.to_local(wi);
+  const Vec3 lobe_wi = own_frame_[k] ? lobe_frame.to_local(wi) : wi_l;
   const bool reflect = dot(wi, ng_) * wo_ng > 0.0f;
   // An event that ends on the wrong side of the shading or the geometric surface (a microfacet
   // reflection below the horizon, say) is not returned: eval() and pdf() count neither, so
   // sample() follows pdf() exactly. Glass must check the event itself, since a reflection
   // below the surface lands where its own refraction density is not zero.
-  if (reflect != reflection || (reflection ? wi_l.z <= 0.0f : wi_l.z >= 0.0f)) return false;
-  if (!(eval_lobe(lobe, wo_l, wi_l, reflect, lobe_eta).pdf > 0.0f)) return false;
+  if (reflect != reflection || (reflection ? lobe_wi.z <= 0.0f : lobe_wi.z >= 0.0f)) return false;
+  if (!(eval_lobe(lobe, lobe_wo, lobe_wi, reflect, lobe_eta).pdf > 0.0f)) return false;
   Vec3 f;
   float pdf;
   eval_mixture(wo_w, wo_l, wi, wi_l, mask, probs, &f, &pdf);
@@ -453,8 +559,15 @@ Vec3 Bsdf::albedo(const Vec3& wo, uint8_t mask) const {
   Vec3 wo_l, wo_w;
   if (!to_local(wo, &wo_l, &wo_w)) return Vec3(0.0f);
   Vec3 a(0.0f);
-  for (int i = 0; i < count_; ++i)
-    if (lobes_[i].flags() & mask) a += lobe_albedo(lobes_[i], wo_l, eta(lobes_[i]));
+  for (int i = 0; i < count_; ++i) {
+    if (!(lobes_[i].flags() & mask)) continue;
+    Vec3 lwo = wo_l;
+    if (own_frame_[i]) {
+      lwo = lobe_frames_[i].to_local(wo_w);
+      if (!(lwo.z > 1e-7f)) continue;
+    }
+    a += lobe_albedo(lobes_[i], lwo, eta(lobes_[i]));
+  }
   return a;
 }
 

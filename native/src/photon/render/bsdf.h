@@ -1,5 +1,7 @@
 // The BSDF at one shading point: a weighted sum of up to kMaxLobes lobes (Lambert, Burley
-// diffuse, translucent, GGX reflection and transmission, transparent). The same object serves
+// diffuse, Oren-Nayar, sheen, translucent, GGX reflection (isotropic or anisotropic) and
+// transmission, transparent). A lobe may carry its own shading normal (a clearcoat normal) and
+// tangent (anisotropic GGX); the others share the BSDF's frame. The same object serves
 // camera paths, photon tracing and final gathering, so what is sampled is what is evaluated.
 //
 // Conventions (pbrt-v4 style): every direction is in world space, unit length and points away
@@ -24,6 +26,10 @@ enum class LobeType : uint8_t {
   kGgxGlass,       // GGX reflection + transmission with dielectric Fresnel (Walter 2007)
   kGgxRefraction,  // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
   kTransparent,    // straight through, unchanged direction (always a delta lobe)
+  // Oren-Nayar 1994 in the qualitative form of Cycles 3.4's bsdf_oren_nayar, sigma = `roughness`.
+  kOrenNayar,
+  // Cycles 3.4 Principled v1 sheen: f = weight (1 - wi.h)^5 (Burley 2012, sec. 5.3), no 1/pi.
+  kSheen,
 };
 
 enum class FresnelMode : uint8_t {
@@ -47,12 +53,22 @@ constexpr float kDeltaAlpha = 1e-4f;
 
 struct Lobe {
   LobeType type = LobeType::kLambert;
-  Vec3 weight{1.0f};       // closure weight times its colour (tint); never negative
-  float alpha = 0.0f;      // GGX alpha = Blender roughness^2, isotropic
-  float roughness = 0.0f;  // Burley diffuse roughness (Blender's, not squared)
+  Vec3 weight{1.0f};   // closure weight times its colour (tint); never negative
+  float alpha = 0.0f;  // GGX alpha = Blender roughness^2 (along the tangent if anisotropic)
+  // GGX alpha along the bitangent for an anisotropic lobe; negative: isotropic (= alpha).
+  float alpha_y = -1.0f;
+  float roughness = 0.0f;  // Burley diffuse roughness / Oren-Nayar sigma (Blender's, not squared)
   float ior = 1.45f;       // kDielectric Fresnel and glass / refraction lobes
   FresnelMode fresnel = FresnelMode::kNone;
   Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence
+  // The lobe's own shading normal (world space, facing wo's side like the BSDF's), or zero for
+  // the BSDF's; one that is not above the geometric surface falls back to the BSDF's.
+  Vec3 normal{0.0f};
+  // World-space direction of `alpha` for an anisotropic lobe (projected onto the normal's
+  // plane), or zero for an arbitrary one.
+  Vec3 tangent{0.0f};
+
+  bool anisotropic() const { return alpha_y >= 0.0f; }
 
   uint8_t flags() const;  // LobeFlags of this lobe with its parameters (delta when alpha small)
 };
@@ -120,7 +136,14 @@ class Bsdf {
   Vec3 ng_{0.0f, 0.0f, 1.0f};
   bool front_facing_ = true;
   bool valid_ = true;  // false when constructed without a usable normal: the BSDF is black
+  // wo and wi in lobe i's frame, from their world and BSDF-frame forms; false when wo is not
+  // above the lobe's own normal.
+  bool lobe_local(int i, const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
+                  Vec3* lwo, Vec3* lwi) const;
+
   Lobe lobes_[kMaxLobes];
+  Frame lobe_frames_[kMaxLobes];  // each lobe's own frame, where own_frame_ says so
+  bool own_frame_[kMaxLobes] = {};
   int count_ = 0;
 };
 

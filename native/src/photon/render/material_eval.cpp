@@ -2,6 +2,7 @@
 
 #include <optional>
 
+#include "photon/base/optics.h"
 #include "photon/render/shader_globals.h"
 #include "photon/scene/material_params.h"
 #include "photon/shading/program_eval.h"
@@ -99,12 +100,42 @@ Vec3 apply_normal_map(const NormalMap& map, const SurfaceInteraction& si, const 
   return mapped;
 }
 
+// What closures need of the shading point besides their inputs, in the BSDF's orientation
+// (normals facing wo's side).
+struct LobeGeometry {
+  Vec3 wo;                 // towards the viewer
+  Vec3 n;                  // the BSDF's shading normal
+  Vec3 tangent{0.0f};      // the UV map's dP/du, or zero without UVs
+  Vec3 clearcoat_n{0.0f};  // the Clearcoat Normal when linked, else zero
+  bool front = true;
+};
+
+// Rodrigues' rotation of v about the unit axis k by `angle` radians (right-handed).
+Vec3 rotate_about(const Vec3& v, const Vec3& k, float angle) {
+  const float c = std::cos(angle), s = std::sin(angle);
+  return v * c + cross(k, v) * s + k * (dot(k, v) * (1.0f - c));
+}
+
+// The tangent of an anisotropic lobe: dP/du turned by `rotation` turns about the normal (as
+// Cycles 3.4 turns its closure's T by rotation x 2 pi).
+Vec3 rotated_tangent(const LobeGeometry& g, float rotation) {
+  if (rotation == 0.0f) return g.tangent;
+  return rotate_about(g.tangent, g.n, rotation * 2.0f * kPi);
+}
+
 // Cycles 3.4 Principled v1 (intern/cycles/kernel/svm/closure.h, PrincipledBsdfNode::expand):
 // alpha mixes with a transparent BSDF; diffuse (Burley) weighted by (1 - metallic)(1 -
 // transmission); a GGX specular layer with Schlick F0 = lerp(0.08 specular tint, base,
 // metallic); glass weighted by transmission (1 - metallic) tinted by the base colour; a
-// clearcoat layer of weight 0.25 clearcoat with F0 = 0.04.
-void add_principled(const Closure& c, float w, const InputReader& reader, ShadingPoint* out) {
+// clearcoat layer of weight 0.25 clearcoat with F0 = 0.04, on its own normal when linked.
+// Sheen (weight sheen x diffuse weight, tinted towards the base colour's hue by Sheen Tint),
+// anisotropic specular (alpha_x = r^2 / aspect, alpha_y = r^2 aspect, aspect = sqrt(1 - 0.9
+// anisotropic)) and the glass split into reflection with Roughness and refraction with
+// 1 - (1 - roughness)(1 - transmission roughness) follow the same function. Subsurface is
+// rendered as Cycles renders it without SSS: the diffuse colour mixes towards Subsurface
+// Color by the Subsurface weight.
+void add_principled(const Closure& c, float w, const InputReader& reader, const LobeGeometry& geo,
+                    ShadingPoint* out) {
   const ClosureReader in{reader, c};
   const float alpha = in.unit(Param::kAlpha);
   if (alpha < 1.0f) {
@@ -125,27 +156,64 @@ void add_principled(const Closure& c, float w, const InputReader& reader, Shadin
   const float ior = std::max(in.scalar(Param::kIor), 1e-3f);
 
   const float diffuse_weight = (1.0f - metallic) * (1.0f - transmission);
+  const float lum = luminance(base);
+  const Vec3 hue = lum > 0.0f ? base / lum : Vec3(1.0f);
   if (diffuse_weight > 0.0f) {
+    const float subsurface = in.unit(Param::kSubsurface);
+    const Vec3 diffuse_color =
+        subsurface > 0.0f ? lerp(base, in.color(Param::kSubsurfaceColor), subsurface) : base;
     Lobe d;
     d.type = LobeType::kBurleyDiffuse;
-    d.weight = base * (w * diffuse_weight);
+    d.weight = diffuse_color * (w * diffuse_weight);
     d.roughness = roughness;
     out->bsdf.add(d);
+    const float sheen = std::max(in.scalar(Param::kSheen), 0.0f);
+    if (sheen > kWeightCutoff) {
+      Lobe sh;
+      sh.type = LobeType::kSheen;
+      sh.weight = lerp(Vec3(1.0f), hue, in.unit(Param::kSheenTint)) * (w * sheen * diffuse_weight);
+      out->bsdf.add(sh);
+    }
   }
   const float final_transmission = transmission * (1.0f - metallic);
+  const float specular_tint = in.unit(Param::kSpecularTint);
   if (specular > 0.0f || metallic > 0.0f) {
-    const float lum = luminance(base);
-    const Vec3 hue = lum > 0.0f ? base / lum : Vec3(1.0f);
-    const Vec3 tint = lerp(Vec3(1.0f), hue, in.unit(Param::kSpecularTint));
+    const Vec3 tint = lerp(Vec3(1.0f), hue, specular_tint);
     Lobe s;
     s.type = LobeType::kGgxReflection;
     s.weight = Vec3(w * (1.0f - final_transmission));
     s.alpha = roughness * roughness;
     s.fresnel = FresnelMode::kSchlick;
     s.f0 = lerp(tint * (0.08f * specular), base, metallic);
+    const float anisotropic = in.unit(Param::kAnisotropic);
+    if (anisotropic > 0.0f && !is_black(geo.tangent)) {
+      const float aspect = std::sqrt(std::max(1.0f - anisotropic * 0.9f, 0.0f));
+      s.alpha = roughness * roughness / aspect;
+      s.alpha_y = roughness * roughness * aspect;
+      s.tangent = rotated_tangent(geo, in.scalar(Param::kAnisotropicRotation));
+    }
     out->bsdf.add(s);
   }
-  if (final_transmission > 0.0f) {
+  const float transmission_roughness = in.unit(Param::kTransmissionRoughness);
+  if (final_transmission > 0.0f && transmission_roughness > 0.0f) {
+    // Reflection weighted by the Fresnel of the macro normal and tinted like Cycles' cspec0
+    // (the base colour by Specular Tint), refraction by the rest and the base colour.
+    const float cos_o = std::clamp(dot(geo.wo, geo.n), 0.0f, 1.0f);
+    const float fresnel = fresnel_dielectric(cos_o, geo.front ? ior : 1.0f / ior);
+    Lobe r;
+    r.type = LobeType::kGgxReflection;
+    r.weight = lerp(Vec3(1.0f), base, specular_tint) * (w * final_transmission * fresnel);
+    r.alpha = roughness * roughness;
+    r.fresnel = FresnelMode::kNone;
+    out->bsdf.add(r);
+    const float rt = 1.0f - (1.0f - roughness) * (1.0f - transmission_roughness);
+    Lobe t;
+    t.type = LobeType::kGgxRefraction;
+    t.weight = base * (w * final_transmission * (1.0f - fresnel));
+    t.alpha = rt * rt;
+    t.ior = ior;
+    out->bsdf.add(t);
+  } else if (final_transmission > 0.0f) {
     Lobe g;
     g.type = LobeType::kGgxGlass;
     g.weight = base * (w * final_transmission);
@@ -163,12 +231,14 @@ void add_principled(const Closure& c, float w, const InputReader& reader, Shadin
     cc.alpha = r * r;
     cc.fresnel = FresnelMode::kSchlick;
     cc.f0 = Vec3(0.04f);
+    cc.normal = geo.clearcoat_n;
     out->bsdf.add(cc);
   }
 }
 
-void add_closure(const Closure& c, float w, const InputReader& reader, ShadingPoint* out) {
-  if (c.type == ClosureType::kPrincipled) return add_principled(c, w, reader, out);
+void add_closure(const Closure& c, float w, const InputReader& reader, const LobeGeometry& geo,
+                 ShadingPoint* out) {
+  if (c.type == ClosureType::kPrincipled) return add_principled(c, w, reader, geo, out);
   if (c.type == ClosureType::kHoldout) {
     out->holdout += w;
     return;
@@ -186,8 +256,26 @@ void add_closure(const Closure& c, float w, const InputReader& reader, ShadingPo
   l.ior = std::max(in.scalar(Param::kIor), 1e-3f);
   switch (c.type) {
     case ClosureType::kDiffuse:
-      l.type = LobeType::kLambert;
+      // Cycles 3.4: Lambert at roughness 0, else Oren-Nayar with sigma = roughness.
+      l.type = r > 0.0f ? LobeType::kOrenNayar : LobeType::kLambert;
+      l.roughness = r;
+      l.alpha = 0.0f;
       break;
+    case ClosureType::kAnisotropic: {
+      // Cycles 3.4 Anisotropic BSDF: anisotropy a clamped to +-0.99, alpha_x = r^2 (1 - a) and
+      // alpha_y = r^2 / (1 - a) for a >= 0, alpha_x = r^2 / (1 + a), alpha_y = r^2 (1 + a)
+      // below. Without a tangent (no UVs) it stays isotropic.
+      l.type = LobeType::kGgxReflection;
+      l.fresnel = FresnelMode::kNone;
+      const float a = std::clamp(in.scalar(Param::kAnisotropic), -0.99f, 0.99f);
+      if (!is_black(geo.tangent) && a != 0.0f) {
+        const float r2 = l.alpha;
+        l.alpha = a < 0.0f ? r2 / (1.0f + a) : r2 * (1.0f - a);
+        l.alpha_y = a < 0.0f ? r2 * (1.0f + a) : r2 / (1.0f - a);
+        l.tangent = rotated_tangent(geo, in.scalar(Param::kAnisotropicRotation));
+      }
+      break;
+    }
     case ClosureType::kGlossy:
       l.type = LobeType::kGgxReflection;
       l.fresnel = FresnelMode::kNone;
@@ -265,9 +353,24 @@ ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const A
     }
   }
   out.bsdf = front ? Bsdf(ns, si.ng, true) : Bsdf(-ns, -si.ng, false);
+  LobeGeometry geo;
+  geo.wo = wo;
+  geo.n = out.bsdf.frame().n;
+  geo.front = front;
+  if (m.needs_tangent()) {
+    Vec3 dpdu, dpdv;
+    if (accel.uv_tangents(si.instance, si.primitive, &dpdu, &dpdv) && is_finite(dpdu))
+      geo.tangent = dpdu;
+  }
   for (const Closure& c : m.closures) {
     const float w = closure_weight(c, in);
-    if (w >= kWeightCutoff) add_closure(c, w, in, &out);
+    if (w < kWeightCutoff) continue;
+    geo.clearcoat_n = Vec3(0.0f);
+    if (c.clearcoat_normal_reg >= 0 && in.registers) {
+      const Vec3 n = program_normal(load3(in.registers, c.clearcoat_normal_reg), si, front);
+      geo.clearcoat_n = front ? n : -n;
+    }
+    add_closure(c, w, in, geo, &out);
   }
   if (!is_finite(out.emission)) out.emission = Vec3(0.0f);
   out.holdout = std::min(out.holdout, 1.0f);  // Add Shader sums may exceed 1

@@ -49,14 +49,18 @@ void sanitize_input(Input* in, const ParamRange& r, const Input& fallback, size_
 void sanitize_material(Material* material, size_t texture_count, std::string* warning) {
   std::string error;
   if (!material->program.empty() && !validate_program(material->program, &error)) {
-    if (warning) *warning = "Material '" + material->name + "': its node program is invalid (" + error +
-                            "); its inputs use their constant values";
+    if (warning)
+      *warning = "Material '" + material->name + "': its node program is invalid (" + error +
+                 "); its inputs use their constant values";
     material->program = ShaderProgram{};
   }
   const size_t registers = material->program.empty() ? 0 : material->program.registers.size();
   for (Closure& c : material->closures) {
     if (c.normal_reg >= 0 && static_cast<size_t>(c.normal_reg) + 3 > registers) c.normal_reg = -1;
     if (c.normal_reg < 0) c.normal_reg = -1;
+    if (c.clearcoat_normal_reg >= 0 && static_cast<size_t>(c.clearcoat_normal_reg) + 3 > registers)
+      c.clearcoat_normal_reg = -1;
+    if (c.clearcoat_normal_reg < 0) c.clearcoat_normal_reg = -1;
     // Ranges and fallbacks from the one table (material_params.cpp): the node's own defaults.
     const auto defaults = default_params(c.type);
     for (size_t i = 0; i < defaults.size(); ++i)
@@ -129,6 +133,14 @@ bool Material::may_emit() const {
   return false;
 }
 
+bool Material::needs_tangent() const {
+  for (const Closure& c : closures) {
+    if (c.type == ClosureType::kAnisotropic) return true;
+    if (c.type == ClosureType::kPrincipled && !constant_zero(c[Param::kAnisotropic])) return true;
+  }
+  return false;
+}
+
 bool Material::may_be_specular() const {
   // Perfectly specular (delta) lobes form caustics; rough lobes are gathered instead.
   auto smooth = [](const Input& roughness) {
@@ -140,6 +152,7 @@ bool Material::may_be_specular() const {
       case ClosureType::kGlossy:
       case ClosureType::kGlass:
       case ClosureType::kRefraction:
+      case ClosureType::kAnisotropic:
         if (c.sharp || smooth(c[Param::kRoughness])) return true;
         break;
       case ClosureType::kPrincipled:

@@ -49,7 +49,7 @@ struct Input {
 };
 
 enum class ClosureType : uint8_t {
-  kDiffuse,      // Diffuse BSDF: Lambert
+  kDiffuse,      // Diffuse BSDF: Lambert, or Oren-Nayar when Roughness > 0 (as Cycles 3.4)
   kPrincipled,   // Principled BSDF (Cycles' 3.4 model, see material_eval.cpp)
   kGlossy,       // Glossy BSDF: sharp or GGX reflection, F = 1 tinted by colour
   kGlass,        // Glass BSDF: reflection + refraction
@@ -60,6 +60,8 @@ enum class ClosureType : uint8_t {
   // Holdout: camera rays that meet it lose their weight's share of the pixel, colour and alpha
   // (Cycles' holdout closure); to every other ray it is black.
   kHoldout,
+  // Anisotropic BSDF: anisotropic GGX along the UV tangent (Cycles 3.4's Anisotropic BSDF).
+  kAnisotropic,
 };
 
 // The inputs a closure reads, by role; each closure type uses a subset (the rest keep their
@@ -77,6 +79,13 @@ enum class Param : uint8_t {
   kAlpha,
   kClearcoat,
   kClearcoatRoughness,
+  kSubsurface,           // Principled Subsurface weight (rendered as Cycles' diffuse fallback)
+  kSubsurfaceColor,      // Principled Subsurface Color
+  kSheen,                // Principled Sheen weight
+  kSheenTint,            // Principled Sheen Tint
+  kAnisotropic,          // Principled Anisotropic / Anisotropic BSDF Anisotropy
+  kAnisotropicRotation,  // Principled Anisotropic Rotation / Anisotropic BSDF Rotation
+  kTransmissionRoughness,
   kCount,
 };
 
@@ -98,6 +107,8 @@ struct Closure {
   bool sharp = false;  // Glossy / Glass / Refraction with the Sharp distribution
   NormalMap normal;
   int32_t normal_reg = -1;  // a program register holding the Normal input (Bump, Normal Map...)
+  // A program register holding the Principled Clearcoat Normal input, or -1 (the shading normal).
+  int32_t clearcoat_normal_reg = -1;
   std::vector<WeightFactor> weight;  // empty: weight 1
 
   Input& operator[](Param p) { return params[static_cast<size_t>(p)]; }
@@ -127,6 +138,8 @@ struct Material {
   // transmissive): a conservative answer without evaluating textures.
   bool may_emit() const;
   bool may_be_specular() const;
+  // Whether a closure may be anisotropic (so shading needs the UV tangent).
+  bool needs_tangent() const;
 };
 
 // The range a closure input may take: Blender's socket ranges, except that emission colours and
@@ -148,10 +161,10 @@ ParamRange emitter_range();
 
 // Makes a material safe to render, whoever built it (the add-on through the Python binding, the
 // CLI, tests): constants outside their Param's range are clamped and non-finite ones replaced by
-// Blender's default for the closure's node; texture indices outside [0, texture_count) become the default constant (a
-// normal map with such an index is dropped); normal-map strength is clamped to [0, 100] and mix
-// factors to [0, 1] (0.5 when not finite). A program that names registers or tables outside
-// itself is dropped (its inputs take their constants) and `warning` says why.
+// Blender's default for the closure's node; texture indices outside [0, texture_count) become the
+// default constant (a normal map with such an index is dropped); normal-map strength is clamped to
+// [0, 100] and mix factors to [0, 1] (0.5 when not finite). A program that names registers or
+// tables outside itself is dropped (its inputs take their constants) and `warning` says why.
 void sanitize_material(Material* material, size_t texture_count, std::string* warning = nullptr);
 
 }  // namespace photon

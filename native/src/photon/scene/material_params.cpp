@@ -11,6 +11,8 @@ constexpr ParamRange kUnit{0.0f, 1.0f};
 constexpr ParamRange kEmissive{0.0f, kHuge};
 // IOR stays positive and bounded (100 already reflects almost everything).
 constexpr ParamRange kIorRange{1e-3f, 100.0f};
+// A rotation in turns (Anisotropic Rotation): any finite value, bounded so sin/cos stay exact.
+constexpr ParamRange kTurns{-1e4f, 1e4f};
 
 constexpr ParamKind S = ParamKind::kScalar;
 constexpr ParamKind C = ParamKind::kColor;
@@ -51,6 +53,24 @@ std::vector<ClosureSpec> make_table() {
        S,
        0.03f,
        kUnit},
+      {Param::kSubsurface, "subsurface", {"Subsurface", "Subsurface Weight"}, S, 0.0f, kUnit},
+      {Param::kSubsurfaceColor, "subsurface_color", {"Subsurface Color", nullptr}, C, 0.8f, kUnit},
+      {Param::kSheen, "sheen", {"Sheen", "Sheen Weight"}, S, 0.0f, kUnit},
+      {Param::kSheenTint, "sheen_tint", {"Sheen Tint", nullptr}, S, 0.5f, kUnit},
+      {Param::kAnisotropic, "anisotropic", {"Anisotropic", nullptr}, S, 0.0f, kUnit},
+      // Rotation in turns: program-fed values beyond [0, 1] wrap around as in Cycles.
+      {Param::kAnisotropicRotation,
+       "anisotropic_rotation",
+       {"Anisotropic Rotation", nullptr},
+       S,
+       0.0f,
+       kTurns},
+      {Param::kTransmissionRoughness,
+       "transmission_roughness",
+       {"Transmission Roughness", nullptr},
+       S,
+       0.0f,
+       kUnit},
   };
   return {
       {ClosureType::kDiffuse, "DIFFUSE", "BSDF_DIFFUSE", {color(0.8f), roughness(0.0f)}},
@@ -70,6 +90,19 @@ std::vector<ClosureSpec> make_table() {
         {Param::kStrength, "strength", {"Strength", nullptr}, S, 1.0f, kEmissive}}},
       // Cuts a hole in the image where camera rays meet it (render/matte.h); no inputs.
       {ClosureType::kHoldout, "HOLDOUT", "HOLDOUT", {}},
+      // Anisotropy in [-1, 1] (Cycles clamps it to +-0.99).
+      {ClosureType::kAnisotropic,
+       "ANISOTROPIC",
+       "BSDF_ANISOTROPIC",
+       {color(0.8f),
+        roughness(0.5f),
+        {Param::kAnisotropic, "anisotropic", {"Anisotropy", nullptr}, S, 0.5f, {-1.0f, 1.0f}},
+        {Param::kAnisotropicRotation,
+         "anisotropic_rotation",
+         {"Rotation", nullptr},
+         S,
+         0.0f,
+         kTurns}}},
   };
 }
 

@@ -1,0 +1,154 @@
+"""One UV sphere per BSDF feature (Principled sheen, anisotropic specular, transmission roughness,
+subsurface fallback; Diffuse BSDF roughness), lit by a sun and a grey world, rendered by Cycles
+and by Photon to EXR in the folder given. Args: out_dir, photon_samples, cycles_samples,
+features (comma separated, or "all"). Returns {feature: {"cycles": path, "photon": path}} and
+Photon's warnings per feature."""
+
+import math
+import os
+
+import bpy
+from harness import run
+
+RES = 64
+ORTHO_SCALE = 2.2
+
+
+def principled(mat):
+    return next(n for n in mat.node_tree.nodes if n.type == 'BSDF_PRINCIPLED')
+
+
+def setup_sheen(mat):
+    p = principled(mat)
+    p.inputs["Base Color"].default_value = (0.05, 0.1, 0.2, 1.0)
+    p.inputs["Sheen"].default_value = 1.0
+    p.inputs["Sheen Tint"].default_value = 0.5
+    p.inputs["Specular"].default_value = 0.0
+
+
+def setup_anisotropic(mat):
+    p = principled(mat)
+    p.inputs["Base Color"].default_value = (0.9, 0.7, 0.5, 1.0)
+    p.inputs["Metallic"].default_value = 1.0
+    p.inputs["Roughness"].default_value = 0.35
+    p.inputs["Anisotropic"].default_value = 0.9
+    p.inputs["Anisotropic Rotation"].default_value = 0.1
+
+
+def setup_transmission_roughness(mat):
+    p = principled(mat)
+    p.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
+    p.inputs["Transmission"].default_value = 1.0
+    p.inputs["Roughness"].default_value = 0.1
+    p.inputs["Transmission Roughness"].default_value = 0.6
+
+
+def setup_subsurface(mat):
+    p = principled(mat)
+    p.inputs["Base Color"].default_value = (0.2, 0.5, 0.8, 1.0)
+    p.inputs["Subsurface"].default_value = 0.6
+    p.inputs["Subsurface Color"].default_value = (0.9, 0.3, 0.2, 1.0)
+    # A radius far below the sphere's size: Cycles' subsurface scattering is then diffuse.
+    p.inputs["Subsurface Radius"].default_value = (1e-4, 1e-4, 1e-4)
+    p.inputs["Specular"].default_value = 0.0
+
+
+def setup_oren_nayar(mat):
+    tree = mat.node_tree
+    tree.nodes.remove(principled(mat))
+    diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+    diffuse.inputs["Roughness"].default_value = 1.0
+    out = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL')
+    tree.links.new(diffuse.outputs["BSDF"], out.inputs["Surface"])
+
+
+FEATURES = {
+    "sheen": setup_sheen,
+    "anisotropic": setup_anisotropic,
+    "transmission_roughness": setup_transmission_roughness,
+    "subsurface": setup_subsurface,
+    "oren_nayar": setup_oren_nayar,
+}
+
+
+def clear():
+    """Removes every datablock the previous feature made (reading factory settings again would
+    unregister the add-on)."""
+    for collection in (bpy.data.objects, bpy.data.meshes, bpy.data.materials, bpy.data.lights,
+                       bpy.data.cameras, bpy.data.worlds):
+        for item in list(collection):
+            collection.remove(item)
+
+
+def build(feature):
+    clear()
+    scene = bpy.context.scene
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=96, ring_count=48, radius=1.0)
+    sphere = bpy.context.active_object
+    bpy.ops.object.shade_smooth()
+    mat = bpy.data.materials.new(feature)
+    mat.use_nodes = True
+    sphere.data.materials.append(mat)
+    FEATURES[feature](mat)
+    cam_data = bpy.data.cameras.new("cam")
+    cam_data.type = 'ORTHO'
+    cam_data.ortho_scale = ORTHO_SCALE
+    cam = bpy.data.objects.new("cam", cam_data)
+    cam.location = (0.0, -5.0, 0.0)
+    cam.rotation_euler = (math.pi / 2, 0.0, 0.0)
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    sun_data = bpy.data.lights.new("sun", 'SUN')
+    sun_data.energy = 3.0
+    sun_data.angle = math.radians(2.0)
+    sun = bpy.data.objects.new("sun", sun_data)
+    sun.rotation_euler = (math.radians(60), 0.0, math.radians(40))
+    scene.collection.objects.link(sun)
+    world = bpy.data.worlds.new("world")
+    world.use_nodes = True
+    world.node_tree.nodes["Background"].inputs["Color"].default_value = (0.3, 0.3, 0.3, 1.0)
+    scene.world = world
+    scene.render.resolution_x = scene.render.resolution_y = RES
+    scene.render.resolution_percentage = 100
+    scene.render.use_compositing = False
+    scene.render.image_settings.file_format = 'OPEN_EXR'
+    scene.render.image_settings.color_depth = '32'
+    scene.view_settings.view_transform = 'Standard'
+    return scene
+
+
+def render(scene, path):
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+
+
+def main(out_dir, photon_samples, cycles_samples, features):
+    names = list(FEATURES) if features == "all" else features.split(",")
+    result = {}
+    for feature in names:
+        scene = build(feature)
+        scene.render.engine = 'CYCLES'
+        scene.cycles.samples = int(cycles_samples)
+        scene.cycles.use_denoising = False
+        # Deep enough that both engines converge inside the glass sphere (internal glossy
+        # reflections), whatever each counts as a bounce.
+        scene.cycles.max_bounces = 64
+        scene.cycles.transmission_bounces = 64
+        scene.cycles.glossy_bounces = 64
+        scene.cycles.pixel_filter_type = 'BOX'
+        scene.cycles.seed = 1
+        cycles = os.path.join(out_dir, f"{feature}_cycles.exr")
+        render(scene, cycles)
+        scene.render.engine = 'PHOTON'
+        scene.photon.samples = int(photon_samples)
+        scene.photon.max_depth = 64
+        scene.photon.seed = 1
+        photon = os.path.join(out_dir, f"{feature}_photon.exr")
+        render(scene, photon)
+        result[feature] = {"cycles": cycles, "photon": photon}
+    return result
+
+
+if __name__ == "__main__":
+    run(main)

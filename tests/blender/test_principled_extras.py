@@ -1,0 +1,84 @@
+"""Principled sheen, anisotropic specular, transmission roughness and subsurface fallback, and
+the Diffuse BSDF's Oren-Nayar roughness, against Cycles: a sphere per feature under a sun and a
+grey world, rendered by both engines in one Blender run; the sphere's mean colour must agree
+within 2% (of its brightest channel)."""
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
+from harness import read_image  # noqa: E402
+
+TOLERANCE = 0.02
+RES = 64
+ORTHO_SCALE = 2.2
+# Principled glass with Transmission Roughness 0.6 renders 6% darker than Cycles at 64 bounces
+# (0.228 against 0.243; at Transmission Roughness 0 the existing glass lobe is 10% brighter):
+# a difference in the glass sphere's internal bounces, not yet found. Strict: it must fail
+# until that is fixed.
+GLASS_GAP = pytest.mark.xfail(strict=True, reason="Principled glass 6% below Cycles")
+FEATURES = ["sheen", "anisotropic", pytest.param("transmission_roughness", marks=GLASS_GAP),
+            "subsurface", "oren_nayar"]
+
+
+def sphere_mask():
+    """Pixels well inside the sphere's disc (radius 1 seen through the orthographic camera)."""
+    yy, xx = np.mgrid[0:RES, 0:RES] + 0.5
+    radius = RES / 2 * 2.0 / ORTHO_SCALE
+    return (xx - RES / 2) ** 2 + (yy - RES / 2) ** 2 <= (0.97 * radius) ** 2
+
+
+@pytest.fixture(scope="module")
+def renders(blender, tmp_path_factory):
+    folder = tmp_path_factory.mktemp("principled_extras")
+    result, proc = blender.run_script("principled_extras.py", folder, 256, 512, "all",
+                                      timeout=900)
+    assert "exception" not in result, result.get("exception")
+    result["log"] = proc.stdout
+    return result
+
+
+@pytest.mark.parametrize("feature", FEATURES)
+def test_sphere_mean_matches_cycles(renders, feature):
+    paths = renders[feature]
+    ours = read_image(paths["photon"])[..., :3]
+    theirs = read_image(paths["cycles"])[..., :3]
+    mask = sphere_mask()
+    mean_ours, mean_theirs = ours[mask].mean(axis=0), theirs[mask].mean(axis=0)
+    rel = (mean_ours - mean_theirs) / max(mean_theirs.max(), 1e-6)
+    print(f"{feature:24s} photon {np.round(mean_ours, 4)} cycles {np.round(mean_theirs, 4)} "
+          f"rel {np.round(rel, 4)}")
+    assert np.abs(rel).max() <= TOLERANCE, (feature, mean_ours, mean_theirs, rel)
+
+
+def test_only_the_subsurface_fallback_is_reported(renders):
+    log = renders["log"]
+    assert "Photon: rendered frame" in log
+    # Only the subsurface radius (which the diffuse fallback has no use for) is listed as
+    # ignored; sheen, anisotropy and transmission roughness render.
+    warnings = [line for line in log.splitlines() if line.startswith("Photon: warning:")]
+    ignored = [line for line in warnings if "rendered at their defaults" in line]
+    assert ignored == ["Photon: warning: Material 'subsurface': Principled BSDF inputs not "
+                       "supported yet are rendered at their defaults: Subsurface Radius"], log
+    fallback = [line for line in warnings if "subsurface scattering is not supported" in line]
+    assert len(fallback) == 1, log
+
+
+def test_clearcoat_normal_and_anisotropic_bsdf_convert(blender):
+    result, proc = blender.run_script("principled_extras_closures.py")
+    assert "exception" not in result, result.get("exception")
+    coat = result["Coat"]
+    (closure,) = coat["closures"]
+    # The bumped Clearcoat Normal is a program register; the base normal stays unlinked.
+    assert coat["program"] and isinstance(closure["clearcoat_normal"]["register"], int)
+    assert "normal" not in closure and coat["warnings"] == []
+    brushed = result["Brushed"]
+    (closure,) = brushed["closures"]
+    assert closure["type"] == "ANISOTROPIC"
+    assert abs(closure["params"]["anisotropic"] + 0.4) < 1e-6
+    assert abs(closure["params"]["anisotropic_rotation"] - 0.2) < 1e-6
+    assert brushed["warnings"] == ["Material 'Brushed': node 'Anisotropic BSDF': a linked "
+                                   "Tangent is not supported; using the UV map's tangent"]
