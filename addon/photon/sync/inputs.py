@@ -191,7 +191,8 @@ def _from_node(src, fed, param, ctx, what, depth):
     if fallback is None:
         fallback = param.default
     fallback = clamp_constant(fallback, kind, param.lo, param.hi, param.default, ctx, what)
-    if node.type not in {'TEX_IMAGE', 'RGB', 'VALUE'} or (
+    if (node.type not in {'TEX_IMAGE', 'RGB', 'VALUE'} and
+            ctx.program.verdict(node, src.stack) is None) or (
             node.type == 'TEX_IMAGE' and not _plain_image(node, src.stack, ctx)):
         return _from_program(src, fed, param, ctx, fallback)
     if node.type == 'TEX_IMAGE':

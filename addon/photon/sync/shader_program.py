@@ -267,6 +267,23 @@ class ProgramBuilder:
         self._emit(desc)
         return outputs
 
+    def verdict(self, node, stack):
+        """None when the native library compiles `node` as it is set up, else the reason (the
+        node itself, not what feeds it: nothing is emitted)."""
+        if node.type in _CONSTANT_NODES or node.type == 'BUMP':
+            return None
+        enums, numbers = _settings(node)
+        desc = {"type": node.bl_idname, "enums": enums, "numbers": numbers, "inputs": {},
+                "outputs": {}}
+        if node.type not in ('TEX_IMAGE', 'TEX_ENVIRONMENT', 'TEX_COORD'):
+            self._special(node, stack, desc)
+        for socket in node.inputs:
+            if SOCKET_KIND.get(socket.type) is not None and socket.enabled:
+                desc["inputs"][socket.identifier] = 0
+        if node.type == 'NORMAL':
+            desc["inputs"]["Normal_const"] = 0
+        return self._check(desc)
+
     def _check(self, desc):
         key = (desc["type"], tuple(sorted(desc["enums"].items())),
                tuple(sorted(desc["inputs"])), len(desc.get("table", ())))

@@ -31,10 +31,10 @@ def main(folder, blend_path):
     tile = builders.quad("Tile", (-0.9, -0.9, 0.01), (0.8, 0, 0), (0, 0.8, 0), mat)
     tile.data.uv_layers.new(name="UVMap")
 
-    # A Wave Texture into Base Color, a missing image into Roughness.
+    # A Wireframe node (not evaluated natively) into Base Color, a missing image into Roughness.
     mat, nodes, links, bsdf, out = new_material("WaveMat")
     bsdf.inputs["Base Color"].default_value = (0.1, 0.5, 0.2, 1.0)
-    links.new(nodes.new("ShaderNodeTexWave").outputs["Color"], bsdf.inputs["Base Color"])
+    links.new(nodes.new("ShaderNodeWireframe").outputs["Fac"], bsdf.inputs["Base Color"])
     missing = bpy.data.images.new("Lost", 4, 4)
     missing.source = 'FILE'
     missing.filepath = os.path.join(folder, "lost.png")

@@ -171,13 +171,15 @@ def build(folder):
     links.new(tex.outputs["Color"], bsdf.inputs["Base Color"])
     links.new(tex.outputs["Alpha"], bsdf.inputs["Metallic"])
 
-    # Unsupported colour node into Base Color, unsupported coordinates and Mapping.
+    # Nodes the native library has no evaluation for: Wireframe into Base Color (the value of
+    # the input it feeds), Ambient Occlusion into Emission (its Color input), behind it an
+    # image through Mapping of the Generated coordinates (compiled into a shader program).
     mat, nodes, links, bsdf, out = new_material("Wave")
     bsdf.inputs["Base Color"].default_value = (0.1, 0.5, 0.2, 1.0)
-    wave = nodes.new("ShaderNodeTexWave")
-    wave.name = "Wavy"
-    links.new(wave.outputs["Color"], bsdf.inputs["Base Color"])
-    hue = nodes.new("ShaderNodeHueSaturation")
+    wire = nodes.new("ShaderNodeWireframe")
+    wire.name = "Wavy"
+    links.new(wire.outputs["Fac"], bsdf.inputs["Base Color"])
+    hue = nodes.new("ShaderNodeAmbientOcclusion")
     hue.name = "Hue Fix"
     tex = image_node(nodes, color_png, extension='EXTEND', interpolation='Closest')
     mapping = nodes.new("ShaderNodeMapping")
@@ -254,8 +256,8 @@ def main(folder):
     result = {"materials": {}}
     for mat in bpy.data.materials:
         reporter.current = mat.name
-        name, closures, _program = sync_materials.convert_material(mat, reporter, textures)
-        result["materials"][name] = {"closures": closures,
+        name, closures, program = sync_materials.convert_material(mat, reporter, textures)
+        result["materials"][name] = {"closures": closures, "program": program,
                                      "warnings": reporter.warnings.get(mat.name, [])}
     result["textures"] = scene.textures
     # The written files stay for the test to read; the test deletes the folder.

@@ -139,6 +139,23 @@ LobeEval ggx_transmission(const Lobe& l, const Vec3& wo, const Vec3& wi, float e
   return r;
 }
 
+// Chiang, Li & Burley 2019, "Taming the Shadow Terminator", eq. 4 with its smooth cubic
+// (eq. 5): G = min(1, (Ns.wi) / ((Nb.wi)(Ns.Nb))) for the smooth normal Ns and the bumped
+// normal Nb, smoothed as -G^3 + G^2 + G; 0 when wi is below the smooth surface.
+float bump_shadowing(const Vec3& smooth_n, const Vec3& bumped_n, const Vec3& wi) {
+  const float denominator = dot(bumped_n, wi) * dot(smooth_n, bumped_n);
+  const float g = denominator != 0.0f ? dot(smooth_n, wi) / denominator : 0.0f;
+  if (!(g < 1.0f)) return g >= 1.0f ? 1.0f : 0.0f;  // NaN: black
+  if (g < 0.0f) return 0.0f;
+  return g * (1.0f + g - g * g);
+}
+
+// The lobes Cycles counts as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE).
+bool is_diffuse_type(const Lobe& l) {
+  return l.type == LobeType::kLambert || l.type == LobeType::kBurleyDiffuse ||
+         l.type == LobeType::kTranslucent;
+}
+
 // f and pdf of one non-delta lobe, in the local frame (wo.z > 0). `reflect` is the geometric
 // classification of the pair; a lobe only contributes where the shading frame agrees with it.
 LobeEval eval_lobe(const Lobe& l, const Vec3& wo, const Vec3& wi, bool reflect, float eta) {
@@ -333,6 +350,13 @@ Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, bool front_facing) : front_facing_(fr
   frame_ = Frame(n);
 }
 
+void Bsdf::set_smooth_normal(const Vec3& n) {
+  if (!is_unit_direction(n)) return;
+  smooth_n_ = normalize(n);
+  const Vec3 d = smooth_n_ - frame_.n;
+  bumped_ = length_squared(d) > 0.0f;
+}
+
 void Bsdf::add(const Lobe& lobe) {
   if (!valid_) return;
   Lobe l = lobe;
@@ -454,7 +478,9 @@ void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_wor
     Vec3 lwo, lwi;
     if (!lobe_local(i, wo_world, wo, wi_world, wi, &lwo, &lwi)) continue;
     const LobeEval e = eval_lobe(l, lwo, lwi, reflect, eta(l));
-    *f += e.f;
+    *f += bumped_ && is_diffuse_type(l)
+              ? e.f * bump_shadowing(reflect ? smooth_n_ : -smooth_n_, frame_.n, wi_world)
+              : e.f;
     if (probs) *pdf += probs[i] * e.pdf;
   }
 }

@@ -116,6 +116,12 @@ class Bsdf {
   // lobes and for Russian roulette; exact for Lambert, approximate elsewhere).
   Vec3 albedo(const Vec3& wo, uint8_t mask = kLobeAll) const;
 
+  // The interpolated (smooth) normal, on wo's side, when the shading normal is a bump or
+  // normal-map normal that differs from it: diffuse lobes are then multiplied by the bump
+  // shadowing term of Chiang, Li & Burley 2019 ("Taming the Shadow Terminator"), as Cycles
+  // does for its diffuse closures.
+  void set_smooth_normal(const Vec3& n);
+
   const Frame& frame() const { return frame_; }
   const Vec3& ng() const { return ng_; }
   bool front_facing() const { return front_facing_; }
@@ -135,6 +141,8 @@ class Bsdf {
   Frame frame_{Vec3(0.0f, 0.0f, 1.0f)};
   Vec3 ng_{0.0f, 0.0f, 1.0f};
   bool front_facing_ = true;
+  bool bumped_ = false;  // smooth_n_ differs from the shading normal
+  Vec3 smooth_n_{0.0f, 0.0f, 1.0f};
   bool valid_ = true;  // false when constructed without a usable normal: the BSDF is black
   // wo and wi in lobe i's frame, from their world and BSDF-frame forms; false when wo is not
   // above the lobe's own normal.

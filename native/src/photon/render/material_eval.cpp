@@ -4,6 +4,7 @@
 
 #include "photon/base/optics.h"
 #include "photon/render/shader_globals.h"
+#include "photon/render/valid_reflection.h"
 #include "photon/scene/material_params.h"
 #include "photon/shading/program_eval.h"
 
@@ -352,7 +353,15 @@ ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const A
       break;
     }
   }
-  out.bsdf = front ? Bsdf(ns, si.ng, true) : Bsdf(-ns, -si.ng, false);
+  // Both normals on the viewer's side, the shading normal turned (as Cycles turns every
+  // closure's N) so that the view direction's mirror reflection stays above the surface.
+  const Vec3 ng_view = front ? si.ng : -si.ng;
+  const Vec3 ns_view = ensure_valid_reflection(ng_view, wo, front ? ns : -ns);
+  out.bsdf = Bsdf(ns_view, ng_view, front);
+  // A normal other than the interpolated one (Bump, Normal Map, or turned above): diffuse
+  // lobes get Cycles' bump shadowing term.
+  const Vec3 smooth_view = front ? si.ns : -si.ns;
+  if (length_squared(ns_view - smooth_view) > 0.0f) out.bsdf.set_smooth_normal(smooth_view);
   LobeGeometry geo;
   geo.wo = wo;
   geo.n = out.bsdf.frame().n;
