@@ -83,6 +83,7 @@ std::array<Input, static_cast<size_t>(Param::kCount)> Closure::default_params() 
 Material Material::diffuse(const Vec3& color, const std::string& name) {
   Closure c;
   c.type = ClosureType::kDiffuse;
+  c.params = photon::default_params(ClosureType::kDiffuse);  // Roughness 0: Lambert
   c[Param::kColor] = Input::constant(color);
   return Material{name, {c}};
 }
