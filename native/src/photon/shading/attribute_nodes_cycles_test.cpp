@@ -4,11 +4,9 @@
 // attribute/mesh.txt). Each pixel's Object coordinate (coords.exr) is located on the grid
 // (triangle and Embree barycentrics), the node is compiled from the case's NodeDesc and
 // evaluated there, and the result is compared with the Cycles render.
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -18,130 +16,12 @@
 #include "photon/scene/mesh_attribute.h"
 #include "photon/shading/attribute_nodes.h"
 #include "photon/shading/program_eval.h"
+#include "photon/testing/node_references.h"
 
 namespace photon {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A small JSON reader for the manifests (objects, arrays, strings, numbers, booleans, null).
-struct Json {
-  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
-  bool boolean = false;
-  double number = 0.0;
-  std::string string;
-  std::vector<Json> array;
-  std::vector<std::pair<std::string, Json>> object;
-
-  const Json* find(const std::string& key) const {
-    for (const auto& [k, v] : object)
-      if (k == key) return &v;
-    return nullptr;
-  }
-};
-
-class JsonParser {
- public:
-  explicit JsonParser(std::string text) : s_(std::move(text)) {}
-  Json parse() {
-    Json v = value();
-    skip();
-    if (pos_ != s_.size()) throw std::runtime_error("trailing characters in JSON");
-    return v;
-  }
-
- private:
-  void skip() {
-    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
-  }
-  char peek() {
-    skip();
-    if (pos_ >= s_.size()) throw std::runtime_error("unexpected end of JSON");
-    return s_[pos_];
-  }
-  void expect(char c) {
-    if (peek() != c) throw std::runtime_error(std::string("expected '") + c + "' in JSON");
-    ++pos_;
-  }
-  std::string str() {
-    expect('"');
-    std::string out;
-    while (s_.at(pos_) != '"') {
-      if (s_[pos_] == '\\') ++pos_;
-      out += s_.at(pos_++);
-    }
-    ++pos_;
-    return out;
-  }
-  Json value() {
-    Json v;
-    const char c = peek();
-    if (c == '{') {
-      v.kind = Json::kObject;
-      ++pos_;
-      if (peek() == '}') return ++pos_, v;
-      do {
-        std::string key = str();
-        expect(':');
-        v.object.emplace_back(key, value());
-      } while (peek() == ',' && ++pos_);
-      expect('}');
-    } else if (c == '[') {
-      v.kind = Json::kArray;
-      ++pos_;
-      if (peek() == ']') return ++pos_, v;
-      do v.array.push_back(value());
-      while (peek() == ',' && ++pos_);
-      expect(']');
-    } else if (c == '"') {
-      v.kind = Json::kString;
-      v.string = str();
-    } else if (s_.compare(pos_, 4, "true") == 0 || s_.compare(pos_, 5, "false") == 0) {
-      v.kind = Json::kBool;
-      v.boolean = s_[pos_] == 't';
-      pos_ += v.boolean ? 4 : 5;
-    } else if (s_.compare(pos_, 4, "null") == 0) {
-      pos_ += 4;
-    } else {
-      v.kind = Json::kNumber;
-      size_t used = 0;
-      v.number = std::stod(s_.substr(pos_, 32), &used);
-      pos_ += used;
-    }
-    return v;
-  }
-  std::string s_;
-  size_t pos_ = 0;
-};
-
-fs::path nodes_dir() {
-  // The tests run from the build tree or the repository: look upwards for test_scenes/.
-  for (fs::path p = fs::current_path(); !p.empty(); p = p.parent_path()) {
-    if (fs::exists(p / "test_scenes" / "nodes")) return p / "test_scenes" / "nodes";
-    if (p == p.parent_path()) break;
-  }
-  return {};
-}
-
-struct Image {
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;
-  Vec3 rgb(int i) const {
-    const float* p = &pixels[static_cast<size_t>(i) * channels];
-    return Vec3(p[0], p[1], p[2]);
-  }
-};
-
-Image read_exr(const fs::path& path) {
-  OIIO::ImageBuf buf(path.string());
-  Image img;
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return img;
-  const OIIO::ImageSpec& spec = buf.spec();
-  img.width = spec.width, img.height = spec.height, img.channels = spec.nchannels;
-  img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
-  buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, img.pixels.data());
-  return img;
-}
 
 constexpr float kCoordOffset = 4.0f;  // tools/node_refs.py's coords.exr offset
 
@@ -232,23 +112,22 @@ NodeDesc case_desc(const Json& c, int32_t output) {
 }
 
 TEST(AttributeNodes, MatchCyclesReferences) {
-  const fs::path dir = nodes_dir();
+  const fs::path dir = node_refs_dir();
   ASSERT_FALSE(dir.empty()) << "test_scenes/nodes not found above " << fs::current_path();
-  std::ifstream f(dir / "attribute.json");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  const Json manifest = JsonParser(ss.str()).parse();
+  const Json manifest = read_json(dir / "attribute.json");
   const Mesh mesh = read_grid(dir / "attribute" / "mesh.txt");
   ASSERT_GT(mesh.triangle_count(), 0u);
   ASSERT_GE(mesh.attributes.size(), 15u);
-  const Image coords = read_exr(dir / "attribute" / "coords.exr");
+  RgbImage coords;
+  read_rgb_exr(dir / "attribute" / "coords.exr", &coords);
   ASSERT_GT(coords.width, 0);
   const float tol = 1e-4f;
   int cases = 0, edge_pixels = 0;
   float max_error = 0.0f;
   for (const Json& c : manifest.find("cases")->array) {
     const std::string name = c.find("name")->string;
-    const Image ref = read_exr(dir / "attribute" / (name + ".exr"));
+    RgbImage ref;
+    read_rgb_exr(dir / "attribute" / (name + ".exr"), &ref);
     ASSERT_EQ(ref.width, coords.width) << name;
     ShaderProgram program;
     program.registers.assign(5, 0.0f);
@@ -258,7 +137,7 @@ TEST(AttributeNodes, MatchCyclesReferences) {
     int bad = 0;
     float worst = 0.0f;
     for (int i = 0; i < coords.width * coords.height; ++i) {
-      const Vec3 co = coords.rgb(i) - Vec3(kCoordOffset);
+      const Vec3 co = coords.at(i) - Vec3(kCoordOffset);
       ShaderGlobals g;
       float edge = 0.0f;
       ASSERT_TRUE(locate(mesh, co.x, co.y, &g.primitive, &g.barycentric, &edge)) << name << i;
@@ -266,9 +145,9 @@ TEST(AttributeNodes, MatchCyclesReferences) {
       std::vector<float> r = program.registers;
       run_program(program, g, r.data());
       const Vec3 got = scalar ? Vec3(r[0]) : load3(r.data(), 0);
-      const Vec3 want = ref.rgb(i);
+      const Vec3 want = ref.at(i);
       for (int k = 0; k < 3; ++k) {
-        const float err = std::fabs(got[k] - want[k]) / std::max(1.0f, std::fabs(want[k]));
+        const float err = relative_error(got[k], want[k]);
         max_error = std::max(max_error, err);
         if (err <= tol) continue;
         // A pixel centre within float rounding of a triangle edge may hit the neighbour in

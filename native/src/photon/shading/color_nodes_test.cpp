@@ -4,162 +4,21 @@
 // (test_scenes/nodes/color/<case>.exr, made by tools/node_refs.py).
 #include "photon/shading/color_nodes.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 #include <set>
-#include <sstream>
 
 #include "photon/shading/color_math.h"
+#include "photon/testing/node_references.h"
 
 namespace photon {
 namespace {
-
-// ---- A small JSON reader (the manifest is plain JSON: objects, arrays, strings, numbers) ----
-struct Json {
-  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
-  bool boolean = false;
-  double number = 0.0;
-  std::string string;
-  std::vector<Json> array;
-  std::vector<std::pair<std::string, Json>> object;
-
-  const Json* find(const std::string& key) const {
-    for (const auto& [k, v] : object) {
-      if (k == key) return &v;
-    }
-    return nullptr;
-  }
-};
-
-class JsonReader {
- public:
-  explicit JsonReader(const std::string& text) : s_(text) {}
-
-  Json parse() {
-    Json v = value();
-    skip();
-    if (pos_ != s_.size()) fail("trailing characters");
-    return v;
-  }
-
- private:
-  void fail(const char* what) {
-    throw std::runtime_error(std::string("manifest JSON: ") + what + " at " + std::to_string(pos_));
-  }
-  void skip() {
-    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
-  }
-  bool eat(char c) {
-    skip();
-    if (pos_ < s_.size() && s_[pos_] == c) {
-      ++pos_;
-      return true;
-    }
-    return false;
-  }
-  void expect(char c) {
-    if (!eat(c)) fail("unexpected character");
-  }
-  std::string text() {
-    expect('"');
-    std::string out;
-    while (pos_ < s_.size() && s_[pos_] != '"') {
-      char c = s_[pos_++];
-      if (c == '\\' && pos_ < s_.size()) {
-        const char e = s_[pos_++];
-        c = e == 'n' ? '\n' : e == 't' ? '\t' : e;
-      }
-      out += c;
-    }
-    expect('"');
-    return out;
-  }
-  Json value() {
-    skip();
-    Json v;
-    if (pos_ >= s_.size()) fail("unexpected end");
-    const char c = s_[pos_];
-    if (c == '{') {
-      v.kind = Json::kObject;
-      ++pos_;
-      if (eat('}')) return v;
-      do {
-        std::string key = text();
-        expect(':');
-        v.object.emplace_back(key, value());
-      } while (eat(','));
-      expect('}');
-    } else if (c == '[') {
-      v.kind = Json::kArray;
-      ++pos_;
-      if (eat(']')) return v;
-      do {
-        v.array.push_back(value());
-      } while (eat(','));
-      expect(']');
-    } else if (c == '"') {
-      v.kind = Json::kString;
-      v.string = text();
-    } else if (s_.compare(pos_, 4, "true") == 0 || s_.compare(pos_, 5, "false") == 0) {
-      v.kind = Json::kBool;
-      v.boolean = s_[pos_] == 't';
-      pos_ += v.boolean ? 4 : 5;
-    } else if (s_.compare(pos_, 4, "null") == 0) {
-      pos_ += 4;
-    } else {
-      v.kind = Json::kNumber;
-      size_t used = 0;
-      v.number = std::stod(s_.substr(pos_, 64), &used);
-      pos_ += used;
-    }
-    return v;
-  }
-
-  const std::string& s_;
-  size_t pos_ = 0;
-};
-
-// ---- Locating the references (the test binary lives in the source tree's build dir) ----
-std::filesystem::path find_nodes_dir() {
-  std::vector<std::filesystem::path> starts = {std::filesystem::current_path()};
-  std::error_code ec;
-  const auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) starts.push_back(exe.parent_path());
-  starts.push_back(std::filesystem::path(__FILE__).parent_path());
-  for (auto dir : starts) {
-    for (int up = 0; up < 8 && !dir.empty(); ++up, dir = dir.parent_path()) {
-      const auto candidate = dir / "test_scenes" / "nodes";
-      if (std::filesystem::exists(candidate / "color.json")) return candidate;
-      if (dir == dir.parent_path()) break;
-    }
-  }
-  return {};
-}
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;  // 3 floats a pixel
-};
-
-bool read_exr(const std::filesystem::path& path, Image* image) {
-  OIIO::ImageBuf buf(path.string());
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return false;
-  const OIIO::ImageSpec& spec = buf.spec();
-  image->width = spec.width;
-  image->height = spec.height;
-  image->rgb.resize(static_cast<size_t>(spec.width) * spec.height * 3);
-  return buf.get_pixels(OIIO::ROI(0, spec.width, 0, spec.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                        image->rgb.data());
-}
 
 // ---- From a manifest case (Blender socket names) to a NodeDesc (socket identifiers) ----
 const std::set<std::string> kVectorSockets = {
@@ -272,21 +131,17 @@ Vec3 evaluate(const Case& c, const Vec3& p) {
 struct Manifest {
   std::filesystem::path dir;
   Json cases;
-  Image coords;
+  RgbImage coords;
 };
 
 const Manifest& manifest() {
   static const std::unique_ptr<Manifest> loaded = [] {
     auto m = std::make_unique<Manifest>();
-    const auto nodes = find_nodes_dir();
+    const auto nodes = node_refs_dir();
     if (nodes.empty()) return m;
     m->dir = nodes / "color";
-    std::ifstream file(nodes / "color.json");
-    std::stringstream text;
-    text << file.rdbuf();
-    const std::string json = text.str();
-    m->cases = *JsonReader(json).parse().find("cases");
-    read_exr(m->dir / "coords.exr", &m->coords);
+    m->cases = *read_json(nodes / "color.json").find("cases");
+    read_rgb_exr(m->dir / "coords.exr", &m->coords);
     return m;
   }();
   return *loaded;
@@ -305,8 +160,8 @@ TEST(ColorNodesConformance, EveryCaseMatchesCycles) {
     const std::string error = build_case(json, &c);
     SCOPED_TRACE(c.name);
     ASSERT_TRUE(error.empty()) << error;
-    Image ref;
-    ASSERT_TRUE(read_exr(m.dir / (c.name + ".exr"), &ref));
+    RgbImage ref;
+    ASSERT_TRUE(read_rgb_exr(m.dir / (c.name + ".exr"), &ref));
     ASSERT_EQ(ref.rgb.size(), m.coords.rgb.size());
     float case_worst = 0.0f;
     int bad = 0, first_bad = -1;
@@ -317,7 +172,7 @@ TEST(ColorNodesConformance, EveryCaseMatchesCycles) {
       const Vec3 got = evaluate(c, p);
       for (int k = 0; k < 3; ++k) {
         const float want = ref.rgb[i * 3 + k];
-        const float err = std::fabs(got[k] - want) / std::max(1.0f, std::fabs(want));
+        const float err = relative_error(got[k], want);
         const float e = std::isfinite(err) ? err : 1e30f;
         case_worst = std::max(case_worst, e);
         if (e > kTolerance) {

@@ -4,13 +4,11 @@
 // with the Cycles image.
 #include "photon/shading/math_nodes.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
+#include <filesystem>
 #include <map>
 #include <memory>
 #include <sstream>
@@ -18,99 +16,10 @@
 #include <vector>
 
 #include "photon/shading/node_math.h"
+#include "photon/testing/node_references.h"
 
 namespace photon {
 namespace {
-
-// ---- A small JSON reader for the manifest (objects, arrays, strings, numbers, booleans) ----
-struct Json {
-  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
-  bool boolean = false;
-  double number = 0.0;
-  std::string string;
-  std::vector<Json> array;
-  std::map<std::string, Json> object;
-
-  bool has(const std::string& key) const { return object.count(key) != 0; }
-  const Json& at(const std::string& key) const { return object.at(key); }
-};
-
-class JsonReader {
- public:
-  explicit JsonReader(const std::string& text) : s_(text) {}
-  Json parse() {
-    Json v = value();
-    skip();
-    if (pos_ != s_.size()) fail("trailing characters");
-    return v;
-  }
-
- private:
-  void fail(const char* what) {
-    throw std::runtime_error(std::string("manifest JSON: ") + what + " at " + std::to_string(pos_));
-  }
-  void skip() {
-    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
-  }
-  bool take(char c) {
-    skip();
-    if (pos_ < s_.size() && s_[pos_] == c) return ++pos_, true;
-    return false;
-  }
-  std::string str() {
-    if (!take('"')) fail("expected a string");
-    std::string out;
-    while (pos_ < s_.size() && s_[pos_] != '"') {
-      char c = s_[pos_++];
-      if (c == '\\' && pos_ < s_.size()) c = s_[pos_++];
-      out += c;
-    }
-    if (!take('"')) fail("unterminated string");
-    return out;
-  }
-  Json value() {
-    skip();
-    Json v;
-    if (pos_ >= s_.size()) fail("unexpected end");
-    char c = s_[pos_];
-    if (c == '{') {
-      ++pos_;
-      v.kind = Json::kObject;
-      if (take('}')) return v;
-      do {
-        std::string key = str();
-        if (!take(':')) fail("expected ':'");
-        v.object[key] = value();
-      } while (take(','));
-      if (!take('}')) fail("expected '}'");
-    } else if (c == '[') {
-      ++pos_;
-      v.kind = Json::kArray;
-      if (take(']')) return v;
-      do v.array.push_back(value());
-      while (take(','));
-      if (!take(']')) fail("expected ']'");
-    } else if (c == '"') {
-      v.kind = Json::kString;
-      v.string = str();
-    } else if (s_.compare(pos_, 4, "true") == 0 || s_.compare(pos_, 5, "false") == 0) {
-      v.kind = Json::kBool;
-      v.boolean = s_[pos_] == 't';
-      pos_ += v.boolean ? 4 : 5;
-    } else if (s_.compare(pos_, 4, "null") == 0) {
-      pos_ += 4;
-    } else {
-      char* end = nullptr;
-      v.kind = Json::kNumber;
-      v.number = std::strtod(s_.c_str() + pos_, &end);
-      if (end == s_.c_str() + pos_) fail("bad value");
-      pos_ = static_cast<size_t>(end - s_.c_str());
-    }
-    return v;
-  }
-  const std::string& s_;
-  size_t pos_ = 0;
-};
 
 // ---- The sockets of each node, in Blender 3.4's order (index "#i" in the manifest) ----
 struct Socket {
@@ -179,44 +88,6 @@ int socket_index(const std::vector<Socket>& sockets, const std::string& key) {
   return -1;
 }
 
-// ---- Files ----
-std::string source_dir() {
-  if (const char* env = std::getenv("PHOTON_SOURCE_DIR")) return env;
-  std::string file = __FILE__;
-  const std::string tail = "native/src/photon/shading/math_nodes_test.cpp";
-  if (!file.empty() && file[0] == '/' && file.size() > tail.size())
-    return file.substr(0, file.size() - tail.size());
-  // A relative __FILE__ (ccache's base_dir) is relative to the build directory, which holds the
-  // test executable.
-  char exe[4096];
-  ssize_t n = readlink("/proc/self/exe", exe, sizeof(exe) - 1);
-  if (n > 0) {
-    std::string build(exe, static_cast<size_t>(n));
-    build = build.substr(0, build.rfind('/'));
-    return build + "/" + file.substr(0, file.size() - tail.size());
-  }
-  return "./";
-}
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;
-  Vec3 at(int i) const { return {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]}; }
-};
-
-bool read_exr(const std::string& path, Image* image) {
-  OIIO::ImageBuf buf(path);
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return false;
-  const OIIO::ImageSpec& spec = buf.spec();
-  image->width = spec.width;
-  image->height = spec.height;
-  image->rgb.resize(static_cast<size_t>(spec.width) * spec.height * 3);
-  OIIO::ROI roi = buf.roi();
-  roi.chbegin = 0;
-  roi.chend = 3;
-  return buf.get_pixels(roi, OIIO::TypeDesc::FLOAT, image->rgb.data());
-}
-
 Vec3 json_vec(const Json& j) {
   if (j.kind == Json::kNumber) return Vec3(static_cast<float>(j.number));
   return {static_cast<float>(j.array.at(0).number), static_cast<float>(j.array.at(1).number),
@@ -254,7 +125,8 @@ struct CaseResult {
 constexpr float kCoordOffset = 4.0f;
 constexpr float kTolerance = 1e-4f;
 
-CaseResult run_case(const Json& c, const std::string& dir, const Image& shared_coords) {
+CaseResult run_case(const Json& c, const std::filesystem::path& dir,
+                    const RgbImage& shared_coords) {
   CaseResult result;
   const std::string name = c.at("name").string;
   const std::string type = c.at("node").string;
@@ -312,17 +184,17 @@ CaseResult run_case(const Json& c, const std::string& dir, const Image& shared_c
       << name << ": " << error;
 
   ShaderGlobals globals;
-  Image own_coords;
-  const Image* coords = &shared_coords;
+  RgbImage own_coords;
+  const RgbImage* coords = &shared_coords;
   if (c.has("object")) {
-    EXPECT_TRUE(read_exr(dir + "/" + name + "_coords.exr", &own_coords)) << name;
+    EXPECT_TRUE(read_rgb_exr(dir / (name + "_coords.exr"), &own_coords)) << name;
     coords = &own_coords;
     invert_transform(object_matrix(c.at("object")), &globals.world_to_object);
   }
   globals.world_to_camera = refs_world_to_camera();
 
-  Image expected;
-  EXPECT_TRUE(read_exr(dir + "/" + name + ".exr", &expected)) << name;
+  RgbImage expected;
+  EXPECT_TRUE(read_rgb_exr(dir / (name + ".exr"), &expected)) << name;
   if (expected.rgb.size() != coords->rgb.size()) {
     ADD_FAILURE() << name << ": image sizes differ";
     return result;
@@ -347,7 +219,7 @@ CaseResult run_case(const Json& c, const std::string& dir, const Image& shared_c
     Vec3 got = out_socket.size == 1 ? Vec3(regs[out_reg]) : load3(regs.data(), out_reg);
     Vec3 want = expected.at(p);
     for (int i = 0; i < 3; ++i) {
-      float err = std::fabs(got[i] - want[i]) / std::max(1.0f, std::fabs(want[i]));
+      float err = relative_error(got[i], want[i]);
       if (!(err <= kTolerance)) ++result.bad;
       if (!(err <= result.worst)) {
         result.worst = std::isnan(err) ? INFINITY : err;
@@ -362,15 +234,12 @@ CaseResult run_case(const Json& c, const std::string& dir, const Image& shared_c
 }
 
 TEST(MathNodes, MatchCyclesReferences) {
-  const std::string root = source_dir();
-  const std::string dir = root + "/test_scenes/nodes/math";
-  std::ifstream file(root + "/test_scenes/nodes/math.json");
-  ASSERT_TRUE(file) << "no manifest under " << root;
-  std::stringstream text;
-  text << file.rdbuf();
-  Json manifest = JsonReader(text.str()).parse();
-  Image coords;
-  ASSERT_TRUE(read_exr(dir + "/coords.exr", &coords));
+  const std::filesystem::path root = node_refs_dir();
+  const std::filesystem::path dir = root / "math";
+  ASSERT_TRUE(std::filesystem::exists(root / "math.json")) << "no manifest under " << root;
+  const Json manifest = read_json(root / "math.json");
+  RgbImage coords;
+  ASSERT_TRUE(read_rgb_exr(dir / "coords.exr", &coords));
 
   int cases = 0;
   for (const Json& c : manifest.at("cases").array) {

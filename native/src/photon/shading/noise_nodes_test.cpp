@@ -4,149 +4,24 @@
 // from the same description and evaluated at every pixel's point.
 #include "photon/shading/noise_nodes.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <memory>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "photon/shading/noise.h"
+#include "photon/testing/node_references.h"
 
 namespace photon {
 namespace {
 
 namespace fs = std::filesystem;
-
-// ---- A minimal JSON reader for the manifest (objects, arrays, strings, numbers, literals) ----
-
-struct Json {
-  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
-  double number = 0.0;
-  bool boolean = false;
-  std::string string;
-  std::vector<Json> array;
-  std::vector<std::pair<std::string, Json>> object;
-
-  const Json* find(const std::string& key) const {
-    for (const auto& [k, v] : object)
-      if (k == key) return &v;
-    return nullptr;
-  }
-};
-
-class JsonReader {
- public:
-  explicit JsonReader(std::string text) : text_(std::move(text)) {}
-  Json parse() {
-    Json v = value();
-    skip();
-    if (pos_ != text_.size()) fail("trailing text");
-    return v;
-  }
-
- private:
-  void fail(const char* what) {
-    throw std::runtime_error(std::string("manifest JSON: ") + what + " at " + std::to_string(pos_));
-  }
-  void skip() {
-    while (pos_ < text_.size() && std::isspace(static_cast<unsigned char>(text_[pos_]))) ++pos_;
-  }
-  bool eat(char c) {
-    skip();
-    if (pos_ < text_.size() && text_[pos_] == c) return ++pos_, true;
-    return false;
-  }
-  std::string str() {
-    if (!eat('"')) fail("expected a string");
-    std::string s;
-    while (pos_ < text_.size() && text_[pos_] != '"') {
-      if (text_[pos_] == '\\') ++pos_;  // the manifest escapes nothing but quotes and slashes
-      s += text_[pos_++];
-    }
-    if (pos_++ >= text_.size()) fail("unterminated string");
-    return s;
-  }
-  Json value() {
-    skip();
-    Json v;
-    if (pos_ >= text_.size()) fail("unexpected end");
-    char c = text_[pos_];
-    if (c == '{') {
-      ++pos_;
-      v.kind = Json::kObject;
-      if (eat('}')) return v;
-      do {
-        std::string key = str();
-        if (!eat(':')) fail("expected ':'");
-        v.object.emplace_back(key, value());
-      } while (eat(','));
-      if (!eat('}')) fail("expected '}'");
-    } else if (c == '[') {
-      ++pos_;
-      v.kind = Json::kArray;
-      if (eat(']')) return v;
-      do v.array.push_back(value());
-      while (eat(','));
-      if (!eat(']')) fail("expected ']'");
-    } else if (c == '"') {
-      v.kind = Json::kString;
-      v.string = str();
-    } else if (text_.compare(pos_, 4, "null") == 0) {
-      pos_ += 4;
-    } else if (text_.compare(pos_, 4, "true") == 0) {
-      pos_ += 4, v.kind = Json::kBool, v.boolean = true;
-    } else if (text_.compare(pos_, 5, "false") == 0) {
-      pos_ += 5, v.kind = Json::kBool;
-    } else {
-      char* end = nullptr;
-      v.kind = Json::kNumber;
-      v.number = std::strtod(text_.c_str() + pos_, &end);
-      if (end == text_.c_str() + pos_) fail("bad value");
-      pos_ = static_cast<size_t>(end - text_.c_str());
-    }
-    return v;
-  }
-
-  std::string text_;
-  size_t pos_ = 0;
-};
-
-// The repository: PHOTON_SOURCE_DIR, else the first parent of the test binary holding the manifest.
-fs::path source_dir() {
-  if (const char* env = std::getenv("PHOTON_SOURCE_DIR")) return env;
-  std::error_code ec;
-  fs::path dir = fs::read_symlink("/proc/self/exe", ec).parent_path();
-  for (; !dir.empty() && dir != dir.root_path(); dir = dir.parent_path())
-    if (fs::exists(dir / "test_scenes/nodes/noise.json")) return dir;
-  return fs::current_path();
-}
-
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;  // 3 floats a pixel, top row first
-  Vec3 at(int i) const { return Vec3(rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]); }
-};
-
-Image read_exr(const fs::path& path) {
-  OIIO::ImageBuf buf(path.string());
-  Image img;
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return img;
-  img.width = buf.spec().width;
-  img.height = buf.spec().height;
-  img.rgb.resize(static_cast<size_t>(img.width) * img.height * 3);
-  buf.get_pixels(OIIO::ROI(0, img.width, 0, img.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                 img.rgb.data());
-  return img;
-}
 
 constexpr float kCoordOffset = 4.0f;  // tools/node_refs.py adds it to keep coords.exr positive
 
@@ -247,20 +122,17 @@ float difference(const Case& c, float ours, float cycles) {
 struct Manifest {
   fs::path dir;
   std::vector<Json> cases;
-  Image coords;
+  RgbImage coords;
 };
 
 const Manifest& manifest() {
   static const Manifest m = [] {
     Manifest m;
-    fs::path root = source_dir();
-    std::ifstream f(root / "test_scenes/nodes/noise.json");
-    std::stringstream ss;
-    ss << f.rdbuf();
-    Json j = JsonReader(ss.str()).parse();
+    const fs::path root = node_refs_dir();
+    const Json j = read_json(root / "noise.json");
     if (const Json* cases = j.find("cases")) m.cases = cases->array;
-    m.dir = root / "test_scenes/nodes/noise";
-    m.coords = read_exr(m.dir / "coords.exr");
+    m.dir = root / "noise";
+    read_rgb_exr(m.dir / "coords.exr", &m.coords);
     return m;
   }();
   return m;
@@ -276,14 +148,15 @@ bool is_white_noise_linked(const Json& c) {
 // relative-or-absolute of Cycles.
 TEST(NoiseNodes, MatchCyclesReferences) {
   const Manifest& m = manifest();
-  ASSERT_GE(m.cases.size(), 90u) << "manifest not found under " << source_dir();
+  ASSERT_GE(m.cases.size(), 90u) << "manifest not found under " << node_refs_dir();
   ASSERT_GT(m.coords.width, 0) << "coords.exr not readable";
   float worst_overall = 0.0f;
   int compared = 0;
   for (const Json& jc : m.cases) {
     if (is_white_noise_linked(jc)) continue;  // WhiteNoiseMatchesCyclesHashes
     Case c = build_case(jc);
-    Image ref = read_exr(m.dir / (c.name + ".exr"));
+    RgbImage ref;
+    read_rgb_exr(m.dir / (c.name + ".exr"), &ref);
     ASSERT_EQ(ref.width * ref.height, m.coords.width * m.coords.height) << c.name;
     float worst = 0.0f;
     int worst_pixel = 0, bad = 0;
@@ -394,7 +267,8 @@ TEST(NoiseNodes, WhiteNoiseMatchesCyclesHashes) {
   for (const Json& jc : m.cases) {
     if (!is_white_noise_linked(jc)) continue;
     Case c = build_case(jc);
-    Image ref = read_exr(m.dir / (c.name + ".exr"));
+    RgbImage ref;
+    read_rgb_exr(m.dir / (c.name + ".exr"), &ref);
     ASSERT_EQ(ref.width * ref.height, m.coords.width * m.coords.height) << c.name;
     int eligible = 0, matched = 0;
     for (int i = 0; i < ref.width * ref.height; ++i) {

@@ -3,140 +3,20 @@
 // Object coordinate (coords.exr), then compared with the Cycles render of the same case.
 #include "photon/shading/pattern_nodes.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <sstream>
+
+#include "photon/testing/node_references.h"
 
 namespace photon {
 namespace {
 
 namespace fs = std::filesystem;
-
-// A small JSON reader for the manifests (objects, arrays, strings, numbers, booleans, null).
-struct Json {
-  enum Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = kNull;
-  bool boolean = false;
-  double number = 0.0;
-  std::string string;
-  std::vector<Json> array;
-  std::vector<std::pair<std::string, Json>> object;
-
-  const Json* find(const std::string& key) const {
-    for (const auto& [k, v] : object)
-      if (k == key) return &v;
-    return nullptr;
-  }
-};
-
-class JsonParser {
- public:
-  explicit JsonParser(std::string text) : s_(std::move(text)) {}
-  Json parse() {
-    Json v = value();
-    skip();
-    if (pos_ != s_.size()) throw std::runtime_error("trailing characters in JSON");
-    return v;
-  }
-
- private:
-  void skip() {
-    while (pos_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[pos_]))) ++pos_;
-  }
-  char peek() {
-    skip();
-    if (pos_ >= s_.size()) throw std::runtime_error("unexpected end of JSON");
-    return s_[pos_];
-  }
-  void expect(char c) {
-    if (peek() != c) throw std::runtime_error(std::string("expected '") + c + "' in JSON");
-    ++pos_;
-  }
-  std::string str() {
-    expect('"');
-    std::string out;
-    while (s_.at(pos_) != '"') {
-      if (s_[pos_] == '\\') ++pos_;
-      out += s_.at(pos_++);
-    }
-    ++pos_;
-    return out;
-  }
-  Json value() {
-    Json v;
-    const char c = peek();
-    if (c == '{') {
-      v.kind = Json::kObject;
-      ++pos_;
-      if (peek() == '}') return ++pos_, v;
-      do {
-        std::string key = str();
-        expect(':');
-        v.object.emplace_back(key, value());
-      } while (peek() == ',' && ++pos_);
-      expect('}');
-    } else if (c == '[') {
-      v.kind = Json::kArray;
-      ++pos_;
-      if (peek() == ']') return ++pos_, v;
-      do v.array.push_back(value());
-      while (peek() == ',' && ++pos_);
-      expect(']');
-    } else if (c == '"') {
-      v.kind = Json::kString;
-      v.string = str();
-    } else if (s_.compare(pos_, 4, "true") == 0 || s_.compare(pos_, 5, "false") == 0) {
-      v.kind = Json::kBool;
-      v.boolean = s_[pos_] == 't';
-      pos_ += v.boolean ? 4 : 5;
-    } else if (s_.compare(pos_, 4, "null") == 0) {
-      pos_ += 4;
-    } else {
-      v.kind = Json::kNumber;
-      size_t used = 0;
-      v.number = std::stod(s_.substr(pos_, 32), &used);
-      pos_ += used;
-    }
-    return v;
-  }
-  std::string s_;
-  size_t pos_ = 0;
-};
-
-fs::path nodes_dir() {
-  // The tests run from the build tree or the repository: look upwards for test_scenes/.
-  for (fs::path p = fs::current_path(); !p.empty(); p = p.parent_path()) {
-    if (fs::exists(p / "test_scenes" / "nodes")) return p / "test_scenes" / "nodes";
-    if (p == p.parent_path()) break;
-  }
-  return {};
-}
-
-struct Image {
-  int width = 0, height = 0, channels = 0;
-  std::vector<float> pixels;
-  Vec3 rgb(int i) const {
-    const float* p = &pixels[static_cast<size_t>(i) * channels];
-    return Vec3(p[0], p[1], p[2]);
-  }
-};
-
-Image read_exr(const fs::path& path) {
-  OIIO::ImageBuf buf(path.string());
-  Image img;
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return img;
-  const OIIO::ImageSpec& spec = buf.spec();
-  img.width = spec.width, img.height = spec.height, img.channels = spec.nchannels;
-  img.pixels.resize(static_cast<size_t>(img.width) * img.height * img.channels);
-  buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, img.pixels.data());
-  return img;
-}
 
 constexpr float kCoordOffset = 4.0f;  // tools/node_refs.py's coords.exr offset
 
@@ -215,17 +95,17 @@ Vec3 eval_at(const Built& b, const Vec3& co, std::vector<float>& r) {
 // Every pixel of one case: |photon - cycles| <= tol * max(1, |cycles|) at the stored coordinate,
 // or else at some corner of the box the coordinate's rounding leaves (high-frequency textures
 // and edges are that sensitive; such pixels are counted).
-CaseResult compare_case(const Json& c, const Image& coords, const Image& ref, float tol) {
+CaseResult compare_case(const Json& c, const RgbImage& coords, const RgbImage& ref, float tol) {
   const Built b = build_case(c);
   CaseResult res;
   std::vector<float> r;
   for (int i = 0; i < coords.width * coords.height; ++i) {
-    const Vec3 co = coords.rgb(i) - Vec3(kCoordOffset);
+    const Vec3 co = coords.at(i) - Vec3(kCoordOffset);
     const Vec3 got = eval_at(b, co, r);
-    const Vec3 want = ref.rgb(i);
+    const Vec3 want = ref.at(i);
     bool pixel_ok = true;
     for (int k = 0; k < 3; ++k) {
-      const float err = std::fabs(got[k] - want[k]) / std::max(1.0f, std::fabs(want[k]));
+      const float err = relative_error(got[k], want[k]);
       pixel_ok = pixel_ok && err <= tol;
       if (!(err <= res.max_error)) {
         res.max_error = err;
@@ -245,7 +125,7 @@ CaseResult compare_case(const Json& c, const Image& coords, const Image& ref, fl
     }
     bool in_box = true;
     for (int k = 0; k < 3; ++k) {
-      const float t = tol * std::max(1.0f, std::fabs(want[k]));
+      const float t = tolerance_at(tol, want[k]);
       in_box = in_box && want[k] >= lo[k] - t && want[k] <= hi[k] + t;
     }
     ++(in_box ? res.quantized : res.bad);
@@ -253,28 +133,23 @@ CaseResult compare_case(const Json& c, const Image& coords, const Image& ref, fl
   return res;
 }
 
-Json load_manifest(const fs::path& path) {
-  std::ifstream f(path);
-  std::stringstream ss;
-  ss << f.rdbuf();
-  return JsonParser(ss.str()).parse();
-}
-
 // Runs the manifest's surface cases (world == false) or its world cases (each with its own
 // <name>.coords.exr of ray directions); returns how many ran.
 int run_cases(bool world, float tol) {
-  const fs::path dir = nodes_dir();
+  const fs::path dir = node_refs_dir();
   EXPECT_FALSE(dir.empty()) << "test_scenes/nodes not found above " << fs::current_path();
-  const Json manifest = load_manifest(dir / "pattern.json");
-  const Image plane_coords = read_exr(dir / "pattern" / "coords.exr");
+  const Json manifest = read_json(dir / "pattern.json");
+  RgbImage plane_coords;
+  read_rgb_exr(dir / "pattern" / "coords.exr", &plane_coords);
   EXPECT_GT(plane_coords.width, 0);
   int cases = 0;
   for (const Json& c : manifest.find("cases")->array) {
     const Json* w = c.find("world");
     if ((w != nullptr && w->boolean) != world) continue;
     const std::string name = c.find("name")->string;
-    const Image coords = world ? read_exr(dir / "pattern" / (name + ".coords.exr")) : plane_coords;
-    const Image ref = read_exr(dir / "pattern" / (name + ".exr"));
+    RgbImage coords = plane_coords, ref;
+    if (world) read_rgb_exr(dir / "pattern" / (name + ".coords.exr"), &coords);
+    read_rgb_exr(dir / "pattern" / (name + ".exr"), &ref);
     EXPECT_EQ(ref.width, coords.width) << name;
     if (ref.width != coords.width || ref.height != coords.height) continue;
     const CaseResult res = compare_case(c, coords, ref, tol);

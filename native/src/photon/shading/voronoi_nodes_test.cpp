@@ -3,169 +3,26 @@
 // Object coordinate (coords.exr), then compared with Cycles' pixel.
 #include "photon/shading/voronoi_nodes.h"
 
-#include <OpenImageIO/imagebuf.h>
 #include <gtest/gtest.h>
 
-#include <cctype>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "photon/shading/voronoi.h"
+#include "photon/testing/node_references.h"
 
 namespace photon {
 namespace {
 
-// ---- A small JSON reader for the manifest (objects, arrays, strings, numbers, literals). ----
-struct Json {
-  enum Type { kNull, kBool, kNumber, kString, kArray, kObject } type = kNull;
-  bool boolean = false;
-  double number = 0.0;
-  std::string string;
-  std::vector<Json> array;
-  std::vector<std::pair<std::string, Json>> object;
-
-  const Json* find(const std::string& key) const {
-    for (const auto& kv : object)
-      if (kv.first == key) return &kv.second;
-    return nullptr;
-  }
-};
-
-class JsonParser {
- public:
-  explicit JsonParser(const std::string& text) : s_(text) {}
-  bool parse(Json* out) {
-    if (!value(out)) return false;
-    skip();
-    return i_ == s_.size();
-  }
-
- private:
-  void skip() {
-    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) ++i_;
-  }
-  bool literal(const char* word) {
-    const size_t n = std::char_traits<char>::length(word);
-    if (s_.compare(i_, n, word) != 0) return false;
-    i_ += n;
-    return true;
-  }
-  bool string(std::string* out) {
-    if (s_[i_] != '"') return false;
-    for (++i_; i_ < s_.size() && s_[i_] != '"'; ++i_) {
-      if (s_[i_] == '\\' && ++i_ < s_.size()) {
-        const char c = s_[i_];
-        out->push_back(c == 'n' ? '\n' : c == 't' ? '\t' : c);
-      } else {
-        out->push_back(s_[i_]);
-      }
-    }
-    if (i_ >= s_.size()) return false;
-    ++i_;
-    return true;
-  }
-  bool value(Json* out) {
-    skip();
-    if (i_ >= s_.size()) return false;
-    const char c = s_[i_];
-    if (c == '{') {
-      out->type = Json::kObject;
-      ++i_;
-      skip();
-      if (s_[i_] == '}') return ++i_, true;
-      while (true) {
-        skip();
-        std::string key;
-        if (!string(&key)) return false;
-        skip();
-        if (s_[i_++] != ':') return false;
-        Json v;
-        if (!value(&v)) return false;
-        out->object.emplace_back(std::move(key), std::move(v));
-        skip();
-        if (s_[i_] == ',') {
-          ++i_;
-        } else if (s_[i_] == '}') {
-          return ++i_, true;
-        } else {
-          return false;
-        }
-      }
-    }
-    if (c == '[') {
-      out->type = Json::kArray;
-      ++i_;
-      skip();
-      if (s_[i_] == ']') return ++i_, true;
-      while (true) {
-        Json v;
-        if (!value(&v)) return false;
-        out->array.push_back(std::move(v));
-        skip();
-        if (s_[i_] == ',') {
-          ++i_;
-        } else if (s_[i_] == ']') {
-          return ++i_, true;
-        } else {
-          return false;
-        }
-      }
-    }
-    if (c == '"') return out->type = Json::kString, string(&out->string);
-    if (literal("true")) return out->type = Json::kBool, out->boolean = true, true;
-    if (literal("false")) return out->type = Json::kBool, true;
-    if (literal("null")) return out->type = Json::kNull, true;
-    size_t used = 0;
-    try {
-      out->number = std::stod(s_.substr(i_, 40), &used);
-    } catch (...) {
-      return false;
-    }
-    i_ += used;
-    out->type = Json::kNumber;
-    return true;
-  }
-
-  const std::string& s_;
-  size_t i_ = 0;
-};
-
 // ---- References. ----
-const std::filesystem::path kRefDir = std::filesystem::path(PHOTON_NODE_REFS) / "voronoi";
+const std::filesystem::path kRefDir = node_refs_dir() / "voronoi";
 constexpr float kCoordOffset = 4.0f;  // coords.exr stores Object coordinates + 4 (node_refs.py)
 
-struct Image {
-  int width = 0, height = 0;
-  std::vector<float> rgb;
-  Vec3 at(size_t i) const { return {rgb[3 * i], rgb[3 * i + 1], rgb[3 * i + 2]}; }
-  size_t size() const { return static_cast<size_t>(width) * height; }
-};
-
-bool read_exr(const std::filesystem::path& path, Image* out) {
-  OIIO::ImageBuf buf(path.string());
-  if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT)) return false;
-  const OIIO::ImageSpec& spec = buf.spec();
-  out->width = spec.width;
-  out->height = spec.height;
-  out->rgb.resize(out->size() * 3);
-  return buf.get_pixels(OIIO::ROI(0, spec.width, 0, spec.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                        out->rgb.data());
-}
-
 Json load_manifest() {
-  std::ifstream f(std::filesystem::path(PHOTON_NODE_REFS) / "voronoi.json");
-  std::stringstream ss;
-  ss << f.rdbuf();
-  Json manifest;
-  const std::string text = ss.str();
-  JsonParser parser(text);
-  EXPECT_TRUE(parser.parse(&manifest)) << "voronoi.json does not parse";
-  return manifest;
+  return read_json(node_refs_dir() / "voronoi.json");
 }
 
 // ---- A one-node program laid out as the add-on lays it out: inputs, then outputs. ----
@@ -237,8 +94,7 @@ Vec3 evaluate(const Case& c, const Instruction& ins, const Vec3& object) {
 // Relative-or-absolute error, per channel.
 float error(const Vec3& a, const Vec3& b) {
   float e = 0.0f;
-  for (int k = 0; k < 3; ++k)
-    e = std::max(e, std::fabs(a[k] - b[k]) / std::max(1.0f, std::fabs(b[k])));
+  for (int k = 0; k < 3; ++k) e = std::max(e, relative_error(a[k], b[k]));
   return e;
 }
 
@@ -274,7 +130,7 @@ bool explained_by_coordinate_rounding(const Case& c, const Instruction& ins, con
       }
   if (error(hi, lo) <= kTolerance) return false;  // not sensitive here: a real difference
   for (int k = 0; k < 3; ++k) {
-    const float margin = kTolerance * std::max(1.0f, std::fabs(ref[k]));
+    const float margin = tolerance_at(kTolerance, ref[k]);
     if (ref[k] < lo[k] - margin || ref[k] > hi[k] + margin) return false;
   }
   return true;
@@ -285,8 +141,8 @@ TEST(VoronoiNodes, MatchesCyclesOnEveryManifestCase) {
   const Json* cases = manifest.find("cases");
   ASSERT_NE(cases, nullptr);
   ASSERT_GE(cases->array.size(), 300u);
-  Image coords;
-  ASSERT_TRUE(read_exr(kRefDir / "coords.exr", &coords)) << kRefDir / "coords.exr";
+  RgbImage coords;
+  ASSERT_TRUE(read_rgb_exr(kRefDir / "coords.exr", &coords)) << kRefDir / "coords.exr";
   ASSERT_GT(coords.size(), 0u);
 
   size_t pixels = 0, sensitive_pixels = 0, above_1e6 = 0, above_1e5 = 0;
@@ -300,8 +156,8 @@ TEST(VoronoiNodes, MatchesCyclesOnEveryManifestCase) {
     ASSERT_EQ(compile_voronoi_node(c.desc, &c.program, &ins, &error_text), CompileStatus::kCompiled)
         << error_text;
     EXPECT_EQ(ins.family, NodeFamily::kVoronoi);
-    Image ref;
-    ASSERT_TRUE(read_exr(kRefDir / (c.name + ".exr"), &ref)) << "missing reference " << c.name;
+    RgbImage ref;
+    ASSERT_TRUE(read_rgb_exr(kRefDir / (c.name + ".exr"), &ref)) << "missing reference " << c.name;
     ASSERT_EQ(ref.size(), coords.size());
     float case_worst = 0.0f;
     std::vector<size_t> mismatches;
