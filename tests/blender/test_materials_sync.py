@@ -134,7 +134,7 @@ def test_unsupported_nodes_fall_back_to_their_nearest_meaning(converted):
     # Image (through Mapping of Generated) -> Ambient Occlusion -> Emission: the image, through
     # the unsupported node, read by the material's shader program.
     assert set(p["emission"]) == {"register", "value"}
-    assert any(t["path"].endswith("color.png") and
+    assert any(t.get("path", "").endswith("color.png") and
                (t["extension"], t["interpolation"]) == ("EXTEND", "Closest")
                for t in converted["textures"])
     program = material(converted, "Wave")["program"]
