@@ -30,22 +30,7 @@ float ggx_g2(const Vec3& wo, const Vec3& wi, const Vec3& h, float alpha) {
 }
 
 Vec3 ggx_sample_visible_normal(const Vec3& wo, float alpha, Vec2 u) {
-  // Stretch the view direction to the hemisphere configuration (alpha = 1).
-  const Vec3 vh = normalize(Vec3(alpha * wo.x, alpha * wo.y, wo.z));
-  // Orthonormal basis around vh (degenerate at normal incidence).
-  const float len2 = vh.x * vh.x + vh.y * vh.y;
-  const Vec3 t1 = len2 > 0.0f ? Vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : Vec3(1.0f, 0.0f, 0.0f);
-  const Vec3 t2 = cross(vh, t1);
-  // Uniform point on the projected disk, warped to the visible half of it.
-  const float r = std::sqrt(u.x);
-  const float phi = 2.0f * kPi * u.y;
-  const float p1 = r * std::cos(phi);
-  float p2 = r * std::sin(phi);
-  const float s = 0.5f * (1.0f + vh.z);
-  p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
-  // Reproject onto the hemisphere and unstretch.
-  const Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2));
-  return normalize(Vec3(alpha * nh.x, alpha * nh.y, std::max(1e-7f, nh.z)));
+  return ggx_sample_visible_normal(wo, alpha, alpha, u);
 }
 
 float ggx_visible_normal_pdf(const Vec3& wo, const Vec3& h, float alpha) {
@@ -74,16 +59,20 @@ float ggx_g1(const Vec3& w, const Vec3& h, float ax, float ay) {
 }
 
 Vec3 ggx_sample_visible_normal(const Vec3& wo, float ax, float ay, Vec2 u) {
+  // Stretch the view direction to the hemisphere configuration (alpha = 1).
   const Vec3 vh = normalize(Vec3(ax * wo.x, ay * wo.y, wo.z));
+  // Orthonormal basis around vh (degenerate at normal incidence).
   const float len2 = vh.x * vh.x + vh.y * vh.y;
   const Vec3 t1 = len2 > 0.0f ? Vec3(-vh.y, vh.x, 0.0f) / std::sqrt(len2) : Vec3(1.0f, 0.0f, 0.0f);
   const Vec3 t2 = cross(vh, t1);
+  // Uniform point on the projected disk, warped to the visible half of it.
   const float r = std::sqrt(u.x);
   const float phi = 2.0f * kPi * u.y;
   const float p1 = r * std::cos(phi);
   float p2 = r * std::sin(phi);
   const float s = 0.5f * (1.0f + vh.z);
   p2 = (1.0f - s) * std::sqrt(std::max(0.0f, 1.0f - p1 * p1)) + s * p2;
+  // Reproject onto the hemisphere and unstretch.
   const Vec3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0f, 1.0f - p1 * p1 - p2 * p2));
   return normalize(Vec3(ax * nh.x, ay * nh.y, std::max(1e-7f, nh.z)));
 }
