@@ -4,15 +4,15 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <vector>
 
-#include "photon/session/image_io.h"
-#include "program_binding.h"
 #include "photon/render/texture_convert.h"
 #include "photon/scene/material_params.h"
+#include "photon/session/image_io.h"
+#include "program_binding.h"
 
 namespace py = pybind11;
 using namespace photon;
@@ -61,7 +61,8 @@ Input parse_input(const py::handle& value, ParamKind kind, const Input& fallback
       in.value = v.value;
     }
     in.texture = -1;
-    in.reg = static_cast<int32_t>(std::clamp<int64_t>(d["register"].cast<int64_t>(), -1, INT32_MAX));
+    in.reg =
+        static_cast<int32_t>(std::clamp<int64_t>(d["register"].cast<int64_t>(), -1, INT32_MAX));
     return in;
   }
   if (py::isinstance<py::dict>(value)) {
@@ -111,7 +112,7 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
     if (!py::isinstance<py::dict>(d["params"])) fail(what + ": 'params' must be a dict");
     for (auto p : py::reinterpret_borrow<py::dict>(d["params"])) {
       const std::string key = py::str(p.first);
-      const ParamSpec* info = find_param(key.c_str());
+      const ClosureParamSpec* info = find_param(key.c_str());
       if (!info) fail(what + ": unknown param '" + key + "'");
       closure[info->param] =
           parse_input(p.second, info->kind, closure[info->param], what + " param '" + key + "'");
@@ -179,9 +180,8 @@ py::object describe_input(const Input& in, ParamKind kind) {
 
 }  // namespace
 
-Material parse_material(const std::string& name, const py::handle& closures,
-                        int64_t texture_count, const py::handle& program,
-                        std::string* warning) {
+Material parse_material(const std::string& name, const py::handle& closures, int64_t texture_count,
+                        const py::handle& program, std::string* warning) {
   if (!py::isinstance<py::list>(closures) && !py::isinstance<py::tuple>(closures))
     fail("closures must be a list of dicts");
   Material material;
@@ -227,7 +227,7 @@ py::dict describe_material(const Material& material) {
     d["type"] = closure_spec(c.type).name;
     d["sharp"] = c.sharp;
     py::dict params;
-    for (const ParamSpec& info : closure_spec(ClosureType::kPrincipled).params)
+    for (const ClosureParamSpec& info : closure_spec(ClosureType::kPrincipled).params)
       params[info.key] = describe_input(c[info.param], info.kind);
     d["params"] = params;
     if (c.normal.texture >= 0) {
@@ -267,7 +267,7 @@ py::list material_parameters() {
   py::list closures;
   for (const ClosureSpec& c : closure_specs()) {
     py::list params;
-    for (const ParamSpec& p : c.params) {
+    for (const ClosureParamSpec& p : c.params) {
       const bool is_color = p.kind == ParamKind::kColor;
       py::dict d = scalar_spec(p.default_value, p.range);
       if (is_color)
@@ -318,7 +318,8 @@ void register_material_functions(py::module_& m) {
         std::shared_ptr<float[]> data = p.storage();
         if (!data) throw py::value_error("the pixels were released after conversion");
         auto* keep = new std::shared_ptr<float[]>(data);
-        py::capsule owner(keep, [](void* ptr) { delete static_cast<std::shared_ptr<float[]>*>(ptr); });
+        py::capsule owner(keep,
+                          [](void* ptr) { delete static_cast<std::shared_ptr<float[]>*>(ptr); });
         const py::ssize_t n = static_cast<py::ssize_t>(p.width()) * p.height() * 4;
         return py::array_t<float>({n}, {static_cast<py::ssize_t>(sizeof(float))}, data.get(),
                                   owner);

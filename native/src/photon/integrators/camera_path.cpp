@@ -129,7 +129,12 @@ ShadeRay camera_shade_ray(const PathState& state, float path_length) {
       break;
   }
   ray.length = path_length;
-  ray.depth = static_cast<uint16_t>(std::min(state.depth, 65535));
+  const auto clamp_depth = [](int d) { return static_cast<uint16_t>(std::clamp(d, 0, 65535)); };
+  ray.depth = clamp_depth(state.depth - state.transparent_depth);
+  ray.diffuse_depth = clamp_depth(state.diffuse_depth);
+  ray.glossy_depth = clamp_depth(state.glossy_depth);
+  ray.transmission_depth = clamp_depth(state.transmission_depth);
+  ray.transparent_depth = clamp_depth(state.transparent_depth);
   return ray;
 }
 

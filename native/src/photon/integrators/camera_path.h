@@ -74,7 +74,8 @@ inline ShadingPoint shade(const RenderContext& context, const SurfaceInteraction
 }
 
 // The Light Path view of a camera path's segment: its visibility class (camera, diffuse, glossy,
-// transmission), its bounce count, and the distance travelled from the camera.
+// transmission), its bounce counts by kind (Cycles's: Ray Depth leaves out transparent
+// pass-throughs), and the distance travelled from the camera.
 ShadeRay camera_shade_ray(const PathState& state, float path_length);
 
 }  // namespace photon

@@ -10,6 +10,16 @@ uint32_t visibility_after(uint8_t flags) {
   return kVisibleGlossy;
 }
 
+void count_bounce(const BsdfSample& s, PathState* state) {
+  const uint8_t flags = s.flags;
+  if (s.transparent)
+    ++state->transparent_depth;
+  else if (flags & kLobeReflection)
+    ++((flags & kLobeDiffuse) ? state->diffuse_depth : state->glossy_depth);
+  else
+    ++state->transmission_depth;
+}
+
 void spawn_ray(const SurfaceInteraction& si, const Vec3& wi, float length_scale, Ray* ray) {
   ray->origin = offset_ray_origin(si.p, si.ng, wi, length_scale);
   ray->direction = wi;

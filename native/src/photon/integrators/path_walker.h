@@ -64,7 +64,11 @@ struct PathState {
   Ray ray;
   uint32_t mask = kVisibleCamera;  // visibility class of the current segment
   Vec3 throughput{1.0f};
-  int depth = 0;              // bounces before the current segment's end
+  int depth = 0;  // bounces before the current segment's end
+  // The bounces of `depth` by kind, as Cycles counts them for the Light Path node: reflections
+  // off diffuse lobes, other reflections (glossy or mirror), transmissions, and straight
+  // pass-throughs (Transparent BSDF, shadow catchers), which Cycles' Ray Depth leaves out.
+  int diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
   bool after_glossy = false;  // a rough (non-delta) lobe was sampled on the way
   bool last_delta = true;     // the last sampled lobe was delta (or there was none yet)
   bool see_through = true;    // only Transparent pass-throughs since the path began
@@ -83,6 +87,9 @@ struct VertexStep {
 
 // The ray visibility class of the next segment after a sampled lobe (Cycles' ray types).
 uint32_t visibility_after(uint8_t lobe_flags);
+
+// Adds a sampled bounce to the path's per-kind depths.
+void count_bounce(const BsdfSample& sample, PathState* state);
 
 // Moves `ray` on to start at `si` in direction `wi`, offset off the surface by the scene's
 // length scale (ray_offset.h).
@@ -124,6 +131,7 @@ void walk_path(const RenderContext& context, const PathRules& rules, PathState* 
     if (step.kind == VertexStep::kPassThrough) {
       // Straight on through the surface (a shadow catcher): same ray class, same chain.
       if (is_black(state->throughput) || state->depth >= rules.max_depth) return;
+      ++state->transparent_depth;
       spawn_ray(si, state->ray.direction, length_scale, &state->ray);
       continue;
     }
@@ -134,6 +142,7 @@ void walk_path(const RenderContext& context, const PathRules& rules, PathState* 
     visitor.scattered(*state, continues);
     if (!continues) return;
     // A straight delta transmission (a Transparent BSDF) keeps a camera ray a camera ray.
+    count_bounce(s, state);
     const bool transparent = rules.transparent_keeps_visibility && s.is_delta() &&
                              !(s.flags & kLobeReflection) &&
                              dot(s.wi, state->ray.direction) > 0.9999f;

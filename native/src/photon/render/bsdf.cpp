@@ -353,6 +353,7 @@ Bsdf::Bsdf(const Vec3& ns, const Vec3& ng, bool front_facing) : front_facing_(fr
 void Bsdf::set_smooth_normal(const Vec3& n) {
   if (!is_unit_direction(n)) return;
   smooth_n_ = normalize(n);
+  has_smooth_ = true;
   const Vec3 d = smooth_n_ - frame_.n;
   bumped_ = length_squared(d) > 0.0f;
 }
@@ -478,9 +479,12 @@ void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_wor
     Vec3 lwo, lwi;
     if (!lobe_local(i, wo_world, wo, wi_world, wi, &lwo, &lwi)) continue;
     const LobeEval e = eval_lobe(l, lwo, lwi, reflect, eta(l));
-    *f += bumped_ && is_diffuse_type(l)
-              ? e.f * bump_shadowing(reflect ? smooth_n_ : -smooth_n_, frame_.n, wi_world)
-              : e.f;
+    // Each diffuse lobe is shadowed by how far its own normal bends from the smooth one.
+    const Vec3& ln = own_frame_[i] ? lobe_frames_[i].n : frame_.n;
+    const bool shadowed =
+        is_diffuse_type(l) &&
+        (own_frame_[i] ? has_smooth_ && length_squared(smooth_n_ - ln) > 0.0f : bumped_);
+    *f += shadowed ? e.f * bump_shadowing(reflect ? smooth_n_ : -smooth_n_, ln, wi_world) : e.f;
     if (probs) *pdf += probs[i] * e.pdf;
   }
 }
@@ -546,6 +550,7 @@ bool Bsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample
     out->pdf = pdf;
     out->weight = s.f / pdf;
     out->flags = s.flags;
+    out->transparent = lobe.type == LobeType::kTransparent;
     return is_finite(out->weight);
   }
 

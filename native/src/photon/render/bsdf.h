@@ -75,9 +75,10 @@ struct Lobe {
 
 struct BsdfSample {
   Vec3 wi;
-  Vec3 weight{0.0f};  // f |cos theta_i| / pdf, over all lobes allowed by the mask
-  float pdf = 0.0f;   // solid-angle density; for a delta lobe, its discrete probability
-  uint8_t flags = 0;  // LobeFlags of the lobe that was sampled
+  Vec3 weight{0.0f};         // f |cos theta_i| / pdf, over all lobes allowed by the mask
+  float pdf = 0.0f;          // solid-angle density; for a delta lobe, its discrete probability
+  uint8_t flags = 0;         // LobeFlags of the lobe that was sampled
+  bool transparent = false;  // the lobe was a Transparent one (straight through)
   bool is_delta() const { return (flags & kLobeSpecular) != 0; }
 };
 
@@ -116,8 +117,8 @@ class Bsdf {
   // lobes and for Russian roulette; exact for Lambert, approximate elsewhere).
   Vec3 albedo(const Vec3& wo, uint8_t mask = kLobeAll) const;
 
-  // The interpolated (smooth) normal, on wo's side, when the shading normal is a bump or
-  // normal-map normal that differs from it: diffuse lobes are then multiplied by the bump
+  // The interpolated (smooth) normal, on wo's side: diffuse lobes whose normal (a bump or
+  // normal-map normal, the BSDF's or the lobe's own) differs from it are multiplied by the bump
   // shadowing term of Chiang, Li & Burley 2019 ("Taming the Shadow Terminator"), as Cycles
   // does for its diffuse closures.
   void set_smooth_normal(const Vec3& n);
@@ -141,7 +142,8 @@ class Bsdf {
   Frame frame_{Vec3(0.0f, 0.0f, 1.0f)};
   Vec3 ng_{0.0f, 0.0f, 1.0f};
   bool front_facing_ = true;
-  bool bumped_ = false;  // smooth_n_ differs from the shading normal
+  bool bumped_ = false;      // smooth_n_ differs from the shading normal
+  bool has_smooth_ = false;  // set_smooth_normal was given a normal
   Vec3 smooth_n_{0.0f, 0.0f, 1.0f};
   bool valid_ = true;  // false when constructed without a usable normal: the BSDF is black
   // wo and wi in lobe i's frame, from their world and BSDF-frame forms; false when wo is not

@@ -105,9 +105,10 @@ Vec3 apply_normal_map(const NormalMap& map, const SurfaceInteraction& si, const 
 // (normals facing wo's side).
 struct LobeGeometry {
   Vec3 wo;                 // towards the viewer
-  Vec3 n;                  // the BSDF's shading normal
+  Vec3 n;                  // the closure's shading normal
+  Vec3 lobe_n{0.0f};       // the closure's normal when it differs from the BSDF's, else zero
   Vec3 tangent{0.0f};      // the UV map's dP/du, or zero without UVs
-  Vec3 clearcoat_n{0.0f};  // the Clearcoat Normal when linked, else zero
+  Vec3 clearcoat_n{0.0f};  // the Clearcoat Normal (or the interpolated normal), zero: the BSDF's
   bool front = true;
 };
 
@@ -167,12 +168,14 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
     d.type = LobeType::kBurleyDiffuse;
     d.weight = diffuse_color * (w * diffuse_weight);
     d.roughness = roughness;
+    d.normal = geo.lobe_n;
     out->bsdf.add(d);
     const float sheen = std::max(in.scalar(Param::kSheen), 0.0f);
     if (sheen > kWeightCutoff) {
       Lobe sh;
       sh.type = LobeType::kSheen;
       sh.weight = lerp(Vec3(1.0f), hue, in.unit(Param::kSheenTint)) * (w * sheen * diffuse_weight);
+      sh.normal = geo.lobe_n;
       out->bsdf.add(sh);
     }
   }
@@ -193,6 +196,7 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
       s.alpha_y = roughness * roughness * aspect;
       s.tangent = rotated_tangent(geo, in.scalar(Param::kAnisotropicRotation));
     }
+    s.normal = geo.lobe_n;
     out->bsdf.add(s);
   }
   const float transmission_roughness = in.unit(Param::kTransmissionRoughness);
@@ -206,6 +210,7 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
     r.weight = lerp(Vec3(1.0f), base, specular_tint) * (w * final_transmission * fresnel);
     r.alpha = roughness * roughness;
     r.fresnel = FresnelMode::kNone;
+    r.normal = geo.lobe_n;
     out->bsdf.add(r);
     const float rt = 1.0f - (1.0f - roughness) * (1.0f - transmission_roughness);
     Lobe t;
@@ -213,6 +218,7 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
     t.weight = base * (w * final_transmission * (1.0f - fresnel));
     t.alpha = rt * rt;
     t.ior = ior;
+    t.normal = geo.lobe_n;
     out->bsdf.add(t);
   } else if (final_transmission > 0.0f) {
     Lobe g;
@@ -221,6 +227,7 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
     g.alpha = roughness * roughness;
     g.ior = ior;
     g.fresnel = FresnelMode::kDielectric;
+    g.normal = geo.lobe_n;
     out->bsdf.add(g);
   }
   const float clearcoat = std::max(in.scalar(Param::kClearcoat), 0.0f);
@@ -298,6 +305,7 @@ void add_closure(const Closure& c, float w, const InputReader& reader, const Lob
     default:
       return;
   }
+  if (l.type != LobeType::kTransparent) l.normal = geo.lobe_n;  // straight through either way
   out->bsdf.add(l);
 }
 
@@ -309,6 +317,10 @@ Vec3 program_normal(const Vec3& n, const SurfaceInteraction& si, bool front) {
   // A bent normal must stay on the geometric normal's side, or the surface turns black.
   if (dot(ns, si.ng) <= 1e-3f) return si.ns;
   return ns;
+}
+
+bool same_vector(const Vec3& a, const Vec3& b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z;
 }
 
 // The material's program run at a shading point, when it has one.
@@ -341,30 +353,40 @@ ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const A
   const bool front = dot(si.ng, wo) >= 0.0f;
   ProgramRun run(m, si, wo, &accel, textures, ray);
   in.registers = run.registers();
+  // Each closure shades with its own Normal input, or the interpolated normal when unlinked (as
+  // Cycles' closures do). The BSDF's frame takes the first closure's linked normal; closures
+  // whose normal differs get lobes with their own frames.
+  const auto closure_normal = [&](const Closure& c, bool* linked) {
+    *linked = true;
+    if (c.normal_reg >= 0 && in.registers)
+      return program_normal(load3(in.registers, c.normal_reg), si, front);
+    if (c.normal.texture >= 0) return apply_normal_map(c.normal, si, accel, in);
+    *linked = false;
+    return si.ns;
+  };
   Vec3 ns = si.ns;
   for (const Closure& c : m.closures) {
-    // One shading normal per point: the first closure's normal input that is set.
-    if (c.normal_reg >= 0 && in.registers) {
-      ns = program_normal(load3(in.registers, c.normal_reg), si, front);
-      break;
-    }
-    if (c.normal.texture >= 0) {
-      ns = apply_normal_map(c.normal, si, accel, in);
+    bool linked;
+    const Vec3 n = closure_normal(c, &linked);
+    if (linked) {
+      ns = n;
       break;
     }
   }
-  // Both normals on the viewer's side, the shading normal turned (as Cycles turns every
+  // Both normals on the viewer's side, each shading normal turned (as Cycles turns every
   // closure's N) so that the view direction's mirror reflection stays above the surface.
   const Vec3 ng_view = front ? si.ng : -si.ng;
-  const Vec3 ns_view = ensure_valid_reflection(ng_view, wo, front ? ns : -ns);
+  const auto view_normal = [&](const Vec3& n) {
+    return ensure_valid_reflection(ng_view, wo, front ? n : -n);
+  };
+  const Vec3 ns_view = view_normal(ns);
   out.bsdf = Bsdf(ns_view, ng_view, front);
   // A normal other than the interpolated one (Bump, Normal Map, or turned above): diffuse
   // lobes get Cycles' bump shadowing term.
   const Vec3 smooth_view = front ? si.ns : -si.ns;
-  if (length_squared(ns_view - smooth_view) > 0.0f) out.bsdf.set_smooth_normal(smooth_view);
+  out.bsdf.set_smooth_normal(smooth_view);
   LobeGeometry geo;
   geo.wo = wo;
-  geo.n = out.bsdf.frame().n;
   geo.front = front;
   if (m.needs_tangent()) {
     Vec3 dpdu, dpdv;
@@ -374,11 +396,17 @@ ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const A
   for (const Closure& c : m.closures) {
     const float w = closure_weight(c, in);
     if (w < kWeightCutoff) continue;
-    geo.clearcoat_n = Vec3(0.0f);
-    if (c.clearcoat_normal_reg >= 0 && in.registers) {
-      const Vec3 n = program_normal(load3(in.registers, c.clearcoat_normal_reg), si, front);
-      geo.clearcoat_n = front ? n : -n;
-    }
+    bool linked;
+    const Vec3 n = closure_normal(c, &linked);
+    const bool own = !same_vector(n, ns);
+    geo.n = own ? view_normal(n) : out.bsdf.frame().n;
+    geo.lobe_n = own ? geo.n : Vec3(0.0f);
+    // Cycles' clearcoat shades with the Clearcoat Normal when linked, else the interpolated
+    // normal (not the closure's Normal).
+    Vec3 coat_n = si.ns;
+    if (c.clearcoat_normal_reg >= 0 && in.registers)
+      coat_n = program_normal(load3(in.registers, c.clearcoat_normal_reg), si, front);
+    geo.clearcoat_n = same_vector(coat_n, ns) ? Vec3(0.0f) : view_normal(coat_n);
     add_closure(c, w, in, geo, &out);
   }
   if (!is_finite(out.emission)) out.emission = Vec3(0.0f);

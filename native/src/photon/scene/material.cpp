@@ -80,12 +80,23 @@ std::array<Input, static_cast<size_t>(Param::kCount)> Closure::default_params() 
   return photon::default_params(ClosureType::kPrincipled);
 }
 
+namespace {
+
+Material one_closure(const std::string& name, const Closure& c) {
+  Material m;
+  m.name = name;
+  m.closures = {c};
+  return m;
+}
+
+}  // namespace
+
 Material Material::diffuse(const Vec3& color, const std::string& name) {
   Closure c;
   c.type = ClosureType::kDiffuse;
   c.params = photon::default_params(ClosureType::kDiffuse);  // Roughness 0: Lambert
   c[Param::kColor] = Input::constant(color);
-  return Material{name, {c}};
+  return one_closure(name, c);
 }
 
 Material Material::mirror(const Vec3& tint, const std::string& name) {
@@ -94,7 +105,7 @@ Material Material::mirror(const Vec3& tint, const std::string& name) {
   c.sharp = true;
   c[Param::kColor] = Input::constant(tint);
   c[Param::kRoughness] = Input::constant(0.0f);
-  return Material{name, {c}};
+  return one_closure(name, c);
 }
 
 Material Material::glass(float ior, const Vec3& tint, const std::string& name) {
@@ -104,7 +115,7 @@ Material Material::glass(float ior, const Vec3& tint, const std::string& name) {
   c[Param::kColor] = Input::constant(tint);
   c[Param::kRoughness] = Input::constant(0.0f);
   c[Param::kIor] = Input::constant(ior);
-  return Material{name, {c}};
+  return one_closure(name, c);
 }
 
 Material Material::emission(const Vec3& radiance, const std::string& name) {
@@ -112,7 +123,7 @@ Material Material::emission(const Vec3& radiance, const std::string& name) {
   c.type = ClosureType::kEmission;
   c[Param::kColor] = Input::constant(radiance);
   c[Param::kStrength] = Input::constant(1.0f);
-  return Material{name, {c}};
+  return one_closure(name, c);
 }
 
 Material Material::with_emission(const Vec3& radiance) const {

@@ -17,19 +17,19 @@ constexpr ParamRange kTurns{-1e4f, 1e4f};
 constexpr ParamKind S = ParamKind::kScalar;
 constexpr ParamKind C = ParamKind::kColor;
 
-ParamSpec color(float default_value, ParamRange range = kUnit) {
+ClosureParamSpec color(float default_value, ParamRange range = kUnit) {
   return {Param::kColor, "color", {"Color", nullptr}, C, default_value, range};
 }
-ParamSpec roughness(float default_value) {
+ClosureParamSpec roughness(float default_value) {
   return {Param::kRoughness, "roughness", {"Roughness", nullptr}, S, default_value, kUnit};
 }
-ParamSpec ior() {
+ClosureParamSpec ior() {
   return {Param::kIor, "ior", {"IOR", nullptr}, S, 1.45f, kIorRange};
 }
 
 std::vector<ClosureSpec> make_table() {
   // Blender 3.4's node defaults (nodes/shader/nodes/node_shader_*.cc); 4.x socket names second.
-  std::vector<ParamSpec> principled = {
+  std::vector<ClosureParamSpec> principled = {
       {Param::kColor, "color", {"Base Color", nullptr}, C, 0.8f, kUnit},
       {Param::kMetallic, "metallic", {"Metallic", nullptr}, S, 0.0f, kUnit},
       {Param::kRoughness, "roughness", {"Roughness", nullptr}, S, 0.5f, kUnit},
@@ -106,8 +106,8 @@ std::vector<ClosureSpec> make_table() {
   };
 }
 
-const ParamSpec* find_in(const ClosureSpec& closure, Param p) {
-  for (const ParamSpec& spec : closure.params)
+const ClosureParamSpec* find_in(const ClosureSpec& closure, Param p) {
+  for (const ClosureParamSpec& spec : closure.params)
     if (spec.param == p) return &spec;
   return nullptr;
 }
@@ -129,13 +129,13 @@ const ClosureSpec* find_closure(const char* name) {
   return nullptr;
 }
 
-const ParamSpec& param_spec(ClosureType type, Param p) {
-  if (const ParamSpec* own = find_in(closure_spec(type), p)) return *own;
+const ClosureParamSpec& param_spec(ClosureType type, Param p) {
+  if (const ClosureParamSpec* own = find_in(closure_spec(type), p)) return *own;
   return *find_in(closure_spec(ClosureType::kPrincipled), p);
 }
 
-const ParamSpec* find_param(const char* key) {
-  for (const ParamSpec& spec : closure_spec(ClosureType::kPrincipled).params)
+const ClosureParamSpec* find_param(const char* key) {
+  for (const ClosureParamSpec& spec : closure_spec(ClosureType::kPrincipled).params)
     if (std::strcmp(spec.key, key) == 0) return &spec;
   return nullptr;
 }

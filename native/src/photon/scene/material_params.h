@@ -16,7 +16,7 @@ namespace photon {
 enum class ParamKind : uint8_t { kScalar, kColor };
 
 // One closure input.
-struct ParamSpec {
+struct ClosureParamSpec {
   Param param;
   const char* key;  // the closure dict's key ("color", "roughness", ...)
   // Blender's socket names: Blender 3.4's first, then the 4.x name when it differs (or null).
@@ -32,7 +32,7 @@ struct ClosureSpec {
   ClosureType type;
   const char* name;  // "PRINCIPLED", ...
   const char* node;  // bpy ShaderNode.type: "BSDF_PRINCIPLED", ...
-  std::vector<ParamSpec> params;
+  std::vector<ClosureParamSpec> params;
 };
 
 // Every closure type, in ClosureType order.
@@ -41,9 +41,9 @@ const ClosureSpec& closure_spec(ClosureType type);
 const ClosureSpec* find_closure(const char* name);
 // The input `p` of closure `type`; for an input the closure does not read (it keeps its value
 // but never renders it), the Principled BSDF's, which reads every Param.
-const ParamSpec& param_spec(ClosureType type, Param p);
+const ClosureParamSpec& param_spec(ClosureType type, Param p);
 // The input named `key` (any closure's: the dict keys are shared), or null.
-const ParamSpec* find_param(const char* key);
+const ClosureParamSpec* find_param(const char* key);
 
 // Blender's defaults for the inputs of `type` (Principled's for inputs it does not read).
 std::array<Input, static_cast<size_t>(Param::kCount)> default_params(ClosureType type);

@@ -35,7 +35,7 @@ TEST(MaterialTable, ClosureTypesInOrderAndEveryParamOnce) {
     EXPECT_EQ(static_cast<size_t>(specs[i].type), i) << specs[i].name;
     EXPECT_EQ(find_closure(specs[i].name), &specs[i]);
     std::set<Param> seen;
-    for (const ParamSpec& p : specs[i].params) {
+    for (const ClosureParamSpec& p : specs[i].params) {
       EXPECT_TRUE(seen.insert(p.param).second) << specs[i].name << " " << p.key;
       EXPECT_LE(p.range.lo, p.default_value) << specs[i].name << " " << p.key;
       EXPECT_LE(p.default_value, p.range.hi) << specs[i].name << " " << p.key;
@@ -56,7 +56,7 @@ TEST(MaterialTable, ClosureTypesInOrderAndEveryParamOnce) {
 // ones at the node's default, values inside it unchanged; param_range agrees with the table.
 TEST(MaterialTable, SanitizeClampsEveryEntryToItsRange) {
   for (const ClosureSpec& closure : closure_specs())
-    for (const ParamSpec& spec : closure.params) {
+    for (const ClosureParamSpec& spec : closure.params) {
       const std::string what = std::string(closure.name) + " " + spec.key;
       const ParamRange r = param_range(closure.type, spec.param);
       EXPECT_EQ(r.lo, spec.range.lo) << what;
@@ -87,7 +87,7 @@ TEST(MaterialTable, SanitizeClampsEveryEntryToItsRange) {
 // not the Principled BSDF's grey).
 TEST(MaterialTable, MissingTextureFallsBackToTheNodesDefault) {
   for (const ClosureSpec& closure : closure_specs())
-    for (const ParamSpec& spec : closure.params) {
+    for (const ClosureParamSpec& spec : closure.params) {
       Input in;
       in.texture = 3;
       Material m = one_closure(closure.type, spec.param, in);
@@ -147,7 +147,7 @@ TEST(MaterialTable, TexturesAboveTheRangeShadeLikeClampedConstants) {
   setenv("PHOTON_TEXTURE_CACHE",
          (fs::temp_directory_path() / "photon_material_table_cache").c_str(), 1);
   for (const ClosureSpec& closure : closure_specs())
-    for (const ParamSpec& spec : closure.params) {
+    for (const ClosureParamSpec& spec : closure.params) {
       const std::string what = std::string(closure.name) + " " + spec.key;
       const float above = 2.0f * spec.range.hi;
       Material constant = one_closure(closure.type, spec.param, Input::constant(above));
