@@ -420,13 +420,18 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
         weight * caustic_.radiance_estimate(
                      x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
                      caustic_radius_, kPhotonCaustic, &scratch);
-  // Final gathering where it shows: at the first diffuse surface seen directly or through
-  // perfect mirrors and glass. After a rough glossy bounce the blur hides the global map.
+  // Final gathering at the first diffuse surface of the camera path, whatever lobes led there,
+  // and at any diffuse surface seen through perfect mirrors and glass only; the global map's
+  // own estimate only after a diffuse reflection (Jensen 1996, "Global Illumination using
+  // Photon Maps": the approximate evaluation once the path has been reflected diffusely). A
+  // rough glossy reflection does not hide the map's blur: a metal sphere of roughness 0.2
+  // mirrors the floor beside it, lit by the sphere's own glossy caustic, which the map's disc
+  // of k photons spreads far wider than the reflection blurs it.
+  const bool gather = s.final_gather_rays > 0 && (!v.after_glossy || !v.after_diffuse);
   Vec3 cached;
-  if (s.final_gather_rays > 0 && !v.after_glossy &&
-      irradiance_.lookup(x.p, bsdf.frame().n, &cached)) {
+  if (gather && irradiance_.lookup(x.p, bsdf.frame().n, &cached)) {
     result->indirect += weight * cached;
-  } else if (s.final_gather_rays > 0 && !v.after_glossy) {
+  } else if (gather) {
     result->indirect += weight * final_gather(context, x, bsdf, s.final_gather_rays, sampler);
   } else if (!global_.empty()) {
     // Photons that bounced off a diffuse or glossy surface at least once; direct light and
