@@ -88,12 +88,16 @@ class CameraVisitor {
     const Bsdf& bsdf = sp_.bsdf;
     if (bsdf.empty()) return VertexStep::stop();
 
-    const PathVertex v{&si,         &sp_, wo, state.throughput, state.depth, state.after_glossy,
-                       path_length_};
+    const PathVertex v{
+        &si,           &sp_,        wo, state.throughput, state.depth, state.after_glossy,
+        diffuse_seen_, path_length_};
     if (walk_.radiance && (bsdf.flags() & walk_.light_sampled))
       result_->direct +=
           state.throughput * direct_radiance(context_, si, bsdf, wo, sampler_, walk_.light_sampled);
-    if (bsdf.flags() & kLobeDiffuse) at_diffuse_(v, result_);
+    if (bsdf.flags() & kLobeDiffuse) {
+      at_diffuse_(v, result_);
+      diffuse_seen_ = true;
+    }
     return VertexStep::scatter(bsdf);
   }
 
@@ -107,6 +111,7 @@ class CameraVisitor {
   RadianceSample* result_;
   ShadingPoint sp_;  // the current vertex's shading, alive while its BSDF is sampled
   bool primary_ = true;
+  bool diffuse_seen_ = false;  // a vertex with a diffuse lobe was shaded
   float path_length_ = 0.0f;
 };
 

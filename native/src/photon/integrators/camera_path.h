@@ -24,6 +24,7 @@ struct PathVertex {
   Vec3 throughput;            // camera -> this vertex, without the vertex's own BSDF
   int depth = 0;              // bounces before this vertex
   bool after_glossy = false;  // a rough (non-delta) lobe was sampled on the way here
+  bool after_diffuse = false;  // an earlier vertex of this path had a diffuse lobe
   float path_length = 0.0f;   // distance along the path from the camera to this vertex
 };
 

@@ -218,6 +218,9 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
     }
   }
   const double build_seconds = seconds_since(t0);
+  secondary_distance_ = std::min(
+      global_radius_,
+      global_.median_kth_distance(static_cast<size_t>(std::max(s.gather_count, 1)), kPhotonAny));
 
   // Christensen 1999: radiance (for albedo 1) precomputed at every gather point, so a final
   // gather ray needs one nearest-point lookup instead of a k-nearest estimate.
@@ -297,9 +300,35 @@ Vec3 PhotonMapIntegrator::gathered_radiance(const Vec3& p, const Vec3& n,
   return global_.radiance_estimate(p, n, kFallbackCount, global_radius_, kPhotonAny, scratch);
 }
 
+Vec3 PhotonMapIntegrator::secondary_radiance(const RenderContext& context,
+                                             const SurfaceInteraction& y, const Bsdf& bsdf,
+                                             const Vec3& wo, Sampler& sampler,
+                                             std::vector<PhotonNeighbor>* scratch) const {
+  // The point as seen from wo's side (direct_irradiance lights the side its normals face).
+  SurfaceInteraction lit = y;
+  if (dot(lit.ng, wo) < 0.0f) {
+    lit.ng = -lit.ng;
+    lit.ns = -lit.ns;
+  }
+  Vec3 radiance = direct_irradiance(context, lit, sampler) * kInvPi;
+  const RenderSettings& s = *context.settings;
+  if (!caustic_.empty())
+    radiance += caustic_.radiance_estimate(y.p, bsdf.ng(),
+                                           static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+                                           caustic_radius_, kPhotonCaustic, scratch);
+  // One cosine-distributed ray: pdf cos / pi, so its radiance is the (albedo 1) estimate.
+  const Vec3 wi = bsdf.frame().to_world(sample_cosine_hemisphere(sampler.get_2d()));
+  if (dot(wi, bsdf.ng()) > 0.0f) {
+    Ray ray;
+    spawn_ray(y, wi, context.accel->length_scale(), &ray);
+    radiance += gather_ray(context, ray, sampler, scratch, nullptr, false);
+  }
+  return radiance;
+}
+
 Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
-                                     std::vector<PhotonNeighbor>* scratch,
-                                     float* hit_distance) const {
+                                     std::vector<PhotonNeighbor>* scratch, float* hit_distance,
+                                     bool primary) const {
   // A final-gather ray reads the precomputed radiance at every diffuse surface it meets and
   // goes on through glossy and specular lobes (importance_rules, path_walker.h).
   struct GatherVisitor {
@@ -307,6 +336,8 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
     const PhotonMapIntegrator& self;
     std::vector<PhotonNeighbor>* scratch;
     float* hit_distance;
+    Sampler& sampler;
+    bool primary;
     Vec3 sum{0.0f};
     ShadingPoint sp{};
 
@@ -331,12 +362,20 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
       if (state.depth == 0 && hit_distance) *hit_distance = found ? hit.t : INFINITY;
       return found;
     }
-    VertexStep vertex(PathState& state, const Hit&, const SurfaceInteraction& y) {
+    VertexStep vertex(PathState& state, const Hit& hit, const SurfaceInteraction& y) {
       sp = shade(context, y, -state.ray.direction);
       if (state.after_glossy) sum += state.throughput * sp.emission;
       const Vec3 rd = sp.bsdf.diffuse_reflectance();
-      if (!is_black(rd))
-        sum += state.throughput * rd * self.gathered_radiance(y.p, sp.bsdf.ng(), scratch);
+      if (!is_black(rd)) {
+        // A record's estimate is blurred over about secondary_distance_: at a nearer first hit
+        // (a contact, a corner) that blur is larger than the gather's own spread, so the point
+        // takes one more bounce (a secondary final gather) instead.
+        const bool near = primary && state.depth == 0 && hit.t < self.secondary_distance_;
+        sum += state.throughput * rd *
+               (near ? self.secondary_radiance(context, y, sp.bsdf, -state.ray.direction, sampler,
+                                               scratch)
+                     : self.gathered_radiance(y.p, sp.bsdf.ng(), scratch));
+      }
       return VertexStep::scatter(sp.bsdf);
     }
     void scattered(const PathState&, bool) {}
@@ -344,7 +383,7 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
   PathState state;
   state.ray = ray;
   state.mask = kVisibleDiffuse;
-  GatherVisitor visitor{context, *this, scratch, hit_distance};
+  GatherVisitor visitor{context, *this, scratch, hit_distance, sampler, primary};
   walk_path(context, importance_rules(context.settings->max_depth), &state, sampler, visitor);
   return visitor.sum;
 }
@@ -420,13 +459,18 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
         weight * caustic_.radiance_estimate(
                      x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
                      caustic_radius_, kPhotonCaustic, &scratch);
-  // Final gathering where it shows: at the first diffuse surface seen directly or through
-  // perfect mirrors and glass. After a rough glossy bounce the blur hides the global map.
+  // Final gathering at the first diffuse surface of the camera path, whatever lobes led there,
+  // and at any diffuse surface seen through perfect mirrors and glass only; the global map's
+  // own estimate only after a diffuse reflection (Jensen 1996, "Global Illumination using
+  // Photon Maps": the approximate evaluation once the path has been reflected diffusely). A
+  // rough glossy reflection does not hide the map's blur: a metal sphere of roughness 0.2
+  // mirrors the floor beside it, lit by the sphere's own glossy caustic, which the map's disc
+  // of k photons spreads far wider than the reflection blurs it.
+  const bool gather = s.final_gather_rays > 0 && (!v.after_glossy || !v.after_diffuse);
   Vec3 cached;
-  if (s.final_gather_rays > 0 && !v.after_glossy &&
-      irradiance_.lookup(x.p, bsdf.frame().n, &cached)) {
+  if (gather && irradiance_.lookup(x.p, bsdf.frame().n, &cached)) {
     result->indirect += weight * cached;
-  } else if (s.final_gather_rays > 0 && !v.after_glossy) {
+  } else if (gather) {
     result->indirect += weight * final_gather(context, x, bsdf, s.final_gather_rays, sampler);
   } else if (!global_.empty()) {
     // Photons that bounced off a diffuse or glossy surface at least once; direct light and

@@ -45,10 +45,18 @@ class PhotonMapIntegrator : public Integrator {
   // Radiance (for albedo 1) leaving a diffuse point p with normal n: the nearest precomputed
   // record, else a small global-map estimate.
   Vec3 gathered_radiance(const Vec3& p, const Vec3& n, std::vector<PhotonNeighbor>* scratch) const;
-  // Radiance reaching the origin of a final-gather ray (the integrand of the indirect term, Jensen 2001 sec. 9.1), and
-  // the distance to its first hit (infinity if none).
+  // Radiance reaching the origin of a final-gather ray (the integrand of the indirect term, Jensen
+  // 2001 sec. 9.1), and the distance to its first hit (infinity if none). A first hit nearer than
+  // secondary_distance_ is shaded by secondary_radiance instead of its record unless `primary` is
+  // false (the secondary gather's own ray).
   Vec3 gather_ray(const RenderContext& context, Ray ray, Sampler& sampler,
-                  std::vector<PhotonNeighbor>* scratch, float* hit_distance = nullptr) const;
+                  std::vector<PhotonNeighbor>* scratch, float* hit_distance = nullptr,
+                  bool primary = true) const;
+  // Radiance (for albedo 1) leaving the diffuse point `y` towards `wo` by one more bounce: its
+  // direct light by light sampling, its caustics, and one cosine-distributed gather ray.
+  Vec3 secondary_radiance(const RenderContext& context, const SurfaceInteraction& y,
+                          const Bsdf& bsdf, const Vec3& wo, Sampler& sampler,
+                          std::vector<PhotonNeighbor>* scratch) const;
   // Reflected radiance for albedo 1 from `rays` final-gather rays; optionally the harmonic
   // mean distance of their hits. Returns early (a meaningless value) once `cancel` is set.
   Vec3 final_gather(const RenderContext& context, const SurfaceInteraction& x, const Bsdf& bsdf,
@@ -65,6 +73,9 @@ class PhotonMapIntegrator : public Integrator {
   IrradianceCache irradiance_;       // final gathers at camera-visible diffuse points
   IrradianceCache bake_irradiance_;  // final gathers among a bake's points
   float global_radius_ = 0.0f, caustic_radius_ = 0.0f;
+  // The typical radius of a global-map estimate: final-gather hits nearer than this read a
+  // record blurred over more than their distance, so they take one more bounce.
+  float secondary_distance_ = 0.0f;
   PrepareStats stats_;
 };
 
