@@ -23,7 +23,10 @@ enum class LobeType : uint8_t {
   kBurleyDiffuse,  // Burley 2012 diffuse with `roughness` (Cycles' Principled v1 diffuse)
   kTranslucent,    // color / pi, to the other side
   kGgxReflection,  // GGX microfacet reflection (Walter et al. 2007), Fresnel per `fresnel`
-  kGgxGlass,       // GGX reflection + transmission with dielectric Fresnel (Walter 2007)
+  // Cycles 3.4's Glass BSDF: GGX reflection (F = 1 per microfacet) weighted by the dielectric
+  // Fresnel of the shading normal F(wo.z), plus GGX transmission (Walter 2007) weighted by
+  // 1 - F(wo.z); not reciprocal, and light refracted into a totally reflecting microfacet is lost.
+  kGgxGlass,
   kGgxRefraction,  // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
   kTransparent,    // straight through, unchanged direction (always a delta lobe)
   // Oren-Nayar 1994 in the qualitative form of Cycles 3.4's bsdf_oren_nayar, sigma = `roughness`.
