@@ -69,6 +69,12 @@ Vec3 reflection_fresnel(const Lobe& l, float cos_oh, float eta) {
       return Vec3(fresnel_dielectric(cos_oh, eta));
     case FresnelMode::kSchlick:
       return fresnel_schlick(l.f0, cos_oh);
+    case FresnelMode::kInterpolated: {
+      const float f_normal = fresnel_dielectric(1.0f, eta);
+      const float fh =
+          f_normal < 1.0f ? (fresnel_dielectric(cos_oh, eta) - f_normal) / (1.0f - f_normal) : 1.0f;
+      return l.f0 + (Vec3(1.0f) - l.f0) * fh;
+    }
     default:
       return Vec3(1.0f);
   }

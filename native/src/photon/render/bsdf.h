@@ -39,6 +39,10 @@ enum class FresnelMode : uint8_t {
   kNone,        // F = 1: the lobe's colour is its reflectance (Cycles' Glossy BSDF)
   kDielectric,  // exact dielectric Fresnel with `ior`
   kSchlick,     // Schlick's approximation with F0 = `f0` (metals, Principled specular)
+  // Cycles 3.4's interpolate_fresnel_color (Principled v1 glass reflection): `f0` blended to
+  // white by FH = (F(wi.h) - F(1)) / (1 - F(1)), F the dielectric Fresnel with `ior`; white
+  // where the microfacet reflects totally.
+  kInterpolated,
 };
 
 // What a lobe does, for choosing which part of the light transport handles it.
@@ -63,7 +67,7 @@ struct Lobe {
   float roughness = 0.0f;  // Burley diffuse roughness / Oren-Nayar sigma (Blender's, not squared)
   float ior = 1.45f;       // kDielectric Fresnel and glass / refraction lobes
   FresnelMode fresnel = FresnelMode::kNone;
-  Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence
+  Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence; kInterpolated's tint
   // The lobe's own shading normal (world space, facing wo's side like the BSDF's), or zero for
   // the BSDF's; one that is not above the geometric surface falls back to the BSDF's.
   Vec3 normal{0.0f};

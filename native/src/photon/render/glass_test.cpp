@@ -143,7 +143,8 @@ Split find_split(const Bsdf& b) {
   Split s;
   for (int i = 0; i < b.lobe_count(); ++i) {
     const Lobe& l = b.lobe(i);
-    if (l.type == LobeType::kGgxReflection && l.fresnel == FresnelMode::kNone) s.reflection = &l;
+    if (l.type == LobeType::kGgxReflection && l.fresnel == FresnelMode::kInterpolated)
+      s.reflection = &l;
     if (l.type == LobeType::kGgxRefraction) s.refraction = &l;
     if (l.type == LobeType::kGgxGlass) ++s.glass_lobes;
   }
@@ -171,7 +172,7 @@ TEST(PrincipledGlass, TransmissionRoughnessZeroIsSplitLikeCycles) {
   }
 }
 
-// Specular Tint tints the reflection towards the base colour (Cycles' cspec0).
+// Specular Tint tints the reflection's microfacets towards the base colour (Cycles' cspec0).
 TEST(PrincipledGlass, SpecularTintTintsTheReflection) {
   const Vec3 base(0.9f, 0.5f, 0.2f);
   const GlassQuad quad(glass(0.2f, base, 0.5f));
@@ -179,8 +180,37 @@ TEST(PrincipledGlass, SpecularTintTintsTheReflection) {
   const Split s = find_split(quad.shade(wo).bsdf);
   ASSERT_NE(s.reflection, nullptr);
   const float fr = fresnel_dielectric(1.0f, 1.45f);
-  for (int k = 0; k < 3; ++k)
-    EXPECT_NEAR(s.reflection->weight[k], (0.5f + 0.5f * base[k]) * fr, 1e-5f) << k;
+  EXPECT_NEAR(s.reflection->ior, 1.45f, 1e-6f);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(s.reflection->weight[k], fr, 1e-5f) << k;
+    EXPECT_NEAR(s.reflection->f0[k], 0.5f + 0.5f * base[k], 1e-5f) << k;
+  }
+}
+
+// Cycles' interpolate_fresnel_color: the tint at normal incidence, blended to white by the
+// normalised dielectric Fresnel of the microfacet, white where it reflects totally (inside).
+TEST(GlassLobe, InterpolatedFresnelGoesFromTheTintToWhite) {
+  const Vec3 tint(0.95f, 0.75f, 0.6f);
+  Lobe l = lobe(LobeType::kGgxReflection, 0.0f);  // a mirror: the sample weight is F(wo.z)
+  l.fresnel = FresnelMode::kInterpolated;
+  l.f0 = tint;
+  const float f0 = fresnel_dielectric(1.0f, 1.5f);
+  struct Case {
+    bool front;
+    float theta;
+  };
+  for (const Case c :
+       {Case{true, 0.0f}, Case{true, 80.0f}, Case{false, 30.0f}, Case{false, 60.0f}}) {
+    const Bsdf b = single(l, c.front);
+    const Vec3 wo = direction(c.theta, 0.0f);
+    BsdfSample s;
+    ASSERT_TRUE(b.sample(wo, 0.5f, Vec2(0.5f, 0.5f), kLobeAll, &s));
+    const float fh = (fresnel_dielectric(wo.z, c.front ? 1.5f : 1.0f / 1.5f) - f0) / (1.0f - f0);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_NEAR(s.weight[k], tint[k] + (1.0f - tint[k]) * fh, 1e-5f) << c.theta << " " << k;
+    if (c.theta == 0.0f) EXPECT_NEAR(s.weight.y, tint.y, 1e-5f);
+    if (!c.front && c.theta == 60.0f) EXPECT_NEAR(s.weight.z, 1.0f, 1e-5f);  // total reflection
+  }
 }
 
 // Smooth coloured glass: the mirror reflection carries F of white light (the single glass lobe

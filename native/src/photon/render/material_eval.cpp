@@ -197,9 +197,10 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
   }
   if (final_transmission > 0.0f) {
     // Cycles 3.4 splits the glass whenever the distribution is GGX (the node's default) or
-    // Roughness <= 0.05, Transmission Roughness 0 included: a GGX reflection with F = 1 weighted
-    // by the dielectric Fresnel of the shading normal (tinted by cspec0, the base colour by
-    // Specular Tint, not by the base colour itself) and a GGX refraction with alpha from
+    // Roughness <= 0.05, Transmission Roughness 0 included: a GGX reflection weighted by the
+    // dielectric Fresnel of the shading normal, its microfacets tinted by cspec0 (the base
+    // colour by Specular Tint, not the base colour itself) blended to white towards grazing
+    // and total reflection (interpolate_fresnel_color), and a GGX refraction with alpha from
     // 1 - (1 - roughness)(1 - transmission roughness) weighted by the rest and the base colour.
     // Unlike a glass lobe with the microfacet Fresnel (Walter 2007, eq. 21) the refraction
     // returns nothing where a microfacet reflects totally, so rough glass keeps less energy:
@@ -209,9 +210,11 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
     const float fresnel = fresnel_dielectric(cos_o, geo.front ? ior : 1.0f / ior);
     Lobe r;
     r.type = LobeType::kGgxReflection;
-    r.weight = lerp(Vec3(1.0f), base, specular_tint) * (w * final_transmission * fresnel);
+    r.weight = Vec3(w * final_transmission * fresnel);
     r.alpha = roughness * roughness;
-    r.fresnel = FresnelMode::kNone;
+    r.fresnel = FresnelMode::kInterpolated;
+    r.f0 = lerp(Vec3(1.0f), base, specular_tint);
+    r.ior = ior;
     out->bsdf.add(r);
     const float rt = 1.0f - (1.0f - roughness) * (1.0f - transmission_roughness);
     Lobe t;
