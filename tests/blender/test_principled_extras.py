@@ -15,13 +15,7 @@ from harness import read_image  # noqa: E402
 TOLERANCE = 0.02
 RES = 64
 ORTHO_SCALE = 2.2
-# Principled glass with Transmission Roughness 0.6 renders 6% darker than Cycles at 64 bounces
-# (0.228 against 0.243; at Transmission Roughness 0 the existing glass lobe is 10% brighter):
-# a difference in the glass sphere's internal bounces, not yet found. Strict: it must fail
-# until that is fixed.
-GLASS_GAP = pytest.mark.xfail(strict=True, reason="Principled glass 6% below Cycles")
-FEATURES = ["sheen", "anisotropic", pytest.param("transmission_roughness", marks=GLASS_GAP),
-            "subsurface", "oren_nayar"]
+FEATURES = ["sheen", "anisotropic", "transmission_roughness", "subsurface", "oren_nayar"]
 
 
 def sphere_mask():

@@ -69,6 +69,12 @@ Vec3 reflection_fresnel(const Lobe& l, float cos_oh, float eta) {
       return Vec3(fresnel_dielectric(cos_oh, eta));
     case FresnelMode::kSchlick:
       return fresnel_schlick(l.f0, cos_oh);
+    case FresnelMode::kInterpolated: {
+      const float f_normal = fresnel_dielectric(1.0f, eta);
+      const float fh =
+          f_normal < 1.0f ? (fresnel_dielectric(cos_oh, eta) - f_normal) / (1.0f - f_normal) : 1.0f;
+      return l.f0 + (Vec3(1.0f) - l.f0) * fh;
+    }
     default:
       return Vec3(1.0f);
   }
@@ -105,9 +111,16 @@ struct LobeEval {
   float pdf = 0.0f;  // solid-angle density of this lobe's sampling routine
 };
 
+// The share of a glass lobe that reflects: Cycles 3.4's Glass BSDF (svm/closure.h) weights
+// its GGX reflection closure by the dielectric Fresnel of the shading normal, F(wo.z), and its
+// GGX refraction closure by 1 - F(wo.z); neither applies a Fresnel term per microfacet.
+float glass_fresnel(const Vec3& wo, float eta) {
+  return fresnel_dielectric(wo.z, eta);
+}
+
 // Microfacet reflection (Walter 2007, eq. 20) of a GGX reflection or glass lobe, wo.z and wi.z
 // > 0, with the pdf of visible-normal sampling (Heitz 2018, eq. 17 and the reflection
-// Jacobian 1 / (4 wo.h)). Glass picks reflection with probability F.
+// Jacobian 1 / (4 wo.h)). Glass picks reflection with probability F(wo.z).
 LobeEval ggx_reflection(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta) {
   LobeEval r;
   const Vec3 h = normalize(wo + wi);
@@ -116,8 +129,7 @@ LobeEval ggx_reflection(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta
   const float d = lobe_d(l, h);
   const float g = lobe_g2(l, wo, wi, h);
   const bool glass = l.type == LobeType::kGgxGlass;
-  const Vec3 fr =
-      glass ? Vec3(fresnel_dielectric(cos_oh, eta)) : reflection_fresnel(l, cos_oh, eta);
+  const Vec3 fr = glass ? Vec3(glass_fresnel(wo, eta)) : reflection_fresnel(l, cos_oh, eta);
   r.f = l.weight * fr * (d * g / (4.0f * wo.z * wi.z));
   r.pdf = lobe_visible_normal_pdf(l, wo, h) / (4.0f * cos_oh) * (glass ? fr.x : 1.0f);
   return r;
@@ -125,14 +137,15 @@ LobeEval ggx_reflection(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta
 
 // Microfacet refraction (Walter 2007, eq. 21) without the radiance scaling 1/eta^2 (see
 // bsdf.h), wo.z > 0 > wi.z; the pdf uses the refraction Jacobian (eq. 17). Glass weights it by
-// 1 - F (and picks it with that probability); the Refraction lobe refracts everything.
+// 1 - F(wo.z) (and picks it with that probability); the Refraction lobe refracts everything.
+// Where the sampled microfacet reflects totally, neither returns light (as in Cycles 3.4).
 LobeEval ggx_transmission(const Lobe& l, const Vec3& wo, const Vec3& wi, float eta) {
   LobeEval r;
   const RefractionGeometry geo = refraction_geometry(wo, wi, eta);
   if (!geo.valid) return r;
   const float d = lobe_d(l, geo.h);
   const float g = lobe_g2(l, wo, wi, geo.h);
-  const float t = l.type == LobeType::kGgxGlass ? 1.0f - fresnel_dielectric(geo.cos_oh, eta) : 1.0f;
+  const float t = l.type == LobeType::kGgxGlass ? 1.0f - glass_fresnel(wo, eta) : 1.0f;
   const float jacobian = eta * eta * std::fabs(geo.cos_ih) / geo.denom2;  // d(h) / d(wi)
   r.f = l.weight * (t * d * g * jacobian * geo.cos_oh / (wo.z * std::fabs(wi.z)));
   r.pdf = t * lobe_visible_normal_pdf(l, wo, geo.h) * jacobian;
@@ -246,7 +259,7 @@ bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 
     case LobeType::kGgxGlass:
     case LobeType::kGgxRefraction: {
       const Vec3 h = lobe_sample_visible_normal(l, wo, u);
-      const float f = l.type == LobeType::kGgxGlass ? fresnel_dielectric(dot(wo, h), eta) : 0.0f;
+      const float f = l.type == LobeType::kGgxGlass ? glass_fresnel(wo, eta) : 0.0f;
       if (u_choice < f) {
         *wi = reflect(wo, h);
         return true;

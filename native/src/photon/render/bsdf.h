@@ -23,7 +23,10 @@ enum class LobeType : uint8_t {
   kBurleyDiffuse,  // Burley 2012 diffuse with `roughness` (Cycles' Principled v1 diffuse)
   kTranslucent,    // color / pi, to the other side
   kGgxReflection,  // GGX microfacet reflection (Walter et al. 2007), Fresnel per `fresnel`
-  kGgxGlass,       // GGX reflection + transmission with dielectric Fresnel (Walter 2007)
+  // Cycles 3.4's Glass BSDF: GGX reflection (F = 1 per microfacet) weighted by the dielectric
+  // Fresnel of the shading normal F(wo.z), plus GGX transmission (Walter 2007) weighted by
+  // 1 - F(wo.z); not reciprocal, and light refracted into a totally reflecting microfacet is lost.
+  kGgxGlass,
   kGgxRefraction,  // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
   kTransparent,    // straight through, unchanged direction (always a delta lobe)
   // Oren-Nayar 1994 in the qualitative form of Cycles 3.4's bsdf_oren_nayar, sigma = `roughness`.
@@ -36,6 +39,10 @@ enum class FresnelMode : uint8_t {
   kNone,        // F = 1: the lobe's colour is its reflectance (Cycles' Glossy BSDF)
   kDielectric,  // exact dielectric Fresnel with `ior`
   kSchlick,     // Schlick's approximation with F0 = `f0` (metals, Principled specular)
+  // Cycles 3.4's interpolate_fresnel_color (Principled v1 glass reflection): `f0` blended to
+  // white by FH = (F(wi.h) - F(1)) / (1 - F(1)), F the dielectric Fresnel with `ior`; white
+  // where the microfacet reflects totally.
+  kInterpolated,
 };
 
 // What a lobe does, for choosing which part of the light transport handles it.
@@ -60,7 +67,7 @@ struct Lobe {
   float roughness = 0.0f;  // Burley diffuse roughness / Oren-Nayar sigma (Blender's, not squared)
   float ior = 1.45f;       // kDielectric Fresnel and glass / refraction lobes
   FresnelMode fresnel = FresnelMode::kNone;
-  Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence
+  Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence; kInterpolated's tint
   // The lobe's own shading normal (world space, facing wo's side like the BSDF's), or zero for
   // the BSDF's; one that is not above the geometric surface falls back to the BSDF's.
   Vec3 normal{0.0f};

@@ -327,7 +327,7 @@ TEST(PrincipledExtrasMaterial, TransmissionRoughnessSplitsTheGlass) {
   for (int i = 0; i < sp.bsdf.lobe_count(); ++i) {
     const Lobe& l = sp.bsdf.lobe(i);
     if (l.type == LobeType::kGgxRefraction) refr = &l;
-    if (l.type == LobeType::kGgxReflection && l.fresnel == FresnelMode::kNone) refl = &l;
+    if (l.type == LobeType::kGgxReflection && l.fresnel == FresnelMode::kInterpolated) refl = &l;
   }
   ASSERT_NE(refl, nullptr);
   ASSERT_NE(refr, nullptr);
