@@ -287,7 +287,7 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "set_instance_info",
           [](Scene& scene, size_t first, const std::vector<float>& color,
-             const std::vector<float>& randoms, float pass_index) {
+             const std::vector<float>& randoms, float pass_index, float alpha) {
             const Vec3 c = vec3_from(color, "color");
             if (first + randoms.size() > scene.instances.size())
               throw std::out_of_range("instance index");
@@ -296,10 +296,13 @@ PYBIND11_MODULE(_photon, m) {
               inst.color = is_finite(c) ? c : Vec3(1.0f);
               inst.random = std::isfinite(randoms[i]) ? std::clamp(randoms[i], 0.0f, 1.0f) : 0.0f;
               inst.pass_index = std::isfinite(pass_index) ? pass_index : 0.0f;
+              inst.alpha = std::isfinite(alpha) ? alpha : 1.0f;
             }
           },
           py::arg("first"), py::arg("color"), py::arg("randoms"), py::arg("pass_index") = 0.0f,
-          "Object Info of instances first .. first + len(randoms): colour, random, pass index.")
+          py::arg("alpha") = 1.0f,
+          "Object Info of instances first .. first + len(randoms): colour, random, pass index, "
+          "alpha (the object colour's fourth channel).")
       .def(
           "add_texture",
           [](Scene& scene, const std::string& path, bool srgb, const std::string& extension,
