@@ -29,6 +29,8 @@ Optional keys for the image, object and camera nodes (absent, nothing changes):
   "material": {"pass_index": 2}             # the plane material's pass index
   "output_add": [1, 1, 1]                    # added (Vector Math ADD) to the output before the
                                              # Emission, so negative components show
+  "strength_output": "Alpha"                 # a second output of the node drives the Emission's
+                                             # Strength (the image shows output x that one)
 Ramp and curve nodes take their data from an optional "setup" (see _setup_data):
   "setup": {"color_ramp": {"interpolation": "EASE", "color_mode": "HSV",
                            "hue_interpolation": "FAR", "elements": [[0.1, [r, g, b, a]], ...]},
@@ -317,6 +319,9 @@ def _material(case):
         tree.links.new(output, add.inputs[0])
         output = add.outputs[0]
     tree.links.new(output, emission.inputs["Color"])
+    if case.get("strength_output") is not None:
+        tree.links.new(_socket(node.outputs, case["strength_output"]),
+                       emission.inputs["Strength"])
     return mat
 
 

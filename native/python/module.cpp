@@ -306,26 +306,31 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "add_texture",
           [](Scene& scene, const std::string& path, bool srgb, const std::string& extension,
-             const std::string& interpolation) {
-            scene.textures.push_back(
-                photon_python::parse_texture(path, srgb, extension, interpolation));
+             const std::string& interpolation, const std::string& alpha, bool unassociate) {
+            ImageTexture t = photon_python::parse_texture(path, srgb, extension, interpolation);
+            photon_python::parse_texture_alpha(&t, alpha, unassociate);
+            scene.textures.push_back(std::move(t));
             return scene.textures.size() - 1;
           },
           py::arg("path"), py::arg("srgb") = true, py::arg("extension") = "REPEAT",
-          py::arg("interpolation") = "Linear",
+          py::arg("interpolation") = "Linear", py::arg("alpha") = "KEEP",
+          py::arg("unassociate") = false,
           "Adds an image file (an Image Texture node's image and sampling); returns its index.")
       .def(
           "add_texture_pixels",
           [](Scene& scene, std::shared_ptr<TexturePixels> pixels, const std::string& name,
-             bool srgb, const std::string& extension, const std::string& interpolation) {
+             bool srgb, const std::string& extension, const std::string& interpolation,
+             const std::string& alpha, bool unassociate) {
             if (!pixels) throw std::invalid_argument("pixels must not be None");
             ImageTexture t = photon_python::parse_texture(name, srgb, extension, interpolation);
+            photon_python::parse_texture_alpha(&t, alpha, unassociate);
             t.pixels = std::move(pixels);
             scene.textures.push_back(std::move(t));
             return scene.textures.size() - 1;
           },
           py::arg("pixels"), py::arg("name"), py::arg("srgb") = true,
           py::arg("extension") = "REPEAT", py::arg("interpolation") = "Linear",
+          py::arg("alpha") = "KEEP", py::arg("unassociate") = false,
           "Adds an in-memory image (TexturePixels; `name` names it in warnings); returns its "
           "index. Converted like files, keyed by the pixels' content.")
       .def(

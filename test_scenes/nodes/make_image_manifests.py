@@ -43,6 +43,16 @@ def image_cases():
                           "image": dict(FILES["png"], alpha_mode=mode),
                           "properties": {"interpolation": "Linear"},
                           "vector_scale": 0.75, "output": output})
+    # Colour read while the Alpha output is used too (it drives the Emission's Strength): Cycles
+    # then divides the premultiplied colour by alpha after the lookup.
+    for interpolation in ("Closest", "Linear", "Cubic"):
+        for key, image in (("png", FILES["png"]), ("exr_srgb", dict(FILES["exr"], colorspace="sRGB")),
+                           ("png_noncolor", dict(FILES["png"], colorspace="Non-Color"))):
+            cases.append({"name": f"image_color_times_alpha_{interpolation.lower()}_{key}",
+                          "node": "ShaderNodeTexImage", "image": image,
+                          "properties": {"interpolation": interpolation},
+                          "vector_scale": 0.75, "output": "Color",
+                          "strength_output": "Alpha"})
     cases.append({"name": "image_png_noncolor", "node": "ShaderNodeTexImage",
                   "image": dict(FILES["png"], colorspace="Non-Color"),
                   "properties": {"interpolation": "Linear"}, "vector_scale": 0.75,

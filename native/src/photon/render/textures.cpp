@@ -24,7 +24,8 @@ struct TextureSet::Entry {
   TextureExtension extension = TextureExtension::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
   int channels = 0;
-  bool srgb_after_lookup = false;  // 8-bit sRGB: interpolated as stored, then linearised
+  bool srgb_after_lookup = false;  // sRGB files: interpolated as stored, then linearised
+  bool unassociate = false;        // colour divided by alpha after the lookup
   float max_color = 0.0f, max_alpha = 0.0f;
 };
 
@@ -120,7 +121,8 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
   std::vector<uint64_t> keys(n, 0);
   std::vector<std::string> errors(n);
   for (size_t i = 0; i < n; ++i)
-    requests[i] = ConvertRequest{textures[i].path, textures[i].pixels, textures[i].srgb};
+    requests[i] = ConvertRequest{textures[i].path, textures[i].pixels, textures[i].srgb,
+                                 textures[i].alpha};
   // Content keys (hashing reads every byte), then one conversion per distinct key; both in
   // parallel over textures, and each conversion is itself parallel.
   tbb::parallel_for(size_t(0), n,
@@ -143,6 +145,7 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
     Entry& e = entries_[i];
     e.extension = textures[i].extension;
     e.interpolation = textures[i].interpolation;
+    e.unassociate = textures[i].unassociate && textures[i].alpha == TextureAlpha::kAssociate;
     const size_t j = keys[i] ? first[keys[i]] : i;
     if (!ok[j]) {
       if (warnings)
@@ -227,6 +230,9 @@ bool TextureSet::lookup(int index, Vec2 uv, float rgba[4]) const {
     result[3] = result[1];
     result[1] = result[2] = result[0];
   }
+  // As Cycles' svm_image_texture: unassociate (alpha neither 0 nor 1), then linearise.
+  if (e.unassociate && n == 4 && result[3] != 0.0f && result[3] != 1.0f)
+    for (int c = 0; c < 3; ++c) result[c] /= result[3];
   if (e.srgb_after_lookup)
     for (int c = 0; c < 3; ++c) result[c] = srgb_to_linear(result[c]);
   for (int c = 0; c < 4; ++c) rgba[c] = std::isfinite(result[c]) ? result[c] : 0.0f;
