@@ -28,6 +28,8 @@ def texels():
 
 def write(path, pixels, fmt):
     spec = oiio.ImageSpec(WIDTH, HEIGHT, 4, fmt)
+    if fmt == oiio.UINT8:  # PNG stores straight alpha: write the values as they are (without
+        spec.attribute("oiio:UnassociatedAlpha", 1)  # this OpenImageIO would unpremultiply)
     out = oiio.ImageOutput.create(str(path))
     if out is None or not out.open(str(path), spec):
         raise OSError(oiio.geterror())
