@@ -21,6 +21,16 @@ A manifest is {"cases": [CASE, ...]} with CASE:
    "object": {"location": [0, 0, 0.5],       # optional: the plane object's transform (Euler XYZ
               "rotation": [0.3, 0, 0],       # radians); the case then gets its own coordinate
               "scale": [1, 2, 1]}}           # image OUT_DIR/<name>_coords.exr
+Optional keys for the image, object and camera nodes (absent, nothing changes):
+  "image": {"file": "tex.png",               # the node's image, relative to the manifest's folder
+            "colorspace": "sRGB",            # colorspace_settings.name
+            "alpha_mode": "STRAIGHT"}        # or {"generated": "COLOR_GRID", "size": [16, 8]}
+  "object": {..., "name": "Würfel", "pass_index": 3, "color": [r, g, b, a]}
+  "material": {"pass_index": 2}             # the plane material's pass index
+  "output_add": [1, 1, 1]                    # added (Vector Math ADD) to the output before the
+                                             # Emission, so negative components show
+  "strength_output": "Alpha"                 # a second output of the node drives the Emission's
+                                             # Strength (the image shows output x that one)
 Ramp and curve nodes take their data from an optional "setup" (see _setup_data):
   "setup": {"color_ramp": {"interpolation": "EASE", "color_mode": "HSV",
                            "hue_interpolation": "FAR", "elements": [[0.1, [r, g, b, a]], ...]},
@@ -50,6 +60,7 @@ import bpy
 
 RESOLUTION = 64
 COORD_OFFSET = 4.0
+MANIFEST_DIR = "."
 
 
 def _argv():
@@ -246,8 +257,25 @@ def _setup_data(node, setup):
         mapping.update()
 
 
+def _image(spec):
+    """The image of an "image" case key: a file beside the manifest or a generated image."""
+    if "generated" in spec:
+        width, height = spec.get("size", (16, 8))
+        image = bpy.data.images.new("generated", width, height, alpha=True,
+                                    float_buffer=spec.get("float", False))
+        image.generated_type = spec["generated"]
+    else:
+        image = bpy.data.images.load(os.path.join(MANIFEST_DIR, spec["file"]))
+    if "colorspace" in spec:
+        image.colorspace_settings.name = spec["colorspace"]
+    if "alpha_mode" in spec:
+        image.alpha_mode = spec["alpha_mode"]
+    return image
+
+
 def _material(case):
     mat = bpy.data.materials.new(case["name"])
+    mat.pass_index = case.get("material", {}).get("pass_index", 0)
     mat.use_nodes = True
     tree = mat.node_tree
     tree.nodes.clear()
@@ -267,6 +295,8 @@ def _material(case):
     for name, value in case.get("properties", {}).items():
         setattr(node, name, value)
     _setup_data(node, case.get("setup", {}))
+    if "image" in case:
+        node.image = _image(case["image"])
     for name, value in case.get("inputs", {}).items():
         _socket(node.inputs, name).default_value = value
     for name, value in case.get("output_values", {}).items():
@@ -281,7 +311,17 @@ def _material(case):
             tree.links.new(source, scale.inputs[0])
             source = scale.outputs["Vector"]
         tree.links.new(source, _socket(node.inputs, vector))
-    tree.links.new(_socket(node.outputs, case.get("output", "#0")), emission.inputs["Color"])
+    output = _socket(node.outputs, case.get("output", "#0"))
+    if case.get("output_add") is not None:
+        add = tree.nodes.new("ShaderNodeVectorMath")
+        add.operation = 'ADD'
+        add.inputs[1].default_value = case["output_add"]
+        tree.links.new(output, add.inputs[0])
+        output = add.outputs[0]
+    tree.links.new(output, emission.inputs["Color"])
+    if case.get("strength_output") is not None:
+        tree.links.new(_socket(node.outputs, case["strength_output"]),
+                       emission.inputs["Strength"])
     return mat
 
 
@@ -346,14 +386,21 @@ def render(case, engine, out_dir, mesh_spec=None):
             plane.location = transform.get("location", (0.0, 0.0, 0.0))
             plane.rotation_euler = transform.get("rotation", (0.0, 0.0, 0.0))
             plane.scale = transform.get("scale", (1.0, 1.0, 1.0))
+            if "name" in transform:
+                plane.name = transform["name"]
+            plane.pass_index = transform.get("pass_index", 0)
+            if "color" in transform:
+                plane.color = transform["color"]
         plane.data.materials.append(_material(case))
     scene.render.filepath = os.path.join(out_dir, case["name"] + ".exr")
     bpy.ops.render.render(write_still=True)
 
 
 def main():
+    global MANIFEST_DIR
     args = _argv()
     manifest, out_dir = args[0], args[1]
+    MANIFEST_DIR = os.path.dirname(os.path.abspath(manifest))
     engine = args[args.index("--engine") + 1] if "--engine" in args else 'CYCLES'
     only = set(args[args.index("--cases") + 1].split(",")) if "--cases" in args else None
     with open(manifest) as f:

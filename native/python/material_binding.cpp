@@ -220,6 +220,18 @@ ImageTexture parse_texture(const std::string& path, bool srgb, const std::string
   return t;
 }
 
+void parse_texture_alpha(ImageTexture* t, const std::string& alpha, bool unassociate) {
+  if (alpha == "KEEP")
+    t->alpha = TextureAlpha::kKeep;
+  else if (alpha == "ASSOCIATE")
+    t->alpha = TextureAlpha::kAssociate;
+  else if (alpha == "IGNORE")
+    t->alpha = TextureAlpha::kIgnore;
+  else
+    fail("unknown texture alpha handling '" + alpha + "'");
+  t->unassociate = unassociate;
+}
+
 py::dict describe_material(const Material& material) {
   py::list closures;
   for (const Closure& c : material.closures) {

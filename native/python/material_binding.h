@@ -26,6 +26,9 @@ photon::Material parse_material(const std::string& name, const pybind11::handle&
 // An Image Texture's settings; unknown extension / interpolation names raise ValueError.
 photon::ImageTexture parse_texture(const std::string& path, bool srgb, const std::string& extension,
                                    const std::string& interpolation);
+// Sets an ImageTexture's alpha handling: alpha "KEEP", "ASSOCIATE" or "IGNORE" (TextureAlpha);
+// `unassociate` when the reading node's Alpha output is used.
+void parse_texture_alpha(photon::ImageTexture* t, const std::string& alpha, bool unassociate);
 
 // The Material as closure dicts: every param is listed (defaults included).
 pybind11::dict describe_material(const photon::Material& material);

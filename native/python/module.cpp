@@ -287,7 +287,7 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "set_instance_info",
           [](Scene& scene, size_t first, const std::vector<float>& color,
-             const std::vector<float>& randoms, float pass_index) {
+             const std::vector<float>& randoms, float pass_index, float alpha) {
             const Vec3 c = vec3_from(color, "color");
             if (first + randoms.size() > scene.instances.size())
               throw std::out_of_range("instance index");
@@ -296,33 +296,41 @@ PYBIND11_MODULE(_photon, m) {
               inst.color = is_finite(c) ? c : Vec3(1.0f);
               inst.random = std::isfinite(randoms[i]) ? std::clamp(randoms[i], 0.0f, 1.0f) : 0.0f;
               inst.pass_index = std::isfinite(pass_index) ? pass_index : 0.0f;
+              inst.alpha = std::isfinite(alpha) ? alpha : 1.0f;
             }
           },
           py::arg("first"), py::arg("color"), py::arg("randoms"), py::arg("pass_index") = 0.0f,
-          "Object Info of instances first .. first + len(randoms): colour, random, pass index.")
+          py::arg("alpha") = 1.0f,
+          "Object Info of instances first .. first + len(randoms): colour, random, pass index, "
+          "alpha (the object colour's fourth channel).")
       .def(
           "add_texture",
           [](Scene& scene, const std::string& path, bool srgb, const std::string& extension,
-             const std::string& interpolation) {
-            scene.textures.push_back(
-                photon_python::parse_texture(path, srgb, extension, interpolation));
+             const std::string& interpolation, const std::string& alpha, bool unassociate) {
+            ImageTexture t = photon_python::parse_texture(path, srgb, extension, interpolation);
+            photon_python::parse_texture_alpha(&t, alpha, unassociate);
+            scene.textures.push_back(std::move(t));
             return scene.textures.size() - 1;
           },
           py::arg("path"), py::arg("srgb") = true, py::arg("extension") = "REPEAT",
-          py::arg("interpolation") = "Linear",
+          py::arg("interpolation") = "Linear", py::arg("alpha") = "KEEP",
+          py::arg("unassociate") = false,
           "Adds an image file (an Image Texture node's image and sampling); returns its index.")
       .def(
           "add_texture_pixels",
           [](Scene& scene, std::shared_ptr<TexturePixels> pixels, const std::string& name,
-             bool srgb, const std::string& extension, const std::string& interpolation) {
+             bool srgb, const std::string& extension, const std::string& interpolation,
+             const std::string& alpha, bool unassociate) {
             if (!pixels) throw std::invalid_argument("pixels must not be None");
             ImageTexture t = photon_python::parse_texture(name, srgb, extension, interpolation);
+            photon_python::parse_texture_alpha(&t, alpha, unassociate);
             t.pixels = std::move(pixels);
             scene.textures.push_back(std::move(t));
             return scene.textures.size() - 1;
           },
           py::arg("pixels"), py::arg("name"), py::arg("srgb") = true,
           py::arg("extension") = "REPEAT", py::arg("interpolation") = "Linear",
+          py::arg("alpha") = "KEEP", py::arg("unassociate") = false,
           "Adds an in-memory image (TexturePixels; `name` names it in warnings); returns its "
           "index. Converted like files, keyed by the pixels' content.")
       .def(

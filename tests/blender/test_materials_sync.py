@@ -76,14 +76,21 @@ def test_add_shader_through_reroute_keeps_both_and_shares_the_texture(converted)
     assert [c["type"] for c in closures] == ["DIFFUSE", "EMISSION"]
     assert all(c["weight"] == [] for c in closures)
     mix_texture = material(converted, "MixAlpha")["closures"][0]["params"]["color"]["texture"]
-    assert closures[0]["params"]["color"]["texture"] == mix_texture  # one texture per image
+    add_texture = closures[0]["params"]["color"]["texture"]
+    # One texture per image and reading: MixAlpha's node uses its Alpha output, so its colour is
+    # divided by alpha after the lookup (Cycles' unassociate) and AddEmit's is not; both read
+    # the same premultiplied conversion of the file.
+    mix, add = converted["textures"][mix_texture], converted["textures"][add_texture]
+    assert (mix["path"], mix["alpha"], mix["unassociate"]) == (add["path"], "ASSOCIATE", True)
+    assert not add["unassociate"]
     assert close(closures[1]["params"]["color"], [1.0, 0.9, 0.8])
     assert close(closures[1]["params"]["strength"], 5.0)
     paths = [t.get("path", "") for t in converted["textures"]]
-    settings = [(t.get("path", t.get("name")), t["extension"], t["interpolation"])
-                for t in converted["textures"]]
+    settings = [(t.get("path", t.get("name")), t["extension"], t["interpolation"],
+                 t["unassociate"]) for t in converted["textures"]]
     assert len(set(settings)) == len(settings)
-    assert sum(p.endswith("color.png") for p in paths) == 2  # CLIP/Cubic and EXTEND/Closest
+    # CLIP/Cubic with and without Alpha used, and EXTEND/Closest
+    assert sum(p.endswith("color.png") for p in paths) == 3
 
 
 def test_constant_mixes_prune_and_weight(converted):

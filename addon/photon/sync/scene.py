@@ -226,11 +226,11 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
 
 
 def _object_info(inst, obj):
-    """(colour, pass index, random) of an instance for the Object Info node, as Cycles sets
-    them: instances keep the depsgraph's random_id, objects hash their name."""
+    """(colour with alpha, pass index, random) of an instance for the Object Info node, as
+    Cycles sets them: instances keep the depsgraph's random_id, objects hash their name."""
     random_id = (inst.random_id if inst.is_instance else
                  object_info.hash_uint2(object_info.hash_string(obj.name), 0))
-    color = tuple(float(c) for c in obj.color[:3])
+    color = tuple(float(c) for c in obj.color[:4])
     return color, float(obj.pass_index), (random_id & 0xFFFFFFFF) / 0xFFFFFFFF
 
 
@@ -242,8 +242,9 @@ def _set_object_info(native_scene, first, infos):
         end = start + 1
         while end < len(infos) and infos[end][0] == color and infos[end][1] == pass_index:
             end += 1
-        if color != (1.0, 1.0, 1.0) or pass_index != 0.0 or any(
+        if color != (1.0, 1.0, 1.0, 1.0) or pass_index != 0.0 or any(
                 info[2] for info in infos[start:end]):
-            native_scene.set_instance_info(first + start, list(color),
-                                           [info[2] for info in infos[start:end]], pass_index)
+            native_scene.set_instance_info(first + start, list(color[:3]),
+                                           [info[2] for info in infos[start:end]], pass_index,
+                                           color[3])
         start = end

@@ -39,6 +39,20 @@ def colour_space(image, where, reporter):
     return srgb
 
 
+def alpha_handling(image, node):
+    """(alpha, unassociate) as Cycles loads and reads an image: colour images store their
+    colour premultiplied by alpha ("ASSOCIATE", straight and premultiplied files alike), Non-Color
+    and Channel Packed ones keep it ("KEEP"), alpha mode None makes alpha 1 ("IGNORE"); a node
+    whose Alpha output is used divides the colour by alpha again (unassociate)."""
+    mode = getattr(image, "alpha_mode", 'STRAIGHT')
+    if mode == 'NONE':
+        return "IGNORE", False
+    if mode == 'CHANNEL_PACKED' or image.colorspace_settings.is_data:
+        return "KEEP", False
+    alpha = node.outputs.get("Alpha")
+    return "ASSOCIATE", bool(alpha is not None and alpha.is_linked)
+
+
 class TextureTable:
     """Native texture indices for images, added to `native_scene` once per render. Packed and
     generated images are written to a temporary folder that release() deletes (after the
@@ -48,7 +62,7 @@ class TextureTable:
         self._scene = native_scene
         self._reporter = reporter
         self._pixels_type = pixels_type  # _photon.TexturePixels(width, height, is_float)
-        self._index = {}     # (path, srgb, extension, interpolation) -> native index
+        self._index = {}     # (path, srgb, extension, interpolation, alpha...) -> index
         self._files = {}     # image name_full -> resolved path (None: unusable)
         self._temp_dir = None
         self.paths = []      # native index -> path (for tests and stats)
@@ -90,16 +104,21 @@ class TextureTable:
                                    f"using REPEAT")
             extension = 'REPEAT'
         interpolation = INTERPOLATIONS.get(node.interpolation, "Linear")
-        key = (path if isinstance(path, str) else id(path), srgb, extension, interpolation)
+        alpha, unassociate = alpha_handling(image, node)
+        key = (path if isinstance(path, str) else id(path), srgb, extension, interpolation,
+               alpha, unassociate)
         found = self._index.get(key)
         if found is None:
             if isinstance(path, str):
                 found = int(self._scene.add_texture(path, srgb=srgb, extension=extension,
-                                                    interpolation=interpolation))
+                                                    interpolation=interpolation, alpha=alpha,
+                                                    unassociate=unassociate))
             else:  # a generated image's pixels
                 found = int(self._scene.add_texture_pixels(path, image.name, srgb=srgb,
                                                            extension=extension,
-                                                           interpolation=interpolation))
+                                                           interpolation=interpolation,
+                                                           alpha=alpha,
+                                                           unassociate=unassociate))
             self._index[key] = found
             self.paths.append(path if isinstance(path, str) else image.name)
         return found

@@ -18,16 +18,19 @@ class RecordingScene:
     def __init__(self):
         self.textures = []
 
-    def add_texture(self, path, srgb=True, extension="REPEAT", interpolation="Linear"):
+    def add_texture(self, path, srgb=True, extension="REPEAT", interpolation="Linear",
+                    alpha="KEEP", unassociate=False):
         self.textures.append({"path": path, "srgb": srgb, "extension": extension,
-                              "interpolation": interpolation})
+                              "interpolation": interpolation, "alpha": alpha,
+                              "unassociate": unassociate})
         return len(self.textures) - 1
 
     def add_texture_pixels(self, pixels, name, srgb=True, extension="REPEAT",
-                           interpolation="Linear"):
+                           interpolation="Linear", alpha="KEEP", unassociate=False):
         self.textures.append({"name": name, "width": pixels.width, "height": pixels.height,
                               "pixels": [float(v) for v in pixels.array], "srgb": srgb,
-                              "extension": extension, "interpolation": interpolation})
+                              "extension": extension, "interpolation": interpolation,
+                              "alpha": alpha, "unassociate": unassociate})
         return len(self.textures) - 1
 
 
@@ -108,7 +111,7 @@ def build(folder):
     uv = nodes.new("ShaderNodeUVMap")
     links.new(uv.outputs["UV"], tex.inputs["Vector"])
 
-    # Add(Diffuse, Emission) through a reroute; the same image again (deduplicated).
+    # Add(Diffuse, Emission) through a reroute; the same image again, its Alpha unused.
     mat, nodes, links, bsdf, out = new_material("AddEmit")
     nodes.remove(bsdf)
     diffuse = nodes.new("ShaderNodeBsdfDiffuse")

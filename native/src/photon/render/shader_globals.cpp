@@ -33,6 +33,7 @@ ShaderGlobals surface_globals(const SurfaceInteraction& si, const Vec3& wo, cons
     g.world_to_object = inverse_affine(g.object_to_world);
     g.object_location = g.object_to_world.column(3);
     g.object_color = si.object->color;
+    g.object_alpha = si.object->alpha;
     g.object_random = si.object->random;
     g.object_pass_index = si.object->pass_index;
   }

@@ -47,6 +47,9 @@ class BandSource {
   int width = 0, height = 0, channels = 0;
   std::vector<std::string> channel_names;
   OIIO::TypeDesc format = OIIO::TypeDesc::FLOAT;
+  // Colour not premultiplied by alpha (OpenImageIO's oiio:UnassociatedAlpha: PNG, TGA, most
+  // TIFFs; Blender's byte buffers). Otherwise (OpenEXR, Blender's float buffers) it is.
+  bool unassociated = false;
   // Rows [y0, y1) as float, `channels` per pixel, into `dst` (row stride width * channels).
   virtual bool fetch(int y0, int y1, float* dst, std::string* error) const = 0;
 };
@@ -60,6 +63,7 @@ class PixelSource : public BandSource {
     channels = 4;
     channel_names = {"R", "G", "B", "A"};
     format = is_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8;
+    unassociated = !is_float;
   }
   bool fetch(int y0, int y1, float* dst, std::string*) const override {
     const size_t row = static_cast<size_t>(width) * 4;
@@ -129,6 +133,7 @@ class FileSource : public BandSource {
     height = spec.height;
     channels = std::clamp(spec.nchannels, 1, 4);
     format = spec.format;
+    unassociated = spec.get_int_attribute("oiio:UnassociatedAlpha", 0) != 0;
     for (int c = 0; c < channels; ++c)
       channel_names.push_back(c < static_cast<int>(spec.channelnames.size())
                                   ? spec.channelnames[c]
@@ -267,9 +272,31 @@ MaxPair band_max(const float* p, size_t n, int nch) {
 }
 
 // Converts `src` into a tiled MIP-mapped OpenEXR at `tmp`.
-bool write_mip_chain(const BandSource& src, bool linearize, OIIO::TypeDesc out_format,
-                     const std::string& tmp, const std::atomic<bool>* cancel,
-                     ConvertedTexture* result, std::string* error) {
+// Cycles' alpha handling at load (OIIOImageLoader, BlenderImageLoader): the colour of an
+// unassociated source becomes the colour times alpha, for 8-bit sources in integers
+// (c a / 255, truncated) as Cycles stores them; ignored alpha becomes 1. Rows of RGBA floats
+// (8-bit values as v / 255), in place.
+void apply_alpha(float* rows, size_t pixels, TextureAlpha alpha, bool byte_source) {
+  for (size_t i = 0; i < pixels; ++i) {
+    float* px = rows + 4 * i;
+    if (alpha == TextureAlpha::kIgnore) {
+      px[3] = 1.0f;
+    } else if (byte_source) {
+      const int a = static_cast<int>(std::lround(std::clamp(px[3], 0.0f, 1.0f) * 255.0f));
+      for (int c = 0; c < 3; ++c) {
+        const int v = static_cast<int>(std::lround(std::clamp(px[c], 0.0f, 1.0f) * 255.0f));
+        px[c] = static_cast<float>(v * a / 255) / 255.0f;
+      }
+    } else {
+      for (int c = 0; c < 3; ++c) px[c] *= px[3];
+    }
+  }
+}
+
+bool write_mip_chain(const BandSource& src, bool linearize, TextureAlpha alpha, bool byte_source,
+                     OIIO::TypeDesc out_format, const std::string& tmp,
+                     const std::atomic<bool>* cancel, ConvertedTexture* result,
+                     std::string* error) {
   const int w = src.width, h = src.height, nch = src.channels;
   auto out = OIIO::ImageOutput::create("openexr");
   if (!out) {
@@ -315,6 +342,9 @@ bool write_mip_chain(const BandSource& src, bool linearize, OIIO::TypeDesc out_f
       return false;
     }
     if (!src.fetch(y0, y1, rows, error)) return false;
+    if (nch == 4 && (alpha == TextureAlpha::kIgnore ||
+                     (alpha == TextureAlpha::kAssociate && src.unassociated)))
+      apply_alpha(rows, static_cast<size_t>(y1 - y0) * w, alpha, byte_source);
     if (linearize) {
       // sRGB -> linear on the colour channels only (alpha is not colour), in place.
       OIIO::ImageBuf wrapped(band_spec, rows);
@@ -484,7 +514,10 @@ uint64_t texture_key(const ConvertRequest& request, const std::atomic<bool>* can
     return 0;
   }
   const std::string settings =
-      std::string(kTextureFormatVersion) + "|" + what + "|" + (request.srgb ? "srgb" : "linear");
+      std::string(kTextureFormatVersion) + "|" + what + "|" + (request.srgb ? "srgb" : "linear") +
+      (request.alpha == TextureAlpha::kAssociate ? "|premultiplied"
+       : request.alpha == TextureAlpha::kIgnore  ? "|ignore-alpha"
+                                                 : "");
   const uint64_t key = OIIO::xxhash::XXH64(settings.data(), settings.size(), content);
   return key ? key : 1;
 }
@@ -509,6 +542,7 @@ bool convert_texture_here(const ConvertRequest& request, uint64_t key, const std
 
   std::unique_ptr<BandSource> src;
   bool linearize = false;
+  bool byte_source = false;
   OIIO::TypeDesc out_format = OIIO::TypeDesc::HALF;
   if (request.pixels) {
     std::shared_ptr<float[]> data = request.pixels->storage();
@@ -519,15 +553,16 @@ bool convert_texture_here(const ConvertRequest& request, uint64_t key, const std
     src = std::make_unique<PixelSource>(std::move(data), request.pixels->width(),
                                         request.pixels->height(), request.pixels->is_float());
     linearize = request.srgb;
+    byte_source = !request.pixels->is_float();
     out_format = request.pixels->is_float() ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::HALF;
   } else {
     auto file_src = std::make_unique<FileSource>();
     if (!file_src->open(request.path, error)) return false;
     const OIIO::TypeDesc::BASETYPE base = OIIO::TypeDesc::BASETYPE(file_src->format.basetype);
-    // 8-bit sRGB images keep their sRGB values: Cycles interpolates such images as stored and
-    // converts after the lookup (NODE_IMAGE_COMPRESS_AS_SRGB).
-    out->srgb_after_lookup = request.srgb && base == OIIO::TypeDesc::UINT8;
-    linearize = request.srgb && !out->srgb_after_lookup && file_src->channels >= 3;
+    // sRGB images keep their sRGB values, whatever their depth: Cycles interpolates such images
+    // as stored and converts after the lookup (compress_as_srgb, NODE_IMAGE_COMPRESS_AS_SRGB).
+    out->srgb_after_lookup = request.srgb;
+    byte_source = base == OIIO::TypeDesc::UINT8;
     // Integer and half sources fit half exactly enough; float sources keep float range.
     const bool small = base == OIIO::TypeDesc::UINT8 || base == OIIO::TypeDesc::INT8 ||
                        base == OIIO::TypeDesc::UINT16 || base == OIIO::TypeDesc::INT16 ||
@@ -540,10 +575,15 @@ bool convert_texture_here(const ConvertRequest& request, uint64_t key, const std
   static std::atomic<uint64_t> counter{0};
   const fs::path tmp = dir / (std::string(name) + "." + std::to_string(::getpid()) + "." +
                               std::to_string(counter++) + ".tmp.exr");
-  if (!write_mip_chain(*src, linearize, out_format, tmp.string(), cancel, out, error)) {
+  if (!write_mip_chain(*src, linearize, request.alpha, byte_source, out_format, tmp.string(),
+                       cancel, out, error)) {
     fs::remove(tmp, ec);
     return false;
   }
+  if (out->srgb_after_lookup && out->max_color > 0.04045f)  // the largest linear value
+    out->max_color = std::pow((out->max_color + 0.055f) / 1.055f, 2.4f);
+  else if (out->srgb_after_lookup)
+    out->max_color /= 12.92f;
   // Stats first: a file without them counts as missing and would be converted again.
   if (!write_stats(file, *out)) {
     *error = "cannot write " + stats_path(file);

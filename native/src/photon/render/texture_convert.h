@@ -16,6 +16,8 @@
 #include <string>
 #include <vector>
 
+#include "photon/scene/material.h"
+
 namespace photon {
 
 // Float RGBA pixels of an image that exists only in memory (Blender's generated images),
@@ -46,7 +48,7 @@ class TexturePixels {
 
 struct ConvertedTexture {
   std::string file;                // the cached texture file
-  bool srgb_after_lookup = false;  // 8-bit sRGB: stored as sRGB, linearised after lookup
+  bool srgb_after_lookup = false;  // sRGB files: stored as sRGB, linearised after lookup
   float max_color = 0.0f;          // largest finite colour channel value (after linearising)
   float max_alpha = 0.0f;
   bool reused = false;  // the file was already in the cache
@@ -56,10 +58,11 @@ struct ConvertRequest {
   std::string path;                       // a file, or empty with `pixels`
   std::shared_ptr<TexturePixels> pixels;  // generated image
   bool srgb = true;
+  TextureAlpha alpha = TextureAlpha::kKeep;
 };
 
 // Settings part of the cache key; bump when the converted file's contents change meaning.
-constexpr const char* kTextureFormatVersion = "photon-tex-v3";
+constexpr const char* kTextureFormatVersion = "photon-tex-v4";
 
 // The content key of a request (file bytes or pixels, plus settings), or 0 with `error`.
 uint64_t texture_key(const ConvertRequest& request, const std::atomic<bool>* cancel,

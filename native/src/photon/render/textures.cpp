@@ -1,6 +1,7 @@
 #include "photon/render/textures.h"
 
 #include <OpenImageIO/texture.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <unistd.h>
 
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <mutex>
 #include <system_error>
 
 #include "photon/render/texture_convert.h"
@@ -22,20 +24,54 @@ struct TextureSet::Entry {
   TextureExtension extension = TextureExtension::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
   int channels = 0;
-  bool srgb_after_lookup = false;  // 8-bit sRGB: interpolated as stored, then linearised
+  bool srgb_after_lookup = false;  // sRGB files: interpolated as stored, then linearised
+  bool unassociate = false;        // colour divided by alpha after the lookup
   float max_color = 0.0f, max_alpha = 0.0f;
 };
 
 struct TextureSet::System {
+  using Perthread = OIIO::TextureSystem::Perthread;
   OIIO::TextureSystem* ts = nullptr;
-  System() {
-    ts = OIIO::TextureSystem::create(/*shared=*/false);
-    ts->attribute("max_memory_MB", 1024.0f);
-    ts->attribute("autotile", 64);
+  // Each thread's lookup state, owned here and freed before the set goes.
+  tbb::enumerable_thread_specific<Perthread*> infos{nullptr};
+
+  // One private TextureSystem for the process, never torn down. Tearing down a TextureSystem's
+  // ImageCache (OpenImageIO 2.4) and creating another corrupted memory: the next render with
+  // textures crashed in its BVH build. When the last set goes, the cache drops its tiles and
+  // closes its files instead (invalidate_all), so nothing stays in memory between renders.
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
   }
-  // teardown_imagecache: a private TextureSystem's ImageCache (its open files and cached tiles)
-  // is freed only when asked to; without it every render with textures leaked its cache.
-  ~System() { OIIO::TextureSystem::destroy(ts, /*teardown_imagecache=*/true); }
+  static int& live() {
+    static int n = 0;
+    return n;
+  }
+  static OIIO::TextureSystem* shared_system() {
+    static OIIO::TextureSystem* system = [] {
+      OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/false);
+      t->attribute("max_memory_MB", 1024.0f);
+      t->attribute("autotile", 64);
+      return t;
+    }();
+    return system;
+  }
+  System() {
+    std::lock_guard<std::mutex> lock(mutex());
+    ts = shared_system();
+    ++live();
+  }
+  Perthread* info() {
+    Perthread*& p = infos.local();
+    if (!p) p = ts->create_thread_info();
+    return p;
+  }
+  ~System() {
+    for (Perthread* p : infos)
+      if (p) ts->destroy_thread_info(p);
+    std::lock_guard<std::mutex> lock(mutex());
+    if (--live() == 0) ts->invalidate_all(/*force=*/true);
+  }
 };
 
 namespace {
@@ -85,7 +121,8 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
   std::vector<uint64_t> keys(n, 0);
   std::vector<std::string> errors(n);
   for (size_t i = 0; i < n; ++i)
-    requests[i] = ConvertRequest{textures[i].path, textures[i].pixels, textures[i].srgb};
+    requests[i] = ConvertRequest{textures[i].path, textures[i].pixels, textures[i].srgb,
+                                 textures[i].alpha};
   // Content keys (hashing reads every byte), then one conversion per distinct key; both in
   // parallel over textures, and each conversion is itself parallel.
   tbb::parallel_for(size_t(0), n,
@@ -108,6 +145,7 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
     Entry& e = entries_[i];
     e.extension = textures[i].extension;
     e.interpolation = textures[i].interpolation;
+    e.unassociate = textures[i].unassociate && textures[i].alpha == TextureAlpha::kAssociate;
     const size_t j = keys[i] ? first[keys[i]] : i;
     if (!ok[j]) {
       if (warnings)
@@ -127,8 +165,9 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
     e.max_color = c.max_color;
     e.max_alpha = c.max_alpha;
     e.file = OIIO::ustring(c.file);
-    e.handle = system_->ts->get_texture_handle(e.file);
-    const OIIO::ImageSpec* spec = e.handle ? system_->ts->imagespec(e.handle, nullptr) : nullptr;
+    e.handle = system_->ts->get_texture_handle(e.file, system_->info());
+    const OIIO::ImageSpec* spec =
+        e.handle ? system_->ts->imagespec(e.handle, system_->info()) : nullptr;
     if (!spec) {
       if (warnings)
         warnings->push_back(name(i) + " cannot be opened as a texture: " + system_->ts->geterror());
@@ -183,14 +222,17 @@ bool TextureSet::lookup(int index, Vec2 uv, float rgba[4]) const {
   const int n = std::min(e.channels, 4);
   OIIO::TextureSystem* ts = system_->ts;
   // Blender's v runs up the image, OpenImageIO's t runs down.
-  if (!ts->texture(e.handle, ts->get_perthread_info(), opt, uv.x, 1.0f - uv.y, 0.0f, 0.0f, 0.0f,
-                   0.0f, n, result))
+  if (!ts->texture(e.handle, system_->info(), opt, uv.x, 1.0f - uv.y, 0.0f, 0.0f, 0.0f, 0.0f, n,
+                   result))
     return false;
   if (n == 1) result[1] = result[2] = result[0];  // grey images
   if (n == 2) {                                   // grey + alpha
     result[3] = result[1];
     result[1] = result[2] = result[0];
   }
+  // As Cycles' svm_image_texture: unassociate (alpha neither 0 nor 1), then linearise.
+  if (e.unassociate && n == 4 && result[3] != 0.0f && result[3] != 1.0f)
+    for (int c = 0; c < 3; ++c) result[c] /= result[3];
   if (e.srgb_after_lookup)
     for (int c = 0; c < 3; ++c) result[c] = srgb_to_linear(result[c]);
   for (int c = 0; c < 4; ++c) rgba[c] = std::isfinite(result[c]) ? result[c] : 0.0f;

@@ -19,6 +19,10 @@ class TexturePixels;  // texture_convert.h: pixels of an image that exists only 
 
 enum class TextureExtension : uint8_t { kRepeat, kExtend, kClip };
 enum class TextureInterpolation : uint8_t { kClosest, kLinear, kCubic };
+// What happens to an image's alpha as Cycles loads it: colour images with straight or
+// premultiplied alpha are stored premultiplied (associated), Non-Color and Channel Packed images
+// as they are, and images whose alpha mode is None get alpha 1.
+enum class TextureAlpha : uint8_t { kKeep, kAssociate, kIgnore };
 
 // An Image Texture node's image and sampling settings (Scene::textures).
 struct ImageTexture {
@@ -29,6 +33,10 @@ struct ImageTexture {
   TextureExtension extension = TextureExtension::kRepeat;
   TextureInterpolation interpolation = TextureInterpolation::kLinear;
   std::shared_ptr<TexturePixels> pixels;  // instead of `path`: a generated image's pixels
+  TextureAlpha alpha = TextureAlpha::kKeep;
+  // An associated image read by a node whose Alpha output is used: lookups divide the colour
+  // by alpha (Cycles' NODE_IMAGE_ALPHA_UNASSOCIATE); otherwise the colour stays premultiplied.
+  bool unassociate = false;
 };
 
 enum class TextureChannel : uint8_t { kColor, kAlpha };

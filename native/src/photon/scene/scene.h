@@ -73,6 +73,7 @@ struct Instance {
   bool shadow_catcher = false;  // only the shadows cast on it show, as alpha or over the world
   // Object Info node outputs.
   Vec3 color{1.0f};
+  float alpha = 1.0f;   // the object colour's alpha (Object Info's Alpha)
   float random = 0.0f;  // in [0, 1]
   float pass_index = 0.0f;
 };

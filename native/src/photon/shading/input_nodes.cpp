@@ -250,7 +250,7 @@ void eval_input_node(const Instruction& ins, const ShaderProgram& program,
       if (ins.mode == 0) {
         store3(r, ins.out[0], g.object_location);
         store3(r, ins.out[1], g.object_color);
-        store1(r, ins.out[2], 1.0f);
+        store1(r, ins.out[2], g.object_alpha);
         store1(r, ins.out[3], g.object_pass_index);
         store1(r, ins.out[4], g.material_pass_index);
       } else {

@@ -15,6 +15,12 @@ namespace {
 enum NormalKind : uint16_t { kBump, kNormalMap };
 enum NormalMapSpace : uint32_t { kTangent, kObject, kWorld, kBlenderObject, kBlenderWorld };
 
+Vec3 mul3(const float m[3][3], const Vec3& v) {
+  return Vec3(m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z,
+              m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+              m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z);
+}
+
 Vec3 safe_normalize(const Vec3& v) {
   const float l2 = length_squared(v);
   return l2 > 0.0f && std::isfinite(l2) ? v / std::sqrt(l2) : Vec3(0.0f);
@@ -76,11 +82,19 @@ void eval_normal_map(const Instruction& ins, const ShaderProgram& program, const
     if (ins.param[0] > 0.0f &&
         !attribute_uv_tangents(g, program, static_cast<uint32_t>(ins.param[0]) - 1, &dpdu, &dpdv))
       dpdu = dpdv = Vec3(0.0f);  // a missing map: the unperturbed normal, as in Cycles
-    if (length_squared(dpdu) > 0.0f) {
-      Vec3 t = safe_normalize(dpdu - g.n * dot(g.n, dpdu));
-      Vec3 b = cross(g.n, t);
-      if (dot(b, dpdv) < 0.0f) b = -b;
-      n = safe_normalize(t * c.x + b * c.y + g.n * c.z);
+    // Cycles combines the tangent frame in object space (where its tangent attribute and
+    // the vertex normals live) and carries the result to world space as a normal: under a
+    // non-uniform scale that differs from combining the world-space frame.
+    float to_object_n[3][3], to_world_n[3][3];
+    if (length_squared(dpdu) > 0.0f && g.world_to_object.normal_matrix(to_object_n) &&
+        g.object_to_world.normal_matrix(to_world_n)) {
+      const Vec3 n_obj = safe_normalize(mul3(to_object_n, g.n));
+      const Vec3 dpdu_obj = g.world_to_object.vector(dpdu);
+      const Vec3 dpdv_obj = g.world_to_object.vector(dpdv);
+      Vec3 t = safe_normalize(dpdu_obj - n_obj * dot(n_obj, dpdu_obj));
+      Vec3 b = cross(n_obj, t);
+      if (dot(b, dpdv_obj) < 0.0f) b = -b;
+      n = safe_normalize(mul3(to_world_n, t * c.x + b * c.y + n_obj * c.z));
     }
   } else {
     if (ins.mode == kBlenderObject || ins.mode == kBlenderWorld) c = Vec3(c.x, -c.y, -c.z);

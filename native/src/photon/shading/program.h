@@ -87,6 +87,7 @@ struct ShaderGlobals {
   const Camera* camera = nullptr;  // for Window coordinates
   Vec3 object_location{0.0f};
   Vec3 object_color{1.0f};
+  float object_alpha = 1.0f;
   float object_random = 0.0f;
   float object_pass_index = 0.0f;
   float material_pass_index = 0.0f;
