@@ -177,7 +177,8 @@ TEST(PrincipledGlass, SpecularTintTintsTheReflection) {
   const Vec3 base(0.9f, 0.5f, 0.2f);
   const GlassQuad quad(glass(0.2f, base, 0.5f));
   const Vec3 wo(0.0f, 0.0f, 1.0f);
-  const Split s = find_split(quad.shade(wo).bsdf);
+  const ShadingPoint sp = quad.shade(wo);  // the Split points into its lobes
+  const Split s = find_split(sp.bsdf);
   ASSERT_NE(s.reflection, nullptr);
   const float fr = fresnel_dielectric(1.0f, 1.45f);
   EXPECT_NEAR(s.reflection->ior, 1.45f, 1e-6f);
