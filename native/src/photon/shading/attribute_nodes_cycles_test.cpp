@@ -136,7 +136,7 @@ TEST(AttributeNodes, MatchCyclesReferences) {
     ASSERT_EQ(compile_node(case_desc(c, 0), &program, &error), CompileStatus::kCompiled) << error;
     int bad = 0;
     float worst = 0.0f;
-    for (int i = 0; i < coords.width * coords.height; ++i) {
+    for (int i = 0; i < coords.width * coords.height; i += node_ref_pixel_stride()) {
       const Vec3 co = coords.at(i) - Vec3(kCoordOffset);
       ShaderGlobals g;
       float edge = 0.0f;

@@ -166,7 +166,7 @@ TEST(ColorNodesConformance, EveryCaseMatchesCycles) {
     float case_worst = 0.0f;
     int bad = 0, first_bad = -1;
     const size_t pixels = ref.rgb.size() / 3;
-    for (size_t i = 0; i < pixels; ++i) {
+    for (size_t i = 0; i < pixels; i += node_ref_pixel_stride()) {
       const float* q = &m.coords.rgb[i * 3];
       const Vec3 p(q[0] - 4.0f, q[1] - 4.0f, q[2] - 4.0f);
       const Vec3 got = evaluate(c, p);

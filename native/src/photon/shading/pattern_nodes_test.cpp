@@ -99,7 +99,7 @@ CaseResult compare_case(const Json& c, const RgbImage& coords, const RgbImage& r
   const Built b = build_case(c);
   CaseResult res;
   std::vector<float> r;
-  for (int i = 0; i < coords.width * coords.height; ++i) {
+  for (int i = 0; i < coords.width * coords.height; i += node_ref_pixel_stride()) {
     const Vec3 co = coords.at(i) - Vec3(kCoordOffset);
     const Vec3 got = eval_at(b, co, r);
     const Vec3 want = ref.at(i);

@@ -4,6 +4,7 @@
 
 #include <OpenImageIO/imagebuf.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cstdlib>
 #include <fstream>
@@ -200,6 +201,12 @@ bool read_rgb_exr(const fs::path& path, RgbImage* image) {
     return true;
   *image = RgbImage();
   return false;
+}
+
+int node_ref_pixel_stride() {
+  const char* env = std::getenv("PHOTON_NODE_REF_STRIDE");
+  const int stride = env ? std::atoi(env) : 1;
+  return std::max(stride, 1);
 }
 
 }  // namespace photon

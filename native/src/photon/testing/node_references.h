@@ -53,6 +53,11 @@ struct RgbImage {
 // Reads path's RGB into *image; false (and an empty image) when it cannot be read.
 bool read_rgb_exr(const std::filesystem::path& path, RgbImage* image);
 
+// Every how many pixels the reference tests evaluate (PHOTON_NODE_REF_STRIDE, default 1): the
+// sanitizer run sets a stride, since every case still runs all of its node's code at a fraction
+// of the pixels, and the plain build checks every pixel.
+int node_ref_pixel_stride();
+
 // |got - want| relative to |want| above 1, absolute below: the conformance tests' error measure.
 inline float relative_error(float got, float want) {
   return std::fabs(got - want) / std::max(1.0f, std::fabs(want));
