@@ -5,7 +5,7 @@ against Cycles' at the same sample count.
 Writes a 1024 x 512 equirectangular HDRI (a blue sky gradient and a sun disc a few pixels wide
 carrying most of the light), builds a scene lit only by it (a grey floor, a white diffuse sphere
 and a rough gold sphere, seen through an Environment Texture node), renders a converged Cycles
-reference, then Cycles and Photon at the same sample count (64 by default), and prints each
+reference (Clamp Indirect and Filter Glossy off: unbiased, as Photon is), then Cycles and Photon at the same sample count (64 by default), and prints each
 image's relative RMSE against the reference and its render time.
 
     tests/bench/sun_hdri.py --addon-dir build/stage [--blender blender] [--samples 64]
@@ -41,6 +41,8 @@ scene.cycles.use_denoising = False
 scene.cycles.pixel_filter_type = 'BOX'
 scene.cycles.filter_width = 1.0
 scene.cycles.max_bounces = 8
+scene.cycles.sample_clamp_indirect = 0.0  # unbiased, like Photon: no clamp, no glossy blur
+scene.cycles.blur_glossy = 0.0
 world = bpy.data.worlds.new("sun")
 world.use_nodes = True
 env = world.node_tree.nodes.new("ShaderNodeTexEnvironment")

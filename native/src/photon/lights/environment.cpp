@@ -46,12 +46,13 @@ EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, 
   std::vector<double> row_value(height_, 0.0);
   std::vector<Vec3> row_color(height_, Vec3(0.0f));
   if (radiance_) {
+    // The world's mean channel value at each texel's (sub)sample points.
+    std::vector<float> centre(value_.size(), 0.0f);
     tbb::parallel_for(
         tbb::blocked_range<int>(0, height_, 1), [&](const tbb::blocked_range<int>& r) {
-          std::vector<double> weights(width_);
           for (int i = r.begin(); i != r.end(); ++i) {
             if (cancel && cancel->load(std::memory_order_relaxed)) return;
-            double red = 0.0, green = 0.0, blue = 0.0, row_sum = 0.0;
+            double red = 0.0, green = 0.0, blue = 0.0;
             for (int j = 0; j < width_; ++j) {
               double texel[3] = {0.0, 0.0, 0.0};
               for (int a = 0; a < k; ++a) {
@@ -67,17 +68,38 @@ EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, 
               red += texel[0];
               green += texel[1];
               blue += texel[2];
-              const double mean = (texel[0] + texel[1] + texel[2]) / (3.0 * k * k);
-              value_[static_cast<size_t>(i) * width_ + j] = static_cast<float>(mean);
+              centre[static_cast<size_t>(i) * width_ + j] =
+                  static_cast<float>((texel[0] + texel[1] + texel[2]) / (3.0 * k * k));
+            }
+            row_color[i] =
+                Vec3(static_cast<float>(red), static_cast<float>(green), static_cast<float>(blue)) *
+                (1.0f / static_cast<float>(k * k));
+          }
+        });
+    // A texel's sampling weight is the largest value of it and its eight neighbours: the
+    // texture's bilinear filter spreads a bright pixel (a sun a few pixels wide) half a pixel
+    // into its neighbours, and where the radiance stood far above its texel's weight, BSDF
+    // samples that found it would be fireflies. The weight must bound the radiance over the
+    // texel, as pbrt-v3's image infinite light builds its distribution from a filtered lookup.
+    tbb::parallel_for(
+        tbb::blocked_range<int>(0, height_, 1), [&](const tbb::blocked_range<int>& r) {
+          std::vector<double> weights(width_);
+          for (int i = r.begin(); i != r.end(); ++i) {
+            if (cancel && cancel->load(std::memory_order_relaxed)) return;
+            double row_sum = 0.0;
+            for (int j = 0; j < width_; ++j) {
+              float v = 0.0f;
+              for (int di = std::max(i - 1, 0); di <= std::min(i + 1, height_ - 1); ++di)
+                for (int dj = j - 1; dj <= j + 1; ++dj)
+                  v = std::max(v, centre[static_cast<size_t>(di) * width_ +
+                                         static_cast<size_t>((dj + width_) % width_)]);
+              value_[static_cast<size_t>(i) * width_ + j] = v;
               // The float that pdfs read, so the sampled and looked-up densities agree.
-              weights[j] = value_[static_cast<size_t>(i) * width_ + j];
+              weights[j] = v;
               row_sum += weights[j];
             }
             columns_[i] = Distribution1D(weights);
             row_value[i] = row_sum;
-            row_color[i] =
-                Vec3(static_cast<float>(red), static_cast<float>(green), static_cast<float>(blue)) *
-                (1.0f / static_cast<float>(k * k));
           }
         });
   }

@@ -90,7 +90,8 @@ class EnvironmentEmitter final : public Emitter {
   EnvironmentFunction radiance_;
   int width_ = 0, height_ = 0;
   std::vector<double> z_edge_;  // cos(theta) at each row's edges: height_ + 1 values, 1 .. -1
-  std::vector<float> value_;    // per texel: mean channel value (before the solid angle)
+  std::vector<float> value_;  // per texel: sampling weight, the largest mean channel value over it
+                              // and its neighbours (before the solid angle)
   Distribution1D rows_;
   std::vector<Distribution1D> columns_;
   double inv_total_ = 0.0;      // 1 / sum of value x solid angle (0: the table is black)

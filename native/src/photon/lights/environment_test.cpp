@@ -105,21 +105,59 @@ TEST(Environment, PdfIntegratesToOneOverTheSphere) {
   EXPECT_FLOAT_EQ(black.pdf_at_infinity(Vec3(0, 0, 1)), 1.0f / (4.0f * kPi));
 }
 
-TEST(Environment, PdfIsTheFunctionOverItsIntegralPlusTheUniformShare) {
-  // At a texel's centre (mid phi, mid cos theta) the table holds the function's value there.
+// The direction at the centre of texel (i, j) (mid phi, mid cos theta).
+Vec3 texel_centre(int i, int j, int width, int height) {
+  const double z = 0.5 * (std::cos(kPiD * i / height) + std::cos(kPiD * (i + 1) / height));
+  const double s = std::sqrt(1.0 - z * z), phi = 2.0 * kPiD * (j + 0.5) / width;
+  return Vec3(static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
+              static_cast<float>(z));
+}
+
+TEST(Environment, PdfIsTheDilatedFunctionOverItsIntegralPlusTheUniformShare) {
+  // A texel's weight is the largest of the function at its centre and its eight neighbours'
+  // centres (columns wrap around, rows stop at the poles), each texel of its solid angle.
   const int width = 64, height = 32;
   const EnvironmentEmitter env(lobe_sky, width);
-  const double total = mean3(env.integral());
   const float share = EnvironmentEmitter::kUniformShare;
+  std::vector<double> centre(width * height), weight(width * height);
+  for (int i = 0; i < height; ++i)
+    for (int j = 0; j < width; ++j)
+      centre[i * width + j] = mean3(lobe_sky(texel_centre(i, j, width, height)));
+  double total = 0.0;
+  for (int i = 0; i < height; ++i) {
+    const double solid_angle =
+        2.0 * kPiD / width * (std::cos(kPiD * i / height) - std::cos(kPiD * (i + 1) / height));
+    for (int j = 0; j < width; ++j) {
+      double w = 0.0;
+      for (int di = std::max(i - 1, 0); di <= std::min(i + 1, height - 1); ++di)
+        for (int dj = j - 1; dj <= j + 1; ++dj)
+          w = std::max(w, centre[di * width + (dj + width) % width]);
+      weight[i * width + j] = w;
+      total += w * solid_angle;
+    }
+  }
   for (int i = 0; i < height; ++i)
     for (int j = 0; j < width; ++j) {
-      const double z = 0.5 * (std::cos(kPiD * i / height) + std::cos(kPiD * (i + 1) / height));
-      const double s = std::sqrt(1.0 - z * z), phi = 2.0 * kPiD * (j + 0.5) / width;
-      const Vec3 d(static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)),
-                   static_cast<float>(z));
-      const double expected = (1.0 - share) * mean3(lobe_sky(d)) / total + share / (4.0 * kPiD);
-      ASSERT_NEAR(env.pdf_at_infinity(d), expected, 1e-5 * expected) << "texel " << i << ", " << j;
+      const double expected = (1.0 - share) * weight[i * width + j] / total + share / (4.0 * kPiD);
+      ASSERT_NEAR(env.pdf_at_infinity(texel_centre(i, j, width, height)), expected, 1e-4 * expected)
+          << "texel " << i << ", " << j;
     }
+}
+
+// A bright pixel of a filtered texture spreads into its neighbours: they are sampled as densely
+// as it is, so no direction's radiance stands far above its density.
+TEST(Environment, TexelsBesideABrightSpotAreSampledLikeIt) {
+  const int width = 64, height = 32;
+  const Vec3 spot = texel_centre(10, 20, width, height);
+  const EnvironmentEmitter env(
+      [&](const Vec3& d) { return Vec3(dot(d, spot) > 0.99999f ? 1e4f : 0.01f); }, width);
+  const float at_spot = env.pdf_at_infinity(spot);
+  for (int di = -1; di <= 1; ++di)
+    for (int dj = -1; dj <= 1; ++dj)
+      EXPECT_EQ(env.pdf_at_infinity(texel_centre(10 + di, 20 + dj, width, height)), at_spot);
+  // Two texels away only the dim sky and the uniform share remain.
+  const float uniform = EnvironmentEmitter::kUniformShare / (4.0f * static_cast<float>(kPiD));
+  EXPECT_LT(env.pdf_at_infinity(texel_centre(10, 23, width, height)), 1.01f * uniform);
 }
 
 TEST(Environment, TableDoesNotDependOnTheThreadCount) {
