@@ -461,6 +461,7 @@ PYBIND11_MODULE(_photon, m) {
         d["no_bake_reason"] = c.no_bake_reason;
         d["stop_early"] = c.stop_early;
         d["stop_early_status"] = c.stop_early_status;
+        d["prepares"] = c.prepares;
         d["stop_early_effect"] = c.stop_early_effect;
         return d;
       },
@@ -500,6 +501,32 @@ PYBIND11_MODULE(_photon, m) {
       .def("start", &RenderSession::start)
       .def("cancel", &RenderSession::cancel)
       .def("stop_preparation", &RenderSession::stop_preparation)
+      .def("set_quick_preview", &RenderSession::set_quick_preview, py::arg("enabled"),
+           "Before start(): render a quick direct-light preview of the whole region before the "
+           "integrator's preparation (take_preview() hands it out).")
+      .def(
+          "take_preview",
+          [](RenderSession& s) -> py::object {
+            std::vector<float> rgba;
+            if (!s.take_preview(&rgba)) return py::none();
+            return to_numpy(std::move(rgba), s.region_height(), s.region_width());
+          },
+          "The quick preview as rgba[h, w, 4] (y downwards) once it is rendered, else None; "
+          "it is handed out once.")
+      .def(
+          "snapshot",
+          [](const RenderSession& s) {
+            const JobSnapshot j = s.snapshot();
+            py::dict d;
+            d["status"] = j.status;
+            d["progress"] = j.progress;
+            d["preparing"] = j.preparing;
+            d["finished"] = j.finished;
+            d["cancelled"] = j.cancelled;
+            return d;
+          },
+          "Status, progress (of the current stage), preparing, finished and cancelled, read at "
+          "one moment.")
       .def_property_readonly("preparing", &RenderSession::preparing)
       .def("wait", &RenderSession::wait, py::call_guard<py::gil_scoped_release>())
       .def(

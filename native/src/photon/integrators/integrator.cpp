@@ -29,6 +29,7 @@ IntegratorCapabilities integrator_capabilities(IntegratorType type) {
       break;
     case IntegratorType::kPhotonMap:
       c.name = "PHOTON_MAP";
+      c.prepares = true;
       c.bake = true;
       // Only photon tracing (photon_tracer.cpp) polls stop_early; the maps are then built from
       // the photons stored so far.
@@ -38,6 +39,7 @@ IntegratorCapabilities integrator_capabilities(IntegratorType type) {
       break;
     case IntegratorType::kRadiosity:
       c.name = "RADIOSITY";
+      c.prepares = true;
       c.bake = true;
       // The solver (radiosity_solver.cpp, radiosity_refine.cpp) keeps the solution so far.
       c.stop_early = true;

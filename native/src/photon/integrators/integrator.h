@@ -137,6 +137,8 @@ std::unique_ptr<Integrator> make_integrator(IntegratorType type);
 // testing for particular types.
 struct IntegratorCapabilities {
   const char* name = "";  // as the Python enum names it: "PHOTON_MAP"
+  // prepare() does work of its own before the first pixel (photon maps, a radiosity solve).
+  bool prepares = false;
   // baked_radiance gives a view-independent solution that lighting bakes read.
   bool bake = false;
   const char* no_bake_reason = "";  // for the user, when bake is false

@@ -22,7 +22,7 @@ float finite_average(float sum, float inv_spp) {
 
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
-                   uint64_t* non_finite, float* passes) {
+                   uint64_t* non_finite, float* passes, int* rows_done) {
   const RenderSettings& s = *context.settings;
   const Camera& camera = context.scene->camera;
   const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
@@ -36,6 +36,7 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
   std::vector<Vec3> sums(n);
   std::vector<Vec3> pass_sums(passes ? n * kPassCount : 0);
   std::vector<float> alphas(n);
+  if (rows_done) *rows_done = 0;
 
   for (int row = 0; row < height; ++row) {
     const int py = y + row;
@@ -55,8 +56,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
           jitter = Vec2(0.5f + (jitter.x - 0.5f) * s.filter_width,
                         0.5f + (jitter.y - 0.5f) * s.filter_width);
         const Vec2 lens = samplers[i].get_2d();
-        rays[i] = generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h,
-                                      lens);
+        rays[i] =
+            generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
       }
       context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
       for (size_t i = 0; i < n; ++i) {
@@ -98,6 +99,7 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         pout[3 * i + 2] = finite_average(pass_sums[i].z, inv_spp);
       }
     }
+    if (rows_done) *rows_done = row + 1;
   }
   return true;
 }

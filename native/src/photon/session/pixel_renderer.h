@@ -13,14 +13,15 @@ namespace photon {
 // samples per pixel. For each row and sample index, the row's camera rays are traced together
 // as one coherent Embree stream; the rest of each path is traced ray by ray.
 // Random numbers depend only on (seed, pixel, sample), never on the block being rendered.
-// Returns false, leaving the block incomplete, as soon as `cancel` is set. Non-finite samples
-// are dropped and counted in `non_finite`.
+// Returns false, leaving the block incomplete, as soon as `cancel` is set; the rows finished by
+// then are complete and their count goes to `rows_done` (optional). Non-finite samples are
+// dropped and counted in `non_finite`.
 // `passes` (optional, width * height * kPassFloats floats) receives the light passes per pixel:
 // Direct RGB, Indirect RGB, Caustics RGB, Photon Map RGB; Combined RGB is their light sum.
 constexpr int kPassCount = 4;
 constexpr int kPassFloats = 3 * kPassCount;
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
-                   uint64_t* non_finite, float* passes = nullptr);
+                   uint64_t* non_finite, float* passes = nullptr, int* rows_done = nullptr);
 
 }  // namespace photon

@@ -12,6 +12,7 @@
 #include "photon/render/scene_resources.h"
 #include "photon/scene/camera_clip_check.h"
 #include "photon/session/pixel_renderer.h"
+#include "photon/session/quick_preview.h"
 
 namespace photon {
 namespace {
@@ -124,6 +125,15 @@ std::vector<Tile> RenderSession::take_tiles(double timeout_seconds) {
   return out;
 }
 
+bool RenderSession::take_preview(std::vector<float>* rgba) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!preview_ready_) return false;
+  preview_ready_ = false;
+  *rgba = std::move(preview_);
+  preview_.clear();
+  return true;
+}
+
 RenderStats RenderSession::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stats_;
@@ -153,8 +163,8 @@ void RenderSession::run() {
   auto t0 = Clock::now();
   std::unique_ptr<SceneResources> resources;
   arena.execute([&] {
-    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel,
-                                                 blas_cache_.get());
+    resources =
+        std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel, blas_cache_.get());
   });
   const double texture_seconds = resources->textures().seconds();
   const double build_seconds = seconds_since(t0) - texture_seconds;
@@ -163,6 +173,19 @@ void RenderSession::run() {
   if (!clip_warning.empty()) warnings.push_back(clip_warning);
   const RenderContext& context = resources->context();
   std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
+
+  if (quick_preview_) {
+    set_status("Quick preview");
+    std::vector<float> preview;
+    arena.execute([&] { preview = render_quick_preview(context, cancel); });
+    if (cancel) return;
+    std::lock_guard<std::mutex> lock(mutex_);
+    // The assembled image starts as the preview: a cancelled render still shows it where no
+    // tile was finished.
+    image_ = preview;
+    preview_ = std::move(preview);
+    preview_ready_ = true;
+  }
 
   set_status("Preparing");
   t0 = Clock::now();
@@ -208,17 +231,20 @@ void RenderSession::run() {
         tile.y = static_cast<int>(i / tiles_x) * ts;
         tile.width = std::min(ts, region_width() - tile.x);
         tile.height = std::min(ts, region_height() - tile.y);
-        render_tile(context, *integrator, &tile);
-        if (cancel) return;  // a partly rendered tile is not handed over
-        std::lock_guard<std::mutex> lock(mutex_);
-        for (int row = 0; row < tile.height; ++row) {
-          const float* src = &tile.rgba[static_cast<size_t>(row) * tile.width * 4];
-          float* dst = &image_[(static_cast<size_t>(tile.y + row) * region_width() + tile.x) * 4];
-          std::copy(src, src + tile.width * 4, dst);
+        const int rows = render_tile(context, *integrator, &tile);
+        if (rows < tile.height) {
+          // Cancelled inside the tile: its finished rows are kept (their samples are complete).
+          if (rows > 0) {
+            tile.height = rows;
+            tile.rgba.resize(static_cast<size_t>(rows) * tile.width * 4);
+            if (!tile.passes.empty())
+              tile.passes.resize(static_cast<size_t>(rows) * tile.width * kPassFloats);
+            deliver_tile(std::move(tile));
+          }
+          return;
         }
-        queue_.push_back(std::move(tile));
+        deliver_tile(std::move(tile));
         ++tiles_done;
-        tiles_ready_.notify_all();
       }
     });
   });
@@ -233,19 +259,32 @@ void RenderSession::run() {
   }
 }
 
-void RenderSession::render_tile(const RenderContext& context, const Integrator& integrator,
-                                Tile* tile) {
+void RenderSession::deliver_tile(Tile tile) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (int row = 0; row < tile.height; ++row) {
+    const float* src = &tile.rgba[static_cast<size_t>(row) * tile.width * 4];
+    float* dst = &image_[(static_cast<size_t>(tile.y + row) * region_width() + tile.x) * 4];
+    std::copy(src, src + tile.width * 4, dst);
+  }
+  queue_.push_back(std::move(tile));
+  tiles_ready_.notify_all();
+}
+
+int RenderSession::render_tile(const RenderContext& context, const Integrator& integrator,
+                               Tile* tile) {
   tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
   if (settings_.light_passes)
     tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
   uint64_t bad = 0;
+  int rows = 0;
   render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
                 tile->height, tile->rgba.data(), cancel_flag(), &bad,
-                settings_.light_passes ? tile->passes.data() : nullptr);
+                settings_.light_passes ? tile->passes.data() : nullptr, &rows);
   if (bad) {
     std::lock_guard<std::mutex> lock(mutex_);
     stats_.non_finite_samples += bad;
   }
+  return rows;
 }
 
 }  // namespace photon

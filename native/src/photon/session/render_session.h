@@ -18,7 +18,8 @@
 namespace photon {
 
 // A finished block of pixels: RGBA float rows, top row first, position relative to the render
-// region's top-left corner.
+// region's top-left corner. A render cancelled in the middle of a tile hands over the tile's
+// finished rows (a shorter tile).
 struct Tile {
   int x = 0, y = 0, width = 0, height = 0;
   std::vector<float> rgba;
@@ -67,6 +68,13 @@ class RenderSession : public Job {
   // Finished tiles since the last call; waits up to `timeout_seconds` for at least one.
   std::vector<Tile> take_tiles(double timeout_seconds);
 
+  // Before start(): render a quick preview of the whole region (quick_preview.h) once the BVH is
+  // built and before the integrator's preparation, for a user watching the render.
+  void set_quick_preview(bool enabled) { quick_preview_ = enabled; }
+  // The preview (RGBA rows of the region, top row first) the first time it is asked for after
+  // it was rendered; false before then and after.
+  bool take_preview(std::vector<float>* rgba);
+
   RenderStats stats() const;
   int region_width() const { return settings_.x1 - settings_.x0; }
   int region_height() const { return settings_.y1 - settings_.y0; }
@@ -76,16 +84,21 @@ class RenderSession : public Job {
  private:
   void run() override;
   void on_finished() override;
-  void render_tile(const RenderContext& context, const Integrator& integrator, Tile* tile);
+  // Renders the tile; returns the number of finished rows (fewer than its height if cancelled).
+  int render_tile(const RenderContext& context, const Integrator& integrator, Tile* tile);
+  void deliver_tile(Tile tile);
 
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<BlasCache> blas_cache_;  // may be null
   RenderSettings settings_;
   size_t tile_count_ = 0;
+  bool quick_preview_ = false;
 
   mutable std::mutex mutex_;  // queue_, image_, stats_
   std::condition_variable tiles_ready_;
   std::deque<Tile> queue_;
+  std::vector<float> preview_;
+  bool preview_ready_ = false;
   std::vector<float> image_;
   RenderStats stats_;
 };
