@@ -7,17 +7,23 @@ import traceback
 import bpy
 import numpy as np
 
+from . import progress as render_progress
 from . import properties, report, schema, sync
 from .sync import cache as sync_cache
 from .sync import camera as sync_camera
 
 POLL_SECONDS = 0.05  # tile poll interval; bounds Esc latency together with the per-row check
 
+# The render in progress as scripts may watch it from Blender's main thread (a timer): the
+# session's status, tiles finished of the total, whether the quick preview was shown and the
+# progress bar's fraction. Empty between renders.
+RENDER_STATUS = {}
+
 
 def native_module():
     from . import _photon, NATIVE_IMPORT_ERROR
     if _photon is None:
-        raise RuntimeError(f"the native module _photon failed to load: {NATIVE_IMPORT_ERROR}")
+        raise RuntimeError(NATIVE_IMPORT_ERROR)
     return _photon
 
 
@@ -37,16 +43,6 @@ def make_settings(native, scene, full_width, full_height, region):
 def integrator_capabilities(native, scene):
     """What the scene's integrator can do (bake, stop_early, ...), as the native factory says."""
     return native.integrator_capabilities(getattr(native.Integrator, scene.photon.integrator))
-
-
-def can_stop_early(capabilities, session):
-    """Esc while the integrator's preparation can stop early (photons traced, radiosity solved)
-    ends that stage and renders with what it has; in any other stage, and for Ctrl-C in
-    background mode (which Blender turns into test_break()), the render is cancelled."""
-    if bpy.app.background:
-        return False
-    return (capabilities["stop_early"]
-            and session.status.startswith(capabilities["stop_early_status"]))
 
 
 def prepare_report(prepared):
@@ -216,34 +212,46 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         region_w, region_h = region[2] - region[0], region[3] - region[1]
         settings.light_passes = bool(self._passes)
 
-        capabilities = integrator_capabilities(native, scene)
         session = native.RenderSession(native_scene, settings,
                                        blas_cache=self._session_blas_cache)
+        # A user watching the render sees the whole frame (direct light) before the slow
+        # stages; in background mode nobody does and it would only cost time.
+        session.set_quick_preview(not bpy.app.background)
+        prepares = integrator_capabilities(native, scene)["prepares"]
+        bar = render_progress.RenderProgress(prepares)
         session.start()
         tiles_total = ((region_w + settings.tile_size - 1) // settings.tile_size) * (
             (region_h + settings.tile_size - 1) // settings.tile_size)
         tiles_done = 0
-        cancelled = False
-        photons_stopped = False
+        cancelled_during = None  # the stage Esc cancelled, or None
+        RENDER_STATUS.clear()
+        RENDER_STATUS.update(status="Starting", tiles_done=0, tiles_total=tiles_total,
+                             progress=0.0, preview_shown=False)
         try:
             while True:
+                preview = session.take_preview()
+                if preview is not None:
+                    self._write_tile(0, 0, region_w, region_h, preview)
+                    RENDER_STATUS["preview_shown"] = True
                 for x, y, w, h, rgba, passes in session.take_tiles(POLL_SECONDS):
                     self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
                     tiles_done += 1
-                if not cancelled and not photons_stopped and self.test_break():
-                    if session.preparing and can_stop_early(capabilities, session):
-                        # Esc while photons are traced ends the tracing; the image is rendered
-                        # with the photons traced so far (Blender keeps test_break() set from
-                        # here on, so the rest of this render cannot be cancelled).
-                        session.stop_preparation()
-                        photons_stopped = True
-                        reporter.warning(f"Esc: {capabilities['stop_early_effect']}")
-                    else:
-                        session.cancel()
-                        cancelled = True
-                self.update_progress(session.progress)
-                self.update_stats("", self._stats_line(session, sync_stats, tiles_done,
-                                                       tiles_total, t_start))
+                # Esc (or Ctrl-C in background mode, which Blender turns into test_break())
+                # cancels whatever stage runs; test_break() then stays set, so it is read until
+                # the first time it is true.
+                if cancelled_during is None and self.test_break():
+                    cancelled_during = session.status
+                    t_cancel = time.perf_counter()
+                    session.cancel()
+                snapshot = session.snapshot()
+                fraction, time_left = bar.update(snapshot["status"], snapshot["preparing"],
+                                                 snapshot["progress"], time.perf_counter())
+                self.update_progress(fraction)
+                RENDER_STATUS.update(status=snapshot["status"], tiles_done=tiles_done,
+                                     tiles_total=tiles_total, progress=fraction)
+                self.update_stats("", self._stats_line(snapshot["status"], sync_stats,
+                                                       tiles_done, tiles_total, t_start,
+                                                       time_left))
                 if session.finished:
                     for x, y, w, h, rgba, passes in session.take_tiles(0.0):
                         self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
@@ -252,6 +260,13 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         finally:
             session.cancel()
             session.wait()
+            RENDER_STATUS.clear()
+        cancelled = cancelled_during is not None
+        if cancelled:
+            reporter.warning(f"render cancelled (Esc) during '{cancelled_during}', stopped "
+                             f"{time.perf_counter() - t_cancel:.3f} s later: the image keeps "
+                             f"what was finished ({tiles_done} tiles or parts of tiles of "
+                             f"{tiles_total})")
 
         for message in session.warnings:
             reporter.warning(message)
@@ -312,10 +327,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         self.end_result(result)
 
     @staticmethod
-    def _stats_line(session, sync_stats, tiles_done, tiles_total, t_start):
-        return (f"Photon | {session.status} | Tiles {tiles_done}/{tiles_total} | "
+    def _stats_line(status, sync_stats, tiles_done, tiles_total, t_start, time_left=""):
+        left = f" | {time_left}" if time_left else ""
+        return (f"Photon | {status} | Tiles {tiles_done}/{tiles_total} | "
                 f"Triangles {sync_stats.triangles:,} | Instances {sync_stats.instances:,} | "
-                f"Lights {sync_stats.lights} | Time {time.perf_counter() - t_start:.1f} s")
+                f"Lights {sync_stats.lights} | Time {time.perf_counter() - t_start:.1f} s{left}")
 
 
 def register():
