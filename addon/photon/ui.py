@@ -1,5 +1,7 @@
 """Panels for the Photon engine, and Blender's own panels that apply to it."""
 
+import textwrap
+
 import bpy
 
 from . import schema
@@ -13,23 +15,26 @@ EXTRA_PANELS = (
     "EEVEE_MATERIAL_PT_context_material",
     "EEVEE_MATERIAL_PT_surface",
     "EEVEE_WORLD_PT_surface",
-    "DATA_PT_light",
-    "DATA_PT_EEVEE_light",
-    "DATA_PT_EEVEE_light_distance",
-    "DATA_PT_spot",
     "DATA_PT_camera_dof",
     "DATA_PT_camera_dof_aperture",
-    "RENDER_PT_film",
 )
-EXCLUDED_PANELS = {"VIEWLAYER_PT_filter", "VIEWLAYER_PT_layer_passes"}
+# Blender's light panels are EEVEE's (diffuse/specular/volume factors, custom distance) or show
+# only the type: Photon draws its own (PHOTON_PT_light).
+EXCLUDED_PANELS = {"VIEWLAYER_PT_filter", "VIEWLAYER_PT_layer_passes", "DATA_PT_light"}
+# Characters per line of a message in a panel's error box (Blender does not wrap labels).
+MESSAGE_WIDTH = 44
 
 
 def compatible_panels():
-    for panel in bpy.types.Panel.__subclasses__():
-        engines = getattr(panel, "COMPAT_ENGINES", None)
-        if engines is None or panel.__name__ in EXCLUDED_PANELS:
+    panels = [p for p in bpy.types.Panel.__subclasses__()
+              if getattr(p, "COMPAT_ENGINES", None) is not None]
+    # Some panels share their set with another (NODE_DATA_PT_light's is DATA_PT_light's):
+    # adding the engine to one adds it to both, so an excluded panel's set is left alone.
+    excluded_sets = {id(p.COMPAT_ENGINES) for p in panels if p.__name__ in EXCLUDED_PANELS}
+    for panel in panels:
+        if id(panel.COMPAT_ENGINES) in excluded_sets:
             continue
-        if "BLENDER_RENDER" in engines or panel.__name__ in EXTRA_PANELS:
+        if "BLENDER_RENDER" in panel.COMPAT_ENGINES or panel.__name__ in EXTRA_PANELS:
             yield panel
 
 
@@ -44,8 +49,19 @@ class PhotonPanel:
         return context.engine in cls.COMPAT_ENGINES
 
 
+def draw_message(layout, title, message):
+    """An error box whose message is wrapped to the panel instead of cut off."""
+    box = layout.box()
+    box.alert = True
+    box.label(text=title, icon="ERROR")
+    for line in textwrap.wrap(message, MESSAGE_WIDTH):
+        box.label(text=line)
+
+
 class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
     bl_label = "Photon"
+    # Before Blender's own render panels (Simplify, ...), which register first.
+    bl_order = -1
 
     def draw(self, context):
         from . import NATIVE_IMPORT_ERROR
@@ -53,11 +69,7 @@ class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         if NATIVE_IMPORT_ERROR:
-            box = layout.box()
-            box.alert = True
-            box.label(text="The native renderer failed to load:", icon="ERROR")
-            for line in NATIVE_IMPORT_ERROR.split(": "):
-                box.label(text=line)
+            draw_message(layout, "Photon cannot render:", NATIVE_IMPORT_ERROR)
         if schema.LOAD_ERROR:
             layout.label(text=f"Parameter schema missing: {schema.LOAD_ERROR}", icon="ERROR")
         schema.draw(layout, context.scene.photon, "sampling")
@@ -143,6 +155,91 @@ class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
         layout.prop(context.scene.render, "use_persistent_data", text="Persistent Data")
 
 
+class PhotonLightPanel(PhotonPanel):
+    bl_context = "data"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.light is not None
+
+
+class PHOTON_PT_light(PhotonLightPanel, bpy.types.Panel):
+    """What Photon renders of a lamp: its type, colour, power and size (Blender's own light
+    panels are EEVEE's)."""
+    bl_label = "Light"
+
+    def draw(self, context):
+        layout = self.layout
+        light = context.light
+        layout.row().prop(light, "type", expand=True)
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        col = layout.column()
+        col.prop(light, "color")
+        col.prop(light, "energy")
+        col.separator()
+        if light.type in {'POINT', 'SPOT'}:
+            col.prop(light, "shadow_soft_size", text="Radius")
+        elif light.type == 'SUN':
+            col.prop(light, "angle")
+        elif light.type == 'AREA':
+            col.prop(light, "shape")
+            sub = col.column(align=True)
+            if light.shape in {'SQUARE', 'DISK'}:
+                sub.prop(light, "size")
+            else:
+                sub.prop(light, "size", text="Size X")
+                sub.prop(light, "size_y", text="Y")
+
+
+class PHOTON_PT_spot(PhotonLightPanel, bpy.types.Panel):
+    bl_label = "Spot Shape"
+    bl_parent_id = "PHOTON_PT_light"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.light.type == 'SPOT'
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        light = context.light
+        col = layout.column()
+        col.prop(light, "spot_size", text="Size")
+        col.prop(light, "spot_blend", text="Blend")
+        col.prop(light, "show_cone")
+
+
+class PHOTON_PT_object_ray_visibility(bpy.types.Panel):
+    """Object > Visibility > Ray Visibility: the per-ray-type flags Photon honours (Blender draws
+    them only in Cycles' panel)."""
+    bl_label = "Ray Visibility"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "object"
+    bl_parent_id = "OBJECT_PT_visibility"
+    COMPAT_ENGINES = {ENGINE}
+
+    @classmethod
+    def poll(cls, context):
+        return context.engine in cls.COMPAT_ENGINES and context.object is not None and \
+            hasattr(context.object, "visible_camera")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        ob = context.object
+        col = layout.column(heading="Ray Visibility", align=True)
+        col.prop(ob, "visible_camera", text="Camera", toggle=False)
+        col.prop(ob, "visible_diffuse", text="Diffuse", toggle=False)
+        col.prop(ob, "visible_glossy", text="Glossy", toggle=False)
+        col.prop(ob, "visible_transmission", text="Transmission", toggle=False)
+        if ob.type != 'LIGHT':
+            col.prop(ob, "visible_shadow", text="Shadow", toggle=False)
+
+
 class PHOTON_PT_object_mask(bpy.types.Panel):
     """Object > Visibility > Mask: Blender's own panel shows Holdout; the shadow catcher flag is
     drawn only by Cycles' panel, so Photon draws it here."""
@@ -166,7 +263,8 @@ class PHOTON_PT_object_mask(bpy.types.Panel):
 
 
 classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_performance,
-           PHOTON_PT_passes, PHOTON_PT_layer_override, PHOTON_PT_object_mask)
+           PHOTON_PT_passes, PHOTON_PT_layer_override, PHOTON_PT_light, PHOTON_PT_spot,
+           PHOTON_PT_object_ray_visibility, PHOTON_PT_object_mask)
 
 
 def register():

@@ -58,7 +58,7 @@ def program_attributes(program):
 def _native():
     from .. import _photon, NATIVE_IMPORT_ERROR
     if _photon is None:
-        raise RuntimeError(f"the native module _photon failed to load: {NATIVE_IMPORT_ERROR}")
+        raise RuntimeError(NATIVE_IMPORT_ERROR)
     return _photon
 
 
