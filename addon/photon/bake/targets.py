@@ -187,6 +187,25 @@ def lightmap_points(native, mesh, layer_name, corner_loops, world_corners, size,
     return Lightmap(triangles, bary, texels, world_size, shaded, size)
 
 
+# A colour attribute holds one value per (vertex, normal) group: an object baked with fewer
+# points than this loses the shadows and light changes across its faces.
+COARSE_BAKE_POINTS = 64
+
+
+def coarse_bake_warning(coarse):
+    """One line for every object a colour-attribute bake stores too few values for
+    (coarse: [(object name, points)]), or None."""
+    if not coarse:
+        return None
+    coarse = sorted(coarse, key=lambda c: (c[1], c[0]))
+    examples = ", ".join(f"'{name}' {points}" for name, points in coarse[:3])
+    more = f" and {len(coarse) - 3} more" if len(coarse) > 3 else ""
+    return (f"{len(coarse)} object(s) have fewer than {COARSE_BAKE_POINTS} points to hold baked "
+            f"lighting ({examples}{more}): a colour attribute keeps one value per vertex, so "
+            f"shadows across their faces are lost; subdivide them or set Bake Target to "
+            f"Lightmap")
+
+
 def collect(context, depsgraph, object_instances, props, want_attribute, want_lightmap,
             reporter, origin=None):
     """Targets for every visible mesh object with faces; warns about the others. `origin` is
@@ -198,6 +217,7 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
     native = native_module()
     size = int(props.lightmap_size)
     targets = []
+    coarse = []  # (name, points) of colour-attribute targets with too few points
     owners = {}  # mesh name -> object that got it (one attribute per mesh)
     names = sorted({obj.name for obj in depsgraph.objects if obj.type == 'MESH'}
                    | set(object_instances))
@@ -249,6 +269,9 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
         target = Target(obj, object_instances[name][0])
         if want_attribute:
             target.corners = corner_points(corner_loops, loop_vertex, loop_normals)
+            points = len(target.corners.point_groups)
+            if not want_lightmap and points < COARSE_BAKE_POINTS:
+                coarse.append((name, points))
         if want_lightmap and ensure_lightmap_uv(context, obj, props.lightmap_uv_name, size,
                                                 reporter) is not None:
             matrix = np.array(obj.matrix_world, np.float32)
@@ -263,4 +286,7 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
                                               size, name, reporter)
         if target.parts():
             targets.append(target)
+    warning = coarse_bake_warning(coarse)
+    if warning:
+        reporter.warning(warning)
     return targets

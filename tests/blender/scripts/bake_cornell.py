@@ -4,7 +4,6 @@ its pixel position and its PhotonLighting value; the test compares them to the i
 
 import math
 
-import bmesh
 import bpy
 import numpy as np
 from bpy_extras.object_utils import world_to_camera_view
@@ -14,15 +13,6 @@ import builders
 import harness
 
 ATTRIBUTE = "PhotonLighting"
-
-
-def subdivide(obj, cuts):
-    bm = bmesh.new()
-    bm.from_mesh(obj.data)
-    bmesh.ops.subdivide_edges(bm, edges=bm.edges[:], cuts=cuts, use_grid_fill=True)
-    bm.to_mesh(obj.data)
-    bm.free()
-    obj.data.update()
 
 
 def interior_vertices(mesh):
@@ -76,7 +66,7 @@ def main(exr_path, cuts="6", source="PHOTON_MAP"):
     scene.photon.bake_samples = 32
     meshes = [o for o in scene.objects if o.type == 'MESH']
     for obj in meshes:
-        subdivide(obj, int(cuts))
+        builders.subdivide(obj, int(cuts))
 
     baked = bpy.ops.photon.bake_lighting()
     scene.render.filepath = exr_path
