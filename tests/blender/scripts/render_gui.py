@@ -3,8 +3,8 @@ for a stage of it (photon.engine.RENDER_STATUS), presses Esc there with xdotool,
 screenshot, and reports through stdout when Blender's render_cancel / render_complete handlers
 fire.
 
-Arguments after "--": screenshot=PATH esc_stage=TEXT (the status Esc waits for; "tiles": a
-finished tile) esc_delay=SECONDS (after the stage starts) photons=N samples=N percent=N (resolution)."""
+Arguments after "--": screenshot=PATH esc_stage=TEXT (the start of the status Esc waits for)
+esc_delay=SECONDS (after the stage starts) photons=N samples=N percent=N (resolution) irradiance_cache=0|1."""
 
 import subprocess
 import sys
@@ -26,6 +26,7 @@ scene.render.engine = 'PHOTON'
 scene.photon.photons = int(args.get("photons", 100000))
 scene.photon.samples = int(args.get("samples", 16))
 scene.render.resolution_percentage = int(args.get("percent", 100))
+scene.photon.irradiance_cache = args.get("irradiance_cache", "1") == "1"
 # One render thread leaves Blender's main thread (its timers, this script) a core.
 scene.photon.threads = 1
 state = {"stage_seen": None, "ended": None}
@@ -43,8 +44,6 @@ def start():
 
 
 def in_stage(status):
-    if esc_stage == "tiles":
-        return status.get("tiles_done", 0) > 0
     return status.get("status", "").startswith(esc_stage)
 
 
