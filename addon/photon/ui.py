@@ -211,20 +211,23 @@ class PHOTON_PT_spot(PhotonLightPanel, bpy.types.Panel):
         col.prop(light, "show_cone")
 
 
-class PHOTON_PT_object_ray_visibility(bpy.types.Panel):
-    """Object > Visibility > Ray Visibility: the per-ray-type flags Photon honours (Blender draws
-    them only in Cycles' panel)."""
-    bl_label = "Ray Visibility"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
+class PhotonObjectVisibilityPanel(PhotonPanel):
+    """A subpanel of Object > Visibility for an object flag Photon reads (`flag`)."""
     bl_context = "object"
     bl_parent_id = "OBJECT_PT_visibility"
-    COMPAT_ENGINES = {ENGINE}
+    flag = ""
 
     @classmethod
     def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES and context.object is not None and \
-            hasattr(context.object, "visible_camera")
+        return super().poll(context) and context.object is not None and \
+            hasattr(context.object, cls.flag)
+
+
+class PHOTON_PT_object_ray_visibility(PhotonObjectVisibilityPanel, bpy.types.Panel):
+    """Object > Visibility > Ray Visibility: the per-ray-type flags Photon honours (Blender draws
+    them only in Cycles' panel)."""
+    bl_label = "Ray Visibility"
+    flag = "visible_camera"
 
     def draw(self, context):
         layout = self.layout
@@ -240,20 +243,11 @@ class PHOTON_PT_object_ray_visibility(bpy.types.Panel):
             col.prop(ob, "visible_shadow", text="Shadow", toggle=False)
 
 
-class PHOTON_PT_object_mask(bpy.types.Panel):
+class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
     """Object > Visibility > Mask: Blender's own panel shows Holdout; the shadow catcher flag is
     drawn only by Cycles' panel, so Photon draws it here."""
     bl_label = "Shadow Catcher"
-    bl_space_type = "PROPERTIES"
-    bl_region_type = "WINDOW"
-    bl_context = "object"
-    bl_parent_id = "OBJECT_PT_visibility"
-    COMPAT_ENGINES = {ENGINE}
-
-    @classmethod
-    def poll(cls, context):
-        return context.engine in cls.COMPAT_ENGINES and context.object is not None and \
-            hasattr(context.object, "is_shadow_catcher")
+    flag = "is_shadow_catcher"
 
     def draw_header(self, context):
         self.layout.prop(context.object, "is_shadow_catcher", text="")
