@@ -7,7 +7,7 @@ import traceback
 import bpy
 import numpy as np
 
-from . import properties, report, schema, sync
+from . import data_passes, properties, report, schema, sync
 from .sync import cache as sync_cache
 from .sync import camera as sync_camera
 
@@ -95,6 +95,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     # Keep Blender's shader nodes visible so artists author Principled materials for Photon.
     bl_use_shading_nodes_custom = False
     _passes = ()
+    _missing_passes = set()  # enabled passes of the result Photon did not write
     _layer = ""  # the view layer being rendered
     _view = ""   # the multiview view being rendered ("": every view of a mono render)
     # Persistent Data: Blender keeps this engine object between the frames of an animation;
@@ -109,6 +110,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
         for name, _index in properties.enabled_passes(renderlayer):
             self.register_pass(scene, renderlayer, name, 3, "RGB", "COLOR")
+        try:
+            native = native_module()
+        except RuntimeError:
+            return  # render() reports the failed import
+        data_passes.register(self, native, scene, renderlayer)
 
     def render(self, depsgraph):
         # An exception escaping render() makes Blender write an empty file and crash in
@@ -215,6 +221,9 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         settings = make_settings(native, scene, width, height, region)
         region_w, region_h = region[2] - region[0], region[3] - region[1]
         settings.light_passes = bool(self._passes)
+        settings.data_passes = data_passes.settings(native, scene, depsgraph.view_layer,
+                                                    sync_stats.origin)
+        self._missing_passes = set()
 
         capabilities = integrator_capabilities(native, scene)
         session = native.RenderSession(native_scene, settings,
@@ -227,8 +236,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         photons_stopped = False
         try:
             while True:
-                for x, y, w, h, rgba, passes in session.take_tiles(POLL_SECONDS):
-                    self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
+                for x, y, w, h, rgba, passes, data in session.take_tiles(POLL_SECONDS):
+                    self._write_tile(x, region_h - (y + h), w, h, rgba, passes, data)
                     tiles_done += 1
                 if not cancelled and not photons_stopped and self.test_break():
                     if session.preparing and can_stop_early(capabilities, session):
@@ -245,8 +254,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 self.update_stats("", self._stats_line(session, sync_stats, tiles_done,
                                                        tiles_total, t_start))
                 if session.finished:
-                    for x, y, w, h, rgba, passes in session.take_tiles(0.0):
-                        self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
+                    for x, y, w, h, rgba, passes, data in session.take_tiles(0.0):
+                        self._write_tile(x, region_h - (y + h), w, h, rgba, passes, data)
                         tiles_done += 1
                     break
         finally:
@@ -255,6 +264,9 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
 
         for message in session.warnings:
             reporter.warning(message)
+        if self._missing_passes:
+            reporter.warning(f"passes not produced by Photon, left at Blender's default (zero): "
+                             f"{', '.join(sorted(self._missing_passes))}")
         stats = session.stats
         if stats.non_finite_samples:
             reporter.warning(f"{stats.non_finite_samples} samples were NaN or infinite "
@@ -288,7 +300,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             label += f", view {view}"
         return label
 
-    def _write_tile(self, x, y_bottom, w, h, rgba, light_passes=None):
+    def _write_tile(self, x, y_bottom, w, h, rgba, light_passes=None, data=None):
         # Native tiles are top row first; Blender's result rows go bottom-up.
         pixels = np.ascontiguousarray(rgba[::-1], dtype=np.float32)
         result = self.begin_result(x, y_bottom, w, h, layer=self._layer, view=self._view)
@@ -305,8 +317,14 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                       and render_pass.channels == 3):
                     parts.append(np.ascontiguousarray(
                         light_passes[ours[render_pass.name]][::-1], dtype=np.float32).ravel())
+                elif (data is not None and render_pass.name in data
+                      and data[render_pass.name].shape[2] == render_pass.channels):
+                    parts.append(np.ascontiguousarray(data[render_pass.name][::-1],
+                                                      dtype=np.float32).ravel())
                 else:
-                    # Passes Photon does not produce (e.g. Z, Normal enabled on the view layer).
+                    # Passes Photon does not produce (enabled on the view layer): Blender's
+                    # default, zero, and one warning after the render.
+                    self._missing_passes.add(render_pass.name)
                     parts.append(np.zeros(w * h * render_pass.channels, dtype=np.float32))
             passes.foreach_set("rect", np.concatenate(parts))
         self.end_result(result)

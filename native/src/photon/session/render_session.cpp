@@ -11,6 +11,7 @@
 #include "photon/integrators/render_params.h"
 #include "photon/render/scene_resources.h"
 #include "photon/scene/camera_clip_check.h"
+#include "photon/session/data_passes.h"
 #include "photon/session/pixel_renderer.h"
 
 namespace photon {
@@ -153,8 +154,8 @@ void RenderSession::run() {
   auto t0 = Clock::now();
   std::unique_ptr<SceneResources> resources;
   arena.execute([&] {
-    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel,
-                                                 blas_cache_.get());
+    resources =
+        std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel, blas_cache_.get());
   });
   const double texture_seconds = resources->textures().seconds();
   const double build_seconds = seconds_since(t0) - texture_seconds;
@@ -238,10 +239,14 @@ void RenderSession::render_tile(const RenderContext& context, const Integrator& 
   tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
   if (settings_.light_passes)
     tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
+  const int data_floats = data_pass_floats(settings_.data_passes.mask);
+  if (data_floats)
+    tile->data.assign(static_cast<size_t>(tile->width) * tile->height * data_floats, 0.0f);
   uint64_t bad = 0;
   render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
                 tile->height, tile->rgba.data(), cancel_flag(), &bad,
-                settings_.light_passes ? tile->passes.data() : nullptr);
+                settings_.light_passes ? tile->passes.data() : nullptr,
+                data_floats ? tile->data.data() : nullptr);
   if (bad) {
     std::lock_guard<std::mutex> lock(mutex_);
     stats_.non_finite_samples += bad;

@@ -1,0 +1,194 @@
+#include "photon/session/data_passes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "photon/render/accel.h"
+#include "photon/render/material_eval.h"
+#include "photon/render/shader_globals.h"
+
+namespace photon {
+namespace {
+
+// Cycles' film conversion of a Depth pass nothing was written to (the background).
+constexpr float kBackgroundDepth = 1e10f;
+
+Vec3 camera_position(const Camera& camera) {
+  const auto& m = camera.camera_to_world.m;
+  return Vec3(m[0][3], m[1][3], m[2][3]);
+}
+
+// The camera looks down its local -Z axis.
+Vec3 camera_forward(const Camera& camera) {
+  const auto& m = camera.camera_to_world.m;
+  return -Vec3(m[0][2], m[1][2], m[2][2]);
+}
+
+// Cycles' surface_shader_average_normal: the closures' normals weighted by their mean weight,
+// the shading normal when there is no BSDF.
+Vec3 average_normal(const ShadingPoint& shading, const Vec3& fallback) {
+  const Bsdf& bsdf = shading.bsdf;
+  Vec3 sum(0.0f);
+  for (int i = 0; i < bsdf.lobe_count(); ++i) {
+    const Lobe& lobe = bsdf.lobe(i);
+    const Vec3 n = length_squared(lobe.normal) > 0.0f ? lobe.normal : bsdf.frame().n;
+    sum += n * std::fabs((lobe.weight.x + lobe.weight.y + lobe.weight.z) / 3.0f);
+  }
+  if (!(length_squared(sum) > 0.0f) || !is_finite(sum)) return fallback;
+  return normalize(sum);
+}
+
+// Cycles' surface_shader_alpha (averaged): 1 minus the Transparent closures' weight.
+float surface_alpha(const ShadingPoint& shading) {
+  Vec3 transparent(0.0f);
+  for (int i = 0; i < shading.bsdf.lobe_count(); ++i)
+    if (shading.bsdf.lobe(i).type == LobeType::kTransparent)
+      transparent += shading.bsdf.lobe(i).weight;
+  const Vec3 alpha(std::clamp(1.0f - transparent.x, 0.0f, 1.0f),
+                   std::clamp(1.0f - transparent.y, 0.0f, 1.0f),
+                   std::clamp(1.0f - transparent.z, 0.0f, 1.0f));
+  return (alpha.x + alpha.y + alpha.z) / 3.0f;
+}
+
+// Cycles' mist: clamp((d - start) / depth) shaped by the falloff exponent, with the same
+// special cases (so the common falloffs match it exactly).
+float mist_amount(float distance, const DataPassSettings& s) {
+  const float inv_depth = s.mist_depth > 0.0f ? 1.0f / s.mist_depth : 0.0f;
+  float mist = std::clamp((distance - s.mist_start) * inv_depth, 0.0f, 1.0f);
+  if (s.mist_falloff == 1.0f) {
+  } else if (s.mist_falloff == 2.0f) {
+    mist = mist * mist;
+  } else if (s.mist_falloff == 0.5f) {
+    mist = std::sqrt(mist);
+  } else {
+    mist = std::pow(mist, s.mist_falloff);
+  }
+  return mist;
+}
+
+void put3(float* p, const Vec3& v) {
+  p[0] = v.x;
+  p[1] = v.y;
+  p[2] = v.z;
+}
+
+void add3(float* p, const Vec3& v) {
+  p[0] += v.x;
+  p[1] += v.y;
+  p[2] += v.z;
+}
+
+}  // namespace
+
+const std::vector<DataPassInfo>& data_pass_table() {
+  // Names and channels as Cycles registers them (intern/cycles/blender/addon/engine.py).
+  static const std::vector<DataPassInfo> table = {
+      {kPassDepth, "Depth", 1, "Z"},
+      {kPassMist, "Mist", 1, "Z"},
+      {kPassNormal, "Normal", 3, "XYZ"},
+      {kPassPosition, "Position", 3, "XYZ"},
+      {kPassUv, "UV", 3, "UVA"},
+      {kPassObjectIndex, "IndexOB", 1, "X"},
+      {kPassMaterialIndex, "IndexMA", 1, "X"},
+  };
+  return table;
+}
+
+int data_pass_floats(uint32_t mask) {
+  int n = 0;
+  for (const DataPassInfo& p : data_pass_table())
+    if (mask & p.bit) n += p.channels;
+  return n;
+}
+
+int data_pass_offset(uint32_t mask, uint32_t bit) {
+  if (!(mask & bit)) return -1;
+  int n = 0;
+  for (const DataPassInfo& p : data_pass_table()) {
+    if (p.bit == bit) return n;
+    if (mask & p.bit) n += p.channels;
+  }
+  return -1;
+}
+
+DataPassRow::DataPassRow(const RenderContext& context, const DataPassSettings& settings,
+                         size_t width)
+    : context_(context),
+      settings_(settings),
+      width_(width),
+      floats_(data_pass_floats(settings.mask)),
+      sums_(width * floats_),
+      mist_(width),
+      first_hit_(width) {}
+
+void DataPassRow::clear() {
+  std::fill(sums_.begin(), sums_.end(), 0.0f);
+  std::fill(mist_.begin(), mist_.end(), 0.0f);
+  std::fill(first_hit_.begin(), first_hit_.end(), 0);
+}
+
+void DataPassRow::add(size_t i, int sample, const Ray& ray, const CameraHit& first) {
+  const uint32_t mask = settings_.mask;
+  if (!mask || !first.found) return;  // the background writes nothing (Cycles)
+  const Camera& camera = context_.scene->camera;
+  const SurfaceInteraction si = context_.accel->interaction(first.hit);
+  float* px = &sums_[i * floats_];
+  const Vec3 to_point = si.p - camera_position(camera);
+
+  if (sample == 0) {
+    first_hit_[i] = 1;
+    // Cycles' camera_z_depth: the distance along the view axis.
+    if (mask & kPassDepth)
+      px[data_pass_offset(mask, kPassDepth)] = dot(to_point, camera_forward(camera));
+    if (mask & kPassPosition)
+      put3(px + data_pass_offset(mask, kPassPosition), si.p + settings_.origin);
+    if (mask & kPassObjectIndex)
+      px[data_pass_offset(mask, kPassObjectIndex)] = si.object ? si.object->pass_index : 0.0f;
+    if (mask & kPassMaterialIndex)
+      px[data_pass_offset(mask, kPassMaterialIndex)] = si.mat ? si.mat->pass_index : 0.0f;
+  }
+  if (mask & kPassUv) {
+    // Cycles' primitive_uv: (u, v, 1) on a mesh with a UV map, zero without one.
+    const bool has_uv = si.mesh && !si.mesh->corner_uvs.empty();
+    add3(px + data_pass_offset(mask, kPassUv), has_uv ? Vec3(si.uv.x, si.uv.y, 1.0f) : Vec3(0.0f));
+  }
+  if (mask & (kPassNormal | kPassMist)) {
+    ShadeRay camera_ray;
+    camera_ray.flags = kRayCamera;
+    camera_ray.length = first.hit.t * 1.0f;
+    const Vec3 wo = normalize(-ray.direction);
+    const ShadingPoint shading =
+        shade_surface(si, wo, *context_.accel, context_.textures, camera_ray);
+    if (mask & kPassNormal) {
+      const Vec3 ns = dot(si.ns, wo) < 0.0f ? -si.ns : si.ns;
+      add3(px + data_pass_offset(mask, kPassNormal), average_normal(shading, ns));
+    }
+    if (mask & kPassMist) {
+      // Cycles' camera_distance: along the view axis for an orthographic camera.
+      const float distance = camera.projection == Projection::kOrthographic
+                                 ? std::fabs(dot(to_point, camera_forward(camera)))
+                                 : length(to_point);
+      mist_[i] += (1.0f - mist_amount(distance, settings_)) * surface_alpha(shading);
+    }
+  }
+}
+
+void DataPassRow::finish(int samples, float* out) const {
+  const uint32_t mask = settings_.mask;
+  const float inv = 1.0f / std::max(samples, 1);
+  for (size_t i = 0; i < width_; ++i) {
+    const float* src = &sums_[i * floats_];
+    float* dst = out + i * floats_;
+    std::copy(src, src + floats_, dst);
+    if (mask & kPassDepth && !first_hit_[i])
+      dst[data_pass_offset(mask, kPassDepth)] = kBackgroundDepth;
+    for (uint32_t bit : {kPassNormal, kPassUv}) {
+      if (!(mask & bit)) continue;
+      float* p = dst + data_pass_offset(mask, bit);
+      for (int c = 0; c < 3; ++c) p[c] *= inv;
+    }
+    if (mask & kPassMist) dst[data_pass_offset(mask, kPassMist)] = 1.0f - mist_[i] * inv;
+  }
+}
+
+}  // namespace photon
