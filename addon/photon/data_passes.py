@@ -14,6 +14,34 @@ DATA_PASS_TOGGLES = (
     ("use_pass_material_index", "IndexMA"),
 )
 
+# View layer toggles of passes Photon does not render, with their labels in View Layer > Passes.
+_UNSUPPORTED_TOGGLES = (
+    ("use_pass_vector", "Vector"),
+    ("use_pass_diffuse_direct", "Diffuse Direct"),
+    ("use_pass_diffuse_indirect", "Diffuse Indirect"),
+    ("use_pass_diffuse_color", "Diffuse Color"),
+    ("use_pass_glossy_direct", "Glossy Direct"),
+    ("use_pass_glossy_indirect", "Glossy Indirect"),
+    ("use_pass_glossy_color", "Glossy Color"),
+    ("use_pass_transmission_direct", "Transmission Direct"),
+    ("use_pass_transmission_indirect", "Transmission Indirect"),
+    ("use_pass_transmission_color", "Transmission Color"),
+    ("use_pass_emit", "Emission"),
+    ("use_pass_environment", "Environment"),
+    ("use_pass_ambient_occlusion", "Ambient Occlusion"),
+    ("use_pass_shadow", "Shadow"),
+    ("use_pass_cryptomatte_object", "Cryptomatte Object"),
+    ("use_pass_cryptomatte_material", "Cryptomatte Material"),
+    ("use_pass_cryptomatte_asset", "Cryptomatte Asset"),
+)
+# The same under view_layer.cycles (present while the Cycles add-on is enabled).
+_UNSUPPORTED_CYCLES_TOGGLES = (
+    ("denoising_store_passes", "Denoising Data"),
+    ("use_pass_volume_direct", "Volume Direct"),
+    ("use_pass_volume_indirect", "Volume Indirect"),
+    ("use_pass_shadow_catcher", "Shadow Catcher"),
+)
+
 # Pass type for register_pass, as Cycles registers each.
 _PASS_TYPES = {"Depth": "VALUE", "Mist": "VALUE", "IndexOB": "VALUE", "IndexMA": "VALUE",
                "Normal": "VECTOR", "Position": "VECTOR", "UV": "VECTOR"}
@@ -53,3 +81,24 @@ def settings(native, scene, view_layer, origin=None):
     if origin is not None:
         out.origin = [float(v) for v in origin]
     return out
+
+
+def unsupported(view_layer):
+    """Labels of the passes the view layer enables that Photon does not render (they are not
+    registered, so the result has none of them), AOVs and light groups included."""
+    labels = [label for prop, label in _UNSUPPORTED_TOGGLES if getattr(view_layer, prop, False)]
+    cycles = getattr(view_layer, "cycles", None)
+    if cycles is not None:
+        labels += [label for prop, label in _UNSUPPORTED_CYCLES_TOGGLES
+                   if getattr(cycles, prop, False)]
+    labels += [f"AOV '{aov.name}'" for aov in getattr(view_layer, "aovs", ())]
+    labels += [f"Light Group '{group.name}'" for group in getattr(view_layer, "lightgroups", ())]
+    return labels
+
+
+def warn_unsupported(reporter, view_layer):
+    """One warning naming every enabled pass Photon does not render."""
+    labels = unsupported(view_layer)
+    if labels:
+        reporter.warning(f"passes not rendered by Photon (View Layer > Passes), left out of "
+                         f"the result: {', '.join(labels)}")

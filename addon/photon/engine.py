@@ -145,6 +145,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         self._passes = properties.enabled_passes(view_layer)
         for name, _index in self._passes:
             self.add_pass(name, 3, "RGB", layer=self._layer)
+        data_passes.warn_unsupported(reporter, view_layer)
         views = self._views(scene)
 
         if scene.render.use_motion_blur:
@@ -265,7 +266,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         for message in session.warnings:
             reporter.warning(message)
         if self._missing_passes:
-            reporter.warning(f"passes not produced by Photon, left at Blender's default (zero): "
+            reporter.warning(f"passes not written by Photon, left at zero: "
                              f"{', '.join(sorted(self._missing_passes))}")
         stats = session.stats
         if stats.non_finite_samples:

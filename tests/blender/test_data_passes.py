@@ -1,0 +1,102 @@
+"""Blender's data passes (Depth, Mist, Normal, Position, UV, Object and Material Index) from
+Photon match Cycles' on the same scene (scripts/data_passes_scene.py: one sample through the
+pixel centre in both engines), and enabled passes Photon cannot write are reported."""
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import OpenImageIO as oiio
+import pytest
+
+SCENE = Path(__file__).resolve().parent / "scripts" / "data_passes_scene.py"
+DATA_PASSES = ("Depth", "Mist", "Normal", "Position", "UV", "IndexOB", "IndexMA")
+
+
+def render(blender, out_prefix, engine, *extra):
+    args = ["-o", f"{out_prefix}####", "-F", "OPEN_EXR_MULTILAYER", "--python", str(SCENE),
+            "-f", "1", "--", engine, *extra]
+    proc = blender.run(args, timeout=300)
+    if engine == "PHOTON":
+        assert "Photon: rendered frame 1" in proc.stdout, f"Photon did not render\n{proc.log}"
+    return proc
+
+
+def read_passes(path):
+    """{pass: (H, W, channels) array} of the single view layer of a multilayer EXR (channels
+    in the file's order)."""
+    buf = oiio.ImageBuf(str(path))
+    pixels = np.asarray(buf.get_pixels(oiio.FLOAT))
+    passes = {}
+    for index, name in enumerate(buf.spec().channelnames):
+        _layer, render_pass, _channel = name.rsplit(".", 2)
+        passes.setdefault(render_pass, []).append(pixels[..., index])
+    return {p: np.stack(c, axis=-1) for p, c in passes.items()}
+
+
+def jitter_tolerance(reference):
+    """Per pixel: 1e-3 plus what the engines' different random offsets within the 0.01-pixel
+    filter can change. Each sample lies within +-0.005 px of the centre, so two engines' samples
+    are at most 0.01 px apart per axis: the value can differ by 0.01 (|d/dx| + |d/dy|), bounded
+    by twice the largest step to a neighbouring pixel (large only at grazing angles)."""
+    pad = np.pad(reference, ((1, 1), (1, 1), (0, 0)), mode="edge")
+    h, w = reference.shape[:2]
+    step = np.zeros((h, w))
+    for dy, dx in ((0, 1), (2, 1), (1, 0), (1, 2)):
+        step = np.maximum(step, np.abs(pad[dy:dy + h, dx:dx + w] - reference).max(-1))
+    return 1e-3 + 0.02 * step
+
+
+def interior(index):
+    """Pixels whose 3 x 3 neighbourhood sees the same object: a silhouette's pixels are left
+    out, since there the surface is seen edge-on and its normal and position change without
+    bound within the jitter's 0.01 pixel."""
+    pad = np.pad(index[..., 0], 1, mode="edge")
+    h, w = index.shape[:2]
+    same = np.ones((h, w), dtype=bool)
+    for dy in range(3):
+        for dx in range(3):
+            same &= pad[dy:dy + h, dx:dx + w] == index[..., 0]
+    return same
+
+
+@pytest.mark.parametrize("camera", ["persp", "ortho"])
+def test_data_passes_match_cycles(blender, tmp_path, camera):
+    extra = ["ortho"] if camera == "ortho" else []
+    render(blender, tmp_path / "photon_", "PHOTON", *extra)
+    render(blender, tmp_path / "cycles_", "CYCLES", *extra)
+    photon = read_passes(tmp_path / "photon_0001.exr")
+    cycles = read_passes(tmp_path / "cycles_0001.exr")
+    for name in DATA_PASSES:
+        assert name in photon, f"Photon wrote no {name} pass: {sorted(photon)}"
+        assert photon[name].shape == cycles[name].shape, name
+    # The scene exercises every pass: background and three objects with their own indices.
+    assert set(np.unique(cycles["IndexOB"])) == {0.0, 2.0, 7.0}
+    assert set(np.unique(cycles["IndexMA"])) == {0.0, 3.0, 5.0, 9.0, 11.0}
+    assert (cycles["Depth"] == 1e10).any() and (cycles["Mist"] < 0.5).any()
+    # Which object a pixel sees: exactly Cycles'.
+    for name in ("IndexOB", "IndexMA"):
+        assert np.array_equal(photon[name], cycles[name]), name
+    inside = interior(cycles["IndexOB"])
+    assert inside.mean() > 0.8
+    for name in ("Depth", "Mist", "Normal", "Position", "UV"):
+        diff = np.abs(photon[name] - cycles[name]).max(-1)
+        tol = jitter_tolerance(cycles[name])
+        over = (diff > tol) & inside
+        assert not over.any(), (
+            f"{name}: {over.sum()} pixels differ from Cycles beyond the tolerance, max "
+            f"{diff.max():.4g}; first at {np.argwhere(over)[:3].tolist()}")
+        # Most pixels agree to 1e-3 outright (the tolerance widens only at grazing angles, as
+        # on the orthographic view's floor).
+        assert (diff <= 1e-3).mean() > 0.6, f"{name}: {(diff > 1e-3).mean():.1%} over 1e-3"
+
+
+def test_unsupported_enabled_passes_are_reported_once(blender, tmp_path):
+    proc = render(blender, tmp_path / "photon_", "PHOTON", "all")
+    lines = [line for line in proc.stdout.splitlines()
+             if line.startswith("Photon: warning: ") and "not rendered by Photon" in line]
+    assert len(lines) == 1, proc.log
+    assert "Diffuse Color" in lines[0] and "Emission" in lines[0], lines[0]
+    assert "Mist" not in lines[0] and "Normal" not in lines[0], lines[0]
+    passes = read_passes(tmp_path / "photon_0001.exr")
+    assert (passes["Depth"] < 1e9).any()
