@@ -1,7 +1,7 @@
-"""Blender's standard data passes (View Layer > Passes > Data: Z, Mist, Normal, Position, UV,
-Object Index, Material Index): which the view layer enables, their registration, the native
-settings that make the renderer write them, and a warning for enabled passes Photon cannot
-produce (they keep Blender's default, zero)."""
+"""Blender's standard passes beyond Combined (View Layer > Passes > Data: Z, Mist, Normal,
+Position, UV, Object Index, Material Index; > Light: Diffuse / Glossy / Transmission Color,
+Emission): which the view layer enables, their registration, the native settings that make the
+renderer write them, and one warning naming the enabled passes Photon does not render."""
 
 # View layer toggle -> native pass name (as DATA_PASSES names them: Cycles' pass names).
 DATA_PASS_TOGGLES = (
@@ -12,6 +12,10 @@ DATA_PASS_TOGGLES = (
     ("use_pass_uv", "UV"),
     ("use_pass_object_index", "IndexOB"),
     ("use_pass_material_index", "IndexMA"),
+    ("use_pass_diffuse_color", "DiffCol"),
+    ("use_pass_glossy_color", "GlossCol"),
+    ("use_pass_transmission_color", "TransCol"),
+    ("use_pass_emit", "Emit"),
 )
 
 # View layer toggles of passes Photon does not render, with their labels in View Layer > Passes.
@@ -19,14 +23,10 @@ _UNSUPPORTED_TOGGLES = (
     ("use_pass_vector", "Vector"),
     ("use_pass_diffuse_direct", "Diffuse Direct"),
     ("use_pass_diffuse_indirect", "Diffuse Indirect"),
-    ("use_pass_diffuse_color", "Diffuse Color"),
     ("use_pass_glossy_direct", "Glossy Direct"),
     ("use_pass_glossy_indirect", "Glossy Indirect"),
-    ("use_pass_glossy_color", "Glossy Color"),
     ("use_pass_transmission_direct", "Transmission Direct"),
     ("use_pass_transmission_indirect", "Transmission Indirect"),
-    ("use_pass_transmission_color", "Transmission Color"),
-    ("use_pass_emit", "Emission"),
     ("use_pass_environment", "Environment"),
     ("use_pass_ambient_occlusion", "Ambient Occlusion"),
     ("use_pass_shadow", "Shadow"),
@@ -44,7 +44,8 @@ _UNSUPPORTED_CYCLES_TOGGLES = (
 
 # Pass type for register_pass, as Cycles registers each.
 _PASS_TYPES = {"Depth": "VALUE", "Mist": "VALUE", "IndexOB": "VALUE", "IndexMA": "VALUE",
-               "Normal": "VECTOR", "Position": "VECTOR", "UV": "VECTOR"}
+               "Normal": "VECTOR", "Position": "VECTOR", "UV": "VECTOR", "DiffCol": "COLOR",
+               "GlossCol": "COLOR", "TransCol": "COLOR", "Emit": "COLOR"}
 
 # World > Mist Pass falloff -> Cycles' exponent.
 _MIST_FALLOFF = {"QUADRATIC": 2.0, "LINEAR": 1.0, "INVERSE_QUADRATIC": 0.5}

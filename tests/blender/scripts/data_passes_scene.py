@@ -3,7 +3,10 @@ Index), rendered by the engine named after `--` (PHOTON or CYCLES) with one samp
 pixel centre, so both engines see the same first hits. Used by test_data_passes.py.
 
     blender -b --factory-startup --addons photon -o OUT -F OPEN_EXR_MULTILAYER \
-        --python data_passes_scene.py -f 1 -- ENGINE [extra: ortho | all]
+        --python data_passes_scene.py -f 1 -- ENGINE [extra: ortho | all | shaders]
+
+`shaders` gives the objects materials with every kind of closure (Principled metal and glass,
+Glossy, Glass, Translucent and Emission nodes) and enables the colour passes and Emit.
 """
 
 import math
@@ -81,8 +84,38 @@ for prop in ("use_pass_z", "use_pass_mist", "use_pass_normal", "use_pass_positio
     setattr(layer, prop, True)
 if "all" in extra:
     # Passes Photon does not write: they must be reported, not silently zero.
-    layer.use_pass_diffuse_color = True
-    layer.use_pass_emit = True
+    layer.use_pass_ambient_occlusion = True
+    layer.use_pass_environment = True
+if "shaders" in extra:
+    for prop in ("use_pass_diffuse_color", "use_pass_glossy_color",
+                 "use_pass_transmission_color", "use_pass_emit"):
+        setattr(layer, prop, True)
+
+    def node_material(name, kind, **inputs):
+        mat = bpy.data.materials.new(name)
+        mat.use_nodes = True
+        nodes = mat.node_tree.nodes
+        nodes.remove(nodes["Principled BSDF"])
+        node = nodes.new(kind)
+        for key, value in inputs.items():
+            node.inputs[key].default_value = value
+        mat.node_tree.links.new(node.outputs[0], nodes["Material Output"].inputs["Surface"])
+        return mat
+
+    red = sphere.data.materials[0].node_tree.nodes["Principled BSDF"]
+    red.inputs["Metallic"].default_value = 0.3
+    red.inputs["Transmission"].default_value = 0.4
+    red.inputs["Sheen"].default_value = 0.5
+    cube.data.materials[0] = node_material("Glossy", "ShaderNodeBsdfGlossy",
+                                           Color=(0.9, 0.6, 0.2, 1.0), Roughness=0.3)
+    cube.data.materials[1] = node_material("Glass", "ShaderNodeBsdfGlass",
+                                           Color=(0.7, 0.9, 0.8, 1.0), Roughness=0.2, IOR=1.5)
+    floor.data.materials[0] = node_material("Translucent", "ShaderNodeBsdfTranslucent",
+                                            Color=(0.3, 0.5, 0.4, 1.0))
+    bpy.ops.mesh.primitive_ico_sphere_add(radius=0.5, location=(0.3, -0.5, 0.5))
+    lamp = bpy.context.object
+    lamp.data.materials.append(node_material("Glow", "ShaderNodeEmission",
+                                             Color=(1.0, 0.8, 0.5, 1.0), Strength=3.0))
 
 render.engine = engine
 if engine == "CYCLES":

@@ -16,7 +16,11 @@ enum DataPassBits : uint32_t {
   kPassUv = 1u << 4,
   kPassObjectIndex = 1u << 5,
   kPassMaterialIndex = 1u << 6,
-  kPassAllData = (1u << 7) - 1,
+  kPassDiffuseColor = 1u << 7,
+  kPassGlossyColor = 1u << 8,
+  kPassTransmissionColor = 1u << 9,
+  kPassEmission = 1u << 10,
+  kPassAllData = (1u << 11) - 1,
 };
 
 // The data passes a render writes besides the image.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "photon/base/optics.h"
 #include "photon/render/accel.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
@@ -66,6 +67,47 @@ float mist_amount(float distance, const DataPassSettings& s) {
   return mist;
 }
 
+// The closure weights of the hit's diffuse, glossy and transmission closures, as Cycles'
+// surface_shader_diffuse / _glossy / _transmission sum them (translucent and sheen count as
+// diffuse). A glass lobe stands for Cycles' two closures: reflection weighted by the dielectric
+// Fresnel of the shading normal, refraction by the rest.
+struct ClosureColors {
+  Vec3 diffuse{0.0f}, glossy{0.0f}, transmission{0.0f};
+};
+
+ClosureColors closure_colors(const Bsdf& bsdf, const Vec3& wo) {
+  ClosureColors c;
+  for (int i = 0; i < bsdf.lobe_count(); ++i) {
+    const Lobe& lobe = bsdf.lobe(i);
+    switch (lobe.type) {
+      case LobeType::kLambert:
+      case LobeType::kBurleyDiffuse:
+      case LobeType::kOrenNayar:
+      case LobeType::kSheen:
+      case LobeType::kTranslucent:
+        c.diffuse += lobe.weight;
+        break;
+      case LobeType::kGgxReflection:
+        c.glossy += lobe.weight;
+        break;
+      case LobeType::kGgxRefraction:
+        c.transmission += lobe.weight;
+        break;
+      case LobeType::kGgxGlass: {
+        const Vec3 n = length_squared(lobe.normal) > 0.0f ? lobe.normal : bsdf.frame().n;
+        const float eta = bsdf.front_facing() ? lobe.ior : 1.0f / lobe.ior;
+        const float f = fresnel_dielectric(std::clamp(dot(wo, n), 0.0f, 1.0f), eta);
+        c.glossy += lobe.weight * f;
+        c.transmission += lobe.weight * (1.0f - f);
+        break;
+      }
+      case LobeType::kTransparent:
+        break;
+    }
+  }
+  return c;
+}
+
 void put3(float* p, const Vec3& v) {
   p[0] = v.x;
   p[1] = v.y;
@@ -90,6 +132,10 @@ const std::vector<DataPassInfo>& data_pass_table() {
       {kPassUv, "UV", 3, "UVA"},
       {kPassObjectIndex, "IndexOB", 1, "X"},
       {kPassMaterialIndex, "IndexMA", 1, "X"},
+      {kPassDiffuseColor, "DiffCol", 3, "RGB"},
+      {kPassGlossyColor, "GlossCol", 3, "RGB"},
+      {kPassTransmissionColor, "TransCol", 3, "RGB"},
+      {kPassEmission, "Emit", 3, "RGB"},
   };
   return table;
 }
@@ -152,7 +198,9 @@ void DataPassRow::add(size_t i, int sample, const Ray& ray, const CameraHit& fir
     const bool has_uv = si.mesh && !si.mesh->corner_uvs.empty();
     add3(px + data_pass_offset(mask, kPassUv), has_uv ? Vec3(si.uv.x, si.uv.y, 1.0f) : Vec3(0.0f));
   }
-  if (mask & (kPassNormal | kPassMist)) {
+  constexpr uint32_t kShaded = kPassNormal | kPassMist | kPassDiffuseColor | kPassGlossyColor |
+                               kPassTransmissionColor | kPassEmission;
+  if (mask & kShaded) {
     ShadeRay camera_ray;
     camera_ray.flags = kRayCamera;
     camera_ray.length = first.hit.t * 1.0f;
@@ -170,6 +218,16 @@ void DataPassRow::add(size_t i, int sample, const Ray& ray, const CameraHit& fir
                                  : length(to_point);
       mist_[i] += (1.0f - mist_amount(distance, settings_)) * surface_alpha(shading);
     }
+    if (mask & (kPassDiffuseColor | kPassGlossyColor | kPassTransmissionColor)) {
+      const ClosureColors colors = closure_colors(shading.bsdf, wo);
+      if (mask & kPassDiffuseColor)
+        add3(px + data_pass_offset(mask, kPassDiffuseColor), colors.diffuse);
+      if (mask & kPassGlossyColor)
+        add3(px + data_pass_offset(mask, kPassGlossyColor), colors.glossy);
+      if (mask & kPassTransmissionColor)
+        add3(px + data_pass_offset(mask, kPassTransmissionColor), colors.transmission);
+    }
+    if (mask & kPassEmission) add3(px + data_pass_offset(mask, kPassEmission), shading.emission);
   }
 }
 
@@ -182,7 +240,8 @@ void DataPassRow::finish(int samples, float* out) const {
     std::copy(src, src + floats_, dst);
     if (mask & kPassDepth && !first_hit_[i])
       dst[data_pass_offset(mask, kPassDepth)] = kBackgroundDepth;
-    for (uint32_t bit : {kPassNormal, kPassUv}) {
+    for (uint32_t bit : {kPassNormal, kPassUv, kPassDiffuseColor, kPassGlossyColor,
+                         kPassTransmissionColor, kPassEmission}) {
       if (!(mask & bit)) continue;
       float* p = dst + data_pass_offset(mask, bit);
       for (int c = 0; c < 3; ++c) p[c] *= inv;

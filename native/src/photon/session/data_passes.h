@@ -5,6 +5,8 @@
 //  - Normal and UV are averaged over all samples (the background adds zero).
 //  - Mist is 1 - mean((1 - m) * alpha) with m = clamp((d - start) / depth)^falloff, d the
 //    distance to the camera (along the view axis for an orthographic camera).
+//  - Diffuse / Glossy / Transmission Color are the summed weights of the hit's closures of that
+//    kind (surface_shader_diffuse etc.), Emit its emitted radiance, averaged over all samples.
 // Values are taken at the camera ray's first hit, so they depend on (seed, pixel, sample) only.
 #pragma once
 

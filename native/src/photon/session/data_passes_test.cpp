@@ -86,7 +86,7 @@ Frame render(std::shared_ptr<const Scene> scene, const RenderSettings& s) {
 }
 
 TEST(DataPasses, LayoutFollowsTheTable) {
-  EXPECT_EQ(data_pass_floats(kPassAllData), 1 + 1 + 3 + 3 + 3 + 1 + 1);
+  EXPECT_EQ(data_pass_floats(kPassAllData), 1 + 1 + 3 + 3 + 3 + 1 + 1 + 4 * 3);
   EXPECT_EQ(data_pass_floats(0), 0);
   const uint32_t mask = kPassMist | kPassUv | kPassMaterialIndex;
   EXPECT_EQ(data_pass_offset(mask, kPassMist), 0);
