@@ -71,6 +71,7 @@ def settings(native, scene, view_layer, origin=None):
     for _name, _channels, _chan_id, bit in enabled(native, view_layer):
         mask |= bit
     out.mask = mask
+    out.alpha_threshold = float(getattr(view_layer, "pass_alpha_threshold", 0.5))
     world = scene.world
     mist = getattr(world, "mist_settings", None) if world is not None else None
     if mist is None:  # Cycles' film defaults without a world

@@ -19,6 +19,7 @@ void register_data_pass_classes(py::module_& m) {
       .def_readwrite("mist_start", &DataPassSettings::mist_start)
       .def_readwrite("mist_depth", &DataPassSettings::mist_depth)
       .def_readwrite("mist_falloff", &DataPassSettings::mist_falloff)
+      .def_readwrite("alpha_threshold", &DataPassSettings::alpha_threshold)
       .def_property(
           "origin",
           [](const DataPassSettings& s) {

@@ -118,3 +118,27 @@ def test_color_passes_match_cycles(blender, tmp_path):
         assert not over.any(), (
             f"{name}: {over.sum()} pixels differ from Cycles beyond the tolerance, max "
             f"{diff[inside].max():.4g}; first at {np.argwhere(over)[:3].tolist()}")
+
+
+def test_alpha_threshold_matches_cycles(blender, tmp_path):
+    """Single-sample passes (Depth, Position, indices, Normal, UV) come from the first hit at
+    least Alpha Threshold opaque: through the Alpha 0 veil, at the Alpha 0.7 one. Mist and the
+    colour passes add up along the path through the Alpha 0 veil (Cycles continues through
+    the 0.7 one at random, so its pixels are left out there)."""
+    render(blender, tmp_path / "photon_", "PHOTON", "veil")
+    render(blender, tmp_path / "cycles_", "CYCLES", "veil")
+    photon = read_passes(tmp_path / "photon_0001.exr")
+    cycles = read_passes(tmp_path / "cycles_0001.exr")
+    index = cycles["IndexOB"][..., 0]
+    assert (index == 13).sum() > 50, "the Alpha 0.7 veil is not in view"
+    assert (index == 12).sum() == 0, "Cycles stopped at the Alpha 0 veil"
+    assert np.array_equal(photon["IndexOB"], cycles["IndexOB"])
+    assert np.array_equal(photon["IndexMA"], cycles["IndexMA"])
+    inside = interior(cycles["IndexOB"])
+    for name in ("Depth", "Position", "Normal", "UV", "Mist", "DiffCol", "GlossCol", "Emit"):
+        diff = np.abs(photon[name] - cycles[name]).max(-1)
+        check = inside if name in ("Depth", "Position", "Normal", "UV") else inside & (index != 13)
+        over = (diff > jitter_tolerance(cycles[name])) & check
+        assert not over.any(), (
+            f"{name}: {over.sum()} pixels differ from Cycles beyond the tolerance, max "
+            f"{diff[check].max():.4g}; first at {np.argwhere(over)[:3].tolist()}")

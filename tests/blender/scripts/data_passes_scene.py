@@ -3,8 +3,10 @@ Index), rendered by the engine named after `--` (PHOTON or CYCLES) with one samp
 pixel centre, so both engines see the same first hits. Used by test_data_passes.py.
 
     blender -b --factory-startup --addons photon -o OUT -F OPEN_EXR_MULTILAYER \
-        --python data_passes_scene.py -f 1 -- ENGINE [extra: ortho | all | shaders]
+        --python data_passes_scene.py -f 1 -- ENGINE [extra: ortho | all | shaders | veil]
 
+`veil` hangs two planes in front of the objects: Alpha 0 (index 12) and Alpha 0.7 (index 13),
+on either side of View Layer > Passes > Alpha Threshold (0.5).
 `shaders` gives the objects materials with every kind of closure (Principled metal and glass,
 Glossy, Glass, Translucent and Emission nodes) and enables the colour passes and Emit.
 """
@@ -128,3 +130,16 @@ if engine == "CYCLES":
 else:
     scene.photon.samples = 1
     scene.photon.filter_width = 0.01
+
+if "veil" in extra:
+    for prop in ("use_pass_diffuse_color", "use_pass_glossy_color", "use_pass_emit"):
+        setattr(layer, prop, True)
+    for x, alpha, index in ((-1.3, 0.0, 12), (1.4, 0.7, 13)):
+        bpy.ops.mesh.primitive_plane_add(size=1.6, location=(x, -2.5, 1.2),
+                                         rotation=(math.radians(90), 0.0, 0.0))
+        veil = bpy.context.object
+        veil.pass_index = index
+        mat = material(f"Veil{index}", (0.2, 0.7, 0.3), index)
+        mat.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = alpha
+        mat.blend_method = "BLEND"
+        veil.data.materials.append(mat)

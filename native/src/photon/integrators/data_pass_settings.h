@@ -29,6 +29,9 @@ struct DataPassSettings {
   // World > Mist Pass: start, depth, falloff exponent (Quadratic 2, Linear 1, Inverse
   // Quadratic 0.5).
   float mist_start = 5.0f, mist_depth = 25.0f, mist_falloff = 2.0f;
+  // View Layer > Passes > Alpha Threshold: the single-sample passes (Depth, Position, indices,
+  // Normal, UV) come from the first hit at least this opaque; 0: the first hit.
+  float alpha_threshold = 0.5f;
   // Added to Position: the world origin offset the scene was synced around (far from the
   // origin, positions are sent relative to it).
   Vec3 origin{0.0f};

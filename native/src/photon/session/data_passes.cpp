@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "photon/base/optics.h"
+#include "photon/base/ray_offset.h"
 #include "photon/render/accel.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
@@ -39,16 +40,23 @@ Vec3 average_normal(const ShadingPoint& shading, const Vec3& fallback) {
   return normalize(sum);
 }
 
-// Cycles' surface_shader_alpha (averaged): 1 minus the Transparent closures' weight.
-float surface_alpha(const ShadingPoint& shading) {
+// The Transparent closures' summed weight (Cycles' surface_shader_transparency); the surface's
+// alpha is 1 minus it, clamped.
+Vec3 transparent_weight(const ShadingPoint& shading) {
   Vec3 transparent(0.0f);
   for (int i = 0; i < shading.bsdf.lobe_count(); ++i)
     if (shading.bsdf.lobe(i).type == LobeType::kTransparent)
       transparent += shading.bsdf.lobe(i).weight;
-  const Vec3 alpha(std::clamp(1.0f - transparent.x, 0.0f, 1.0f),
-                   std::clamp(1.0f - transparent.y, 0.0f, 1.0f),
-                   std::clamp(1.0f - transparent.z, 0.0f, 1.0f));
-  return (alpha.x + alpha.y + alpha.z) / 3.0f;
+  return transparent;
+}
+
+Vec3 clamp01(const Vec3& v) {
+  return Vec3(std::clamp(v.x, 0.0f, 1.0f), std::clamp(v.y, 0.0f, 1.0f),
+              std::clamp(v.z, 0.0f, 1.0f));
+}
+
+float average(const Vec3& v) {
+  return (v.x + v.y + v.z) / 3.0f;
 }
 
 // Cycles' mist: clamp((d - start) / depth) shaped by the falloff exponent, with the same
@@ -173,61 +181,98 @@ void DataPassRow::clear() {
   std::fill(first_hit_.begin(), first_hit_.end(), 0);
 }
 
-void DataPassRow::add(size_t i, int sample, const Ray& ray, const CameraHit& first) {
+void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraHit& first) {
   const uint32_t mask = settings_.mask;
-  if (!mask || !first.found) return;  // the background writes nothing (Cycles)
+  if (!mask) return;
+  // Written once per pixel (first sample) or once per sample, at the first hit opaque enough.
+  constexpr uint32_t kFirstSample =
+      kPassDepth | kPassPosition | kPassObjectIndex | kPassMaterialIndex;
+  constexpr uint32_t kSingle = kFirstSample | kPassNormal | kPassUv;
+  // Summed over every hit seen straight through Transparent closures, times the throughput.
+  constexpr uint32_t kAlongPath =
+      kPassMist | kPassDiffuseColor | kPassGlossyColor | kPassTransmissionColor | kPassEmission;
+  const uint32_t single = mask & (sample == 0 ? kSingle : kSingle & ~kFirstSample);
   const Camera& camera = context_.scene->camera;
-  const SurfaceInteraction si = context_.accel->interaction(first.hit);
   float* px = &sums_[i * floats_];
-  const Vec3 to_point = si.p - camera_position(camera);
 
-  if (sample == 0) {
-    first_hit_[i] = 1;
-    // Cycles' camera_z_depth: the distance along the view axis.
-    if (mask & kPassDepth)
-      px[data_pass_offset(mask, kPassDepth)] = dot(to_point, camera_forward(camera));
-    if (mask & kPassPosition)
-      put3(px + data_pass_offset(mask, kPassPosition), si.p + settings_.origin);
-    if (mask & kPassObjectIndex)
-      px[data_pass_offset(mask, kPassObjectIndex)] = si.object ? si.object->pass_index : 0.0f;
-    if (mask & kPassMaterialIndex)
-      px[data_pass_offset(mask, kPassMaterialIndex)] = si.mat ? si.mat->pass_index : 0.0f;
-  }
-  if (mask & kPassUv) {
-    // Cycles' primitive_uv: (u, v, 1) on a mesh with a UV map, zero without one.
-    const bool has_uv = si.mesh && !si.mesh->corner_uvs.empty();
-    add3(px + data_pass_offset(mask, kPassUv), has_uv ? Vec3(si.uv.x, si.uv.y, 1.0f) : Vec3(0.0f));
-  }
-  constexpr uint32_t kShaded = kPassNormal | kPassMist | kPassDiffuseColor | kPassGlossyColor |
-                               kPassTransmissionColor | kPassEmission;
-  if (mask & kShaded) {
-    ShadeRay camera_ray;
-    camera_ray.flags = kRayCamera;
-    camera_ray.length = first.hit.t * 1.0f;
+  Ray ray = camera_ray;
+  Hit hit = first.hit;
+  bool found = first.found;
+  bool single_done = single == 0;  // Cycles' PATH_RAY_SINGLE_PASS_DONE
+  Vec3 throughput(1.0f);
+  float path_length = 0.0f;
+  // A camera path's transparent hits count towards its depth, as in the image (path_walker.h).
+  const int max_hits = std::max(context_.settings->max_depth, 0) + 1;
+  for (int n = 0; found && n < max_hits; ++n) {
+    if (single_done && !(mask & kAlongPath)) break;
+    const SurfaceInteraction si = context_.accel->interaction(hit);
+    const Vec3 to_point = si.p - camera_position(camera);
+    path_length += hit.t;
+    ShadeRay shade_ray;
+    shade_ray.flags = kRayCamera;
+    shade_ray.length = path_length;
+    shade_ray.transparent_depth = static_cast<uint16_t>(n);
     const Vec3 wo = normalize(-ray.direction);
     const ShadingPoint shading =
-        shade_surface(si, wo, *context_.accel, context_.textures, camera_ray);
-    if (mask & kPassNormal) {
-      const Vec3 ns = dot(si.ns, wo) < 0.0f ? -si.ns : si.ns;
-      add3(px + data_pass_offset(mask, kPassNormal), average_normal(shading, ns));
+        shade_surface(si, wo, *context_.accel, context_.textures, shade_ray);
+    const Vec3 transparency = transparent_weight(shading);
+    const Vec3 alpha = clamp01(Vec3(1.0f) - transparency);
+
+    // Cycles writes the single-sample passes at the first hit whose alpha reaches View Layer >
+    // Passes > Alpha Threshold (any hit when the threshold is 0).
+    if (!single_done &&
+        (settings_.alpha_threshold <= 0.0f || average(alpha) >= settings_.alpha_threshold)) {
+      single_done = true;
+      if (sample == 0) {
+        first_hit_[i] = 1;
+        // Cycles' camera_z_depth: the distance along the view axis.
+        if (mask & kPassDepth)
+          px[data_pass_offset(mask, kPassDepth)] = dot(to_point, camera_forward(camera));
+        if (mask & kPassPosition)
+          put3(px + data_pass_offset(mask, kPassPosition), si.p + settings_.origin);
+        if (mask & kPassObjectIndex)
+          px[data_pass_offset(mask, kPassObjectIndex)] = si.object ? si.object->pass_index : 0.0f;
+        if (mask & kPassMaterialIndex)
+          px[data_pass_offset(mask, kPassMaterialIndex)] = si.mat ? si.mat->pass_index : 0.0f;
+      }
+      if (mask & kPassUv) {
+        // Cycles' primitive_uv: (u, v, 1) on a mesh with a UV map, zero without one.
+        const bool has_uv = si.mesh && !si.mesh->corner_uvs.empty();
+        add3(px + data_pass_offset(mask, kPassUv),
+             has_uv ? Vec3(si.uv.x, si.uv.y, 1.0f) : Vec3(0.0f));
+      }
+      if (mask & kPassNormal) {
+        const Vec3 ns = dot(si.ns, wo) < 0.0f ? -si.ns : si.ns;
+        add3(px + data_pass_offset(mask, kPassNormal), average_normal(shading, ns));
+      }
     }
     if (mask & kPassMist) {
       // Cycles' camera_distance: along the view axis for an orthographic camera.
       const float distance = camera.projection == Projection::kOrthographic
                                  ? std::fabs(dot(to_point, camera_forward(camera)))
                                  : length(to_point);
-      mist_[i] += (1.0f - mist_amount(distance, settings_)) * surface_alpha(shading);
+      mist_[i] += (1.0f - mist_amount(distance, settings_)) * average(throughput * alpha);
     }
     if (mask & (kPassDiffuseColor | kPassGlossyColor | kPassTransmissionColor)) {
       const ClosureColors colors = closure_colors(shading.bsdf, wo);
       if (mask & kPassDiffuseColor)
-        add3(px + data_pass_offset(mask, kPassDiffuseColor), colors.diffuse);
+        add3(px + data_pass_offset(mask, kPassDiffuseColor), throughput * colors.diffuse);
       if (mask & kPassGlossyColor)
-        add3(px + data_pass_offset(mask, kPassGlossyColor), colors.glossy);
+        add3(px + data_pass_offset(mask, kPassGlossyColor), throughput * colors.glossy);
       if (mask & kPassTransmissionColor)
-        add3(px + data_pass_offset(mask, kPassTransmissionColor), colors.transmission);
+        add3(px + data_pass_offset(mask, kPassTransmissionColor), throughput * colors.transmission);
     }
-    if (mask & kPassEmission) add3(px + data_pass_offset(mask, kPassEmission), shading.emission);
+    if (mask & kPassEmission)
+      add3(px + data_pass_offset(mask, kPassEmission), throughput * shading.emission);
+
+    // On through the Transparent closures (Cycles samples them as a straight-on bounce; their
+    // expected contribution is the throughput times their weight).
+    throughput = throughput * transparency;
+    if (!(std::max({throughput.x, throughput.y, throughput.z}) > 0.0f)) break;
+    ray.origin = offset_ray_origin(si.p, si.ng, ray.direction, context_.accel->length_scale());
+    ray.tmin = 0.0f;
+    ray.tmax = INFINITY;
+    found = context_.accel->intersect(ray, kVisibleCamera, &hit);
   }
 }
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "photon/scene/material_params.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"
 
@@ -211,6 +212,48 @@ TEST(DataPasses, PositionAddsTheOriginOffset) {
   EXPECT_NEAR(pos[2], 500.0f, 1e-3f);
   EXPECT_NEAR(pos[0], 1000.0f, 1.0f);
   EXPECT_NEAR(pos[1], -2000.0f, 1.0f);
+}
+
+// A fully transparent quad (Transparent BSDF) 1 m above the opaque one: with the default alpha
+// threshold the single-sample passes see through it to the opaque quad, and so does Mist
+// (the transparent surface adds nothing); with threshold 0 they stop at the first hit.
+std::shared_ptr<const Scene> veiled_quad_scene() {
+  auto scene = std::make_shared<Scene>(*quad_scene());
+  Closure c;
+  c.type = ClosureType::kTransparent;
+  c.params = default_params(ClosureType::kTransparent);
+  c[Param::kColor] = Input::constant(Vec3(1.0f));
+  Material veil;
+  veil.name = "veil";
+  veil.closures.push_back(c);
+  veil.pass_index = 8.0f;
+  scene->materials.push_back(veil);
+  add_mesh_instance(scene.get(), make_textured_quad(), 1,
+                    Transform::translation(Vec3(0.0f, 0.0f, 1.0f)));
+  scene->instances[1].pass_index = 9.0f;
+  return scene;
+}
+
+TEST(DataPasses, AlphaThresholdSeesThroughTransparentSurfaces) {
+  const int size = 24;
+  RenderSettings s = settings(size, 1, kPassAllData);
+  const Frame through = render(veiled_quad_scene(), s);
+  s.data_passes.alpha_threshold = 0.0f;
+  const Frame first = render(veiled_quad_scene(), s);
+  const int c = size / 2;
+  EXPECT_EQ(*through.pass(c, c, kPassAllData, kPassObjectIndex), kObjectIndex);
+  EXPECT_EQ(*through.pass(c, c, kPassAllData, kPassMaterialIndex), kMaterialIndex);
+  EXPECT_NEAR(*through.pass(c, c, kPassAllData, kPassDepth), kCameraHeight, 1e-5f);
+  EXPECT_EQ(*first.pass(c, c, kPassAllData, kPassObjectIndex), 9.0f);
+  EXPECT_EQ(*first.pass(c, c, kPassAllData, kPassMaterialIndex), 8.0f);
+  EXPECT_NEAR(*first.pass(c, c, kPassAllData, kPassDepth), kCameraHeight - 1.0f, 1e-5f);
+  // Mist and the diffuse colour come from the opaque quad behind the veil either way.
+  const float* pos = through.pass(c, c, kPassAllData, kPassPosition);
+  const float distance = std::sqrt(pos[0] * pos[0] + pos[1] * pos[1] + 9.0f);
+  for (const Frame* f : {&through, &first}) {
+    EXPECT_NEAR(*f->pass(c, c, kPassAllData, kPassMist), expected_mist(distance), 1e-5f);
+    EXPECT_NEAR(f->pass(c, c, kPassAllData, kPassDiffuseColor)[0], 0.5f, 1e-6f);
+  }
 }
 
 }  // namespace
