@@ -118,6 +118,14 @@ if "shaders" in extra:
     lamp = bpy.context.object
     lamp.data.materials.append(node_material("Glow", "ShaderNodeEmission",
                                              Color=(1.0, 0.8, 0.5, 1.0), Strength=3.0))
+    # An area light facing the camera and shown to it: its radiance goes into Emit, and the
+    # camera ray goes on to the floor behind it (Cycles' camera rays pass through lamps).
+    bpy.ops.object.light_add(type="AREA", location=(1.9, -1.5, 0.6),
+                             rotation=(math.radians(-90), 0.0, 0.0))
+    area = bpy.context.object
+    area.data.energy = 20.0
+    area.data.size = 0.6
+    area.visible_camera = True
 
 render.engine = engine
 if engine == "CYCLES":

@@ -5,6 +5,7 @@
 
 #include "photon/base/optics.h"
 #include "photon/base/ray_offset.h"
+#include "photon/lights/emitter_set.h"
 #include "photon/render/accel.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
@@ -181,6 +182,22 @@ void DataPassRow::clear() {
   std::fill(first_hit_.begin(), first_hit_.end(), 0);
 }
 
+void DataPassRow::add_lamps(Ray ray, float t_end, const Vec3& throughput, float* px) const {
+  // Lamps the camera sees (Object > Visibility > Camera) go into Emit; Cycles' camera rays
+  // pass through a lamp they meet and go on to what lies behind it, each lamp on the way
+  // counted once.
+  if (!context_.emitters) return;
+  const uint32_t mask = settings_.mask;
+  float t_lamp;
+  Vec3 radiance;
+  for (int k = 0;
+       k < 16 && context_.emitters->intersect_lamps(ray, t_end, kVisibleCamera, &t_lamp, &radiance);
+       ++k) {
+    add3(px + data_pass_offset(mask, kPassEmission), throughput * radiance);
+    ray.tmin = std::nextafter(t_lamp, INFINITY);
+  }
+}
+
 void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraHit& first) {
   const uint32_t mask = settings_.mask;
   if (!mask) return;
@@ -203,8 +220,9 @@ void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraH
   float path_length = 0.0f;
   // A camera path's transparent hits count towards its depth, as in the image (path_walker.h).
   const int max_hits = std::max(context_.settings->max_depth, 0) + 1;
-  for (int n = 0; found && n < max_hits; ++n) {
-    if (single_done && !(mask & kAlongPath)) break;
+  for (int n = 0; n < max_hits; ++n) {
+    if (mask & kPassEmission) add_lamps(ray, found ? hit.t : ray.tmax, throughput, px);
+    if (!found || (single_done && !(mask & kAlongPath))) break;
     const SurfaceInteraction si = context_.accel->interaction(hit);
     const Vec3 to_point = si.p - camera_position(camera);
     path_length += hit.t;

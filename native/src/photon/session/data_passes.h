@@ -6,7 +6,8 @@
 //  - Mist is 1 - mean((1 - m) * alpha) with m = clamp((d - start) / depth)^falloff, d the
 //    distance to the camera (along the view axis for an orthographic camera).
 //  - Diffuse / Glossy / Transmission Color are the summed weights of the hit's closures of that
-//    kind (surface_shader_diffuse etc.), Emit its emitted radiance, averaged over all samples.
+//    kind (surface_shader_diffuse etc.), Emit its emitted radiance and that of the lamps the
+//    camera sees, averaged over all samples.
 // Values are taken at the camera ray's first hit, so they depend on (seed, pixel, sample) only.
 #pragma once
 
@@ -45,6 +46,9 @@ class DataPassRow {
   void finish(int samples, float* out) const;
 
  private:
+  // Adds the lamps that the segment of `ray` up to `t_end` meets to the Emit pass of `px`.
+  void add_lamps(Ray ray, float t_end, const Vec3& throughput, float* px) const;
+
   const RenderContext& context_;
   DataPassSettings settings_;
   size_t width_;
