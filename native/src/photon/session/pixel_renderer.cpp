@@ -59,8 +59,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
           jitter = Vec2(0.5f + (jitter.x - 0.5f) * s.filter_width,
                         0.5f + (jitter.y - 0.5f) * s.filter_width);
         const Vec2 lens = samplers[i].get_2d();
-        rays[i] =
-            generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
+        rays[i] = generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h,
+                                      lens);
       }
       context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
       for (size_t i = 0; i < n; ++i) {

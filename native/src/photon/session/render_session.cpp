@@ -154,8 +154,8 @@ void RenderSession::run() {
   auto t0 = Clock::now();
   std::unique_ptr<SceneResources> resources;
   arena.execute([&] {
-    resources =
-        std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel, blas_cache_.get());
+    resources = std::make_unique<SceneResources>(*scene_, settings_, &warnings, &cancel,
+                                                 blas_cache_.get());
   });
   const double texture_seconds = resources->textures().seconds();
   const double build_seconds = seconds_since(t0) - texture_seconds;
