@@ -142,3 +142,20 @@ def test_alpha_threshold_matches_cycles(blender, tmp_path):
         assert not over.any(), (
             f"{name}: {over.sum()} pixels differ from Cycles beyond the tolerance, max "
             f"{diff[check].max():.4g}; first at {np.argwhere(over)[:3].tolist()}")
+
+
+def test_render_layers_node_shows_the_passes(blender):
+    """update_render_passes registers the enabled passes: the compositor's Render Layers node
+    offers them as outputs."""
+    expr = ("import bpy; scene = bpy.context.scene; scene.render.engine = 'PHOTON'; "
+            "layer = scene.view_layers[0]; "
+            "[setattr(layer, p, True) for p in ('use_pass_z', 'use_pass_mist', "
+            "'use_pass_normal', 'use_pass_position', 'use_pass_uv', 'use_pass_object_index', "
+            "'use_pass_material_index', 'use_pass_diffuse_color', 'use_pass_glossy_color', "
+            "'use_pass_transmission_color', 'use_pass_emit')]; "
+            "scene.use_nodes = True; node = scene.node_tree.nodes['Render Layers']; "
+            "print('SOCKETS', sorted(s.name for s in node.outputs if s.enabled))")
+    proc = blender.run(["--python-expr", expr], timeout=120)
+    line = next(line for line in proc.stdout.splitlines() if line.startswith("SOCKETS"))
+    for name in DATA_PASSES + ("DiffCol", "GlossCol", "TransCol", "Emit"):
+        assert f"'{name}'" in line, f"{name} missing: {line}"
