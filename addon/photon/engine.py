@@ -7,8 +7,8 @@ import traceback
 import bpy
 import numpy as np
 
+from . import data_passes, properties, report, schema, sync
 from . import progress as render_progress
-from . import properties, report, schema, sync
 from .sync import cache as sync_cache
 from .sync import camera as sync_camera
 
@@ -91,6 +91,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     # Keep Blender's shader nodes visible so artists author Principled materials for Photon.
     bl_use_shading_nodes_custom = False
     _passes = ()
+    _missing_passes = set()  # enabled passes of the result Photon did not write
     _layer = ""  # the view layer being rendered
     _view = ""   # the multiview view being rendered ("": every view of a mono render)
     # Persistent Data: Blender keeps this engine object between the frames of an animation;
@@ -105,6 +106,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
         for name, _index in properties.enabled_passes(renderlayer):
             self.register_pass(scene, renderlayer, name, 3, "RGB", "COLOR")
+        try:
+            native = native_module()
+        except RuntimeError:
+            return  # render() reports the failed import
+        data_passes.register(self, native, scene, renderlayer)
 
     def render(self, depsgraph):
         # An exception escaping render() makes Blender write an empty file and crash in
@@ -135,6 +141,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         self._passes = properties.enabled_passes(view_layer)
         for name, _index in self._passes:
             self.add_pass(name, 3, "RGB", layer=self._layer)
+        data_passes.warn_unsupported(reporter, view_layer)
         views = self._views(scene)
 
         if scene.render.use_motion_blur:
@@ -211,6 +218,9 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         settings = make_settings(native, scene, width, height, region)
         region_w, region_h = region[2] - region[0], region[3] - region[1]
         settings.light_passes = bool(self._passes)
+        settings.data_passes = data_passes.settings(native, scene, depsgraph.view_layer,
+                                                    sync_stats.origin)
+        self._missing_passes = set()
 
         session = native.RenderSession(native_scene, settings,
                                        blas_cache=self._session_blas_cache)
@@ -231,10 +241,10 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             while True:
                 preview = session.take_preview()
                 if preview is not None:
-                    self._write_tile(0, 0, region_w, region_h, preview)
+                    self._write_tile(0, 0, region_w, region_h, preview, preview=True)
                     RENDER_STATUS["preview_shown"] = True
-                for x, y, w, h, rgba, passes in session.take_tiles(POLL_SECONDS):
-                    self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
+                for x, y, w, h, rgba, passes, data in session.take_tiles(POLL_SECONDS):
+                    self._write_tile(x, region_h - (y + h), w, h, rgba, passes, data)
                     tiles_done += 1
                 # Esc (or Ctrl-C in background mode, which Blender turns into test_break())
                 # cancels whatever stage runs; test_break() then stays set, so it is read until
@@ -253,8 +263,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                                                        tiles_done, tiles_total, t_start,
                                                        time_left))
                 if session.finished:
-                    for x, y, w, h, rgba, passes in session.take_tiles(0.0):
-                        self._write_tile(x, region_h - (y + h), w, h, rgba, passes)
+                    for x, y, w, h, rgba, passes, data in session.take_tiles(0.0):
+                        self._write_tile(x, region_h - (y + h), w, h, rgba, passes, data)
                         tiles_done += 1
                     break
         finally:
@@ -270,6 +280,9 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
 
         for message in session.warnings:
             reporter.warning(message)
+        if self._missing_passes:
+            reporter.warning(f"passes not written by Photon, left at zero: "
+                             f"{', '.join(sorted(self._missing_passes))}")
         stats = session.stats
         if stats.non_finite_samples:
             reporter.warning(f"{stats.non_finite_samples} samples were NaN or infinite "
@@ -303,7 +316,10 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             label += f", view {view}"
         return label
 
-    def _write_tile(self, x, y_bottom, w, h, rgba, light_passes=None):
+    def _write_tile(self, x, y_bottom, w, h, rgba, light_passes=None, data=None,
+                    preview=False):
+        """Writes a tile (or, with `preview`, the quick preview: Combined only, the other
+        passes zero until their tiles come)."""
         # Native tiles are top row first; Blender's result rows go bottom-up.
         pixels = np.ascontiguousarray(rgba[::-1], dtype=np.float32)
         result = self.begin_result(x, y_bottom, w, h, layer=self._layer, view=self._view)
@@ -320,8 +336,15 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                       and render_pass.channels == 3):
                     parts.append(np.ascontiguousarray(
                         light_passes[ours[render_pass.name]][::-1], dtype=np.float32).ravel())
+                elif (data is not None and render_pass.name in data
+                      and data[render_pass.name].shape[2] == render_pass.channels):
+                    parts.append(np.ascontiguousarray(data[render_pass.name][::-1],
+                                                      dtype=np.float32).ravel())
                 else:
-                    # Passes Photon does not produce (e.g. Z, Normal enabled on the view layer).
+                    # Passes Photon does not produce (enabled on the view layer): Blender's
+                    # default, zero, and one warning after the render.
+                    if not preview:
+                        self._missing_passes.add(render_pass.name)
                     parts.append(np.zeros(w * h * render_pass.channels, dtype=np.float32))
             passes.foreach_set("rect", np.concatenate(parts))
         self.end_result(result)

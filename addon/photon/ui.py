@@ -129,6 +129,34 @@ class PHOTON_PT_passes(PhotonViewLayerPanel, bpy.types.Panel):
         col.prop(settings, "use_pass_photon_map", text="Photon Map")
 
 
+class PHOTON_PT_passes_data(PhotonViewLayerPanel, bpy.types.Panel):
+    """Blender's own pass toggles that Photon renders (data_passes.py), laid out as Cycles'
+    Passes > Data and Light panels."""
+    bl_label = "Data"
+    bl_parent_id = "PHOTON_PT_passes"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        view_layer = context.view_layer
+        col = layout.column(heading="Include", align=True)
+        col.prop(view_layer, "use_pass_z")
+        col.prop(view_layer, "use_pass_mist")
+        col.prop(view_layer, "use_pass_position")
+        col.prop(view_layer, "use_pass_normal")
+        col.prop(view_layer, "use_pass_uv")
+        col = layout.column(heading="Indexes", align=True)
+        col.prop(view_layer, "use_pass_object_index")
+        col.prop(view_layer, "use_pass_material_index")
+        col = layout.column(heading="Color", align=True)
+        col.prop(view_layer, "use_pass_diffuse_color", text="Diffuse")
+        col.prop(view_layer, "use_pass_glossy_color", text="Glossy")
+        col.prop(view_layer, "use_pass_transmission_color", text="Transmission")
+        col.prop(view_layer, "use_pass_emit", text="Emission")
+        layout.prop(view_layer, "pass_alpha_threshold")
+
+
 class PHOTON_PT_layer_override(PhotonViewLayerPanel, bpy.types.Panel):
     """The view layer's Material Override (Blender draws it only in Cycles' own panel)."""
     bl_label = "Override"
@@ -257,8 +285,8 @@ class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
 
 
 classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_performance,
-           PHOTON_PT_passes, PHOTON_PT_layer_override, PHOTON_PT_light, PHOTON_PT_spot,
-           PHOTON_PT_object_ray_visibility, PHOTON_PT_object_mask)
+           PHOTON_PT_passes, PHOTON_PT_passes_data, PHOTON_PT_layer_override, PHOTON_PT_light,
+           PHOTON_PT_spot, PHOTON_PT_object_ray_visibility, PHOTON_PT_object_mask)
 
 
 def register():

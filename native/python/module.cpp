@@ -17,6 +17,7 @@
 #include "photon/session/render_session.h"
 #include "photon/scene/scene.h"
 #include "photon/render/texture_convert.h"
+#include "data_pass_bindings.h"
 #include "stats_bindings.h"
 
 namespace py = pybind11;
@@ -472,6 +473,7 @@ PYBIND11_MODULE(_photon, m) {
   m.attr("PASS_NAMES") = py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics",
                                         "Photon Map");
 
+  photon_python::register_data_pass_classes(m);  // before RenderSettings.data_passes
   py::class_<RenderSettings> settings_class(m, "RenderSettings");
   settings_class.def(py::init<>())
       .def_readwrite("full_width", &RenderSettings::full_width)
@@ -481,7 +483,8 @@ PYBIND11_MODULE(_photon, m) {
       .def_readwrite("x1", &RenderSettings::x1)
       .def_readwrite("y1", &RenderSettings::y1)
       .def_readwrite("transparent_background", &RenderSettings::transparent_background)
-      .def_readwrite("light_passes", &RenderSettings::light_passes);
+      .def_readwrite("light_passes", &RenderSettings::light_passes)
+      .def_readwrite("data_passes", &RenderSettings::data_passes);
   bind_render_params(settings_class);
   // The schema as plain lists and dicts (render_params.h); the add-on generates its
   // properties, panels and make_settings from it.
@@ -532,6 +535,7 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "take_tiles",
           [](RenderSession& s, double timeout) {
+            const uint32_t data_mask = s.settings().data_passes.mask;
             std::vector<Tile> tiles;
             {
               py::gil_scoped_release release;
@@ -542,13 +546,18 @@ PYBIND11_MODULE(_photon, m) {
               const int w = t.width, h = t.height, x = t.x, y = t.y;
               py::object passes = py::none();
               if (!t.passes.empty()) passes = passes_to_numpy(std::move(t.passes), h, w);
-              out.append(py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w), passes));
+              py::object data =
+                  photon_python::data_passes_to_dict(std::move(t.data), data_mask, h, w);
+              out.append(
+                  py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w), passes, data));
             }
             return out;
           },
           py::arg("timeout") = 0.1,
-          "Finished tiles as (x, y, width, height, rgba[h, w, 4], passes) with y downwards; "
-          "passes is [4, h, w, 3] (PASS_NAMES order) when light_passes is set, else None.")
+          "Finished tiles as (x, y, width, height, rgba[h, w, 4], passes, data) with y "
+          "downwards; passes is [4, h, w, 3] (PASS_NAMES order) when light_passes is set, "
+          "else None; data is {name: [h, w, channels]} for the data_passes (DATA_PASSES), "
+          "else None.")
       .def_property_readonly("finished", &RenderSession::finished)
       .def_property_readonly("cancelled", &RenderSession::cancelled)
       .def_property_readonly("progress", &RenderSession::progress)

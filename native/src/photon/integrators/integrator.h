@@ -11,6 +11,7 @@
 
 #include "photon/base/math.h"
 #include "photon/base/rng.h"
+#include "photon/integrators/data_pass_settings.h"
 #include "photon/integrators/photon_map/photon_map_params.h"
 #include "photon/integrators/prepare_stats.h"
 #include "photon/integrators/radiosity/radiosity_params.h"
@@ -35,6 +36,7 @@ struct RenderSettings : SamplingParams, PerformanceParams, PhotonMapParams, Radi
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
   bool transparent_background = false;  // from the scene's Film > Transparent
   bool light_passes = false;  // also write the Direct / Indirect / Caustics / Photon Map passes
+  DataPassSettings data_passes;  // Depth, Mist, Normal, ... (session/data_passes.h)
 };
 
 // Read-only state shared by all threads during a render.

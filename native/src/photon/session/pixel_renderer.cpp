@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "photon/scene/camera.h"
+#include "photon/session/data_passes.h"
 
 namespace photon {
 namespace {
@@ -22,7 +23,7 @@ float finite_average(float sum, float inv_spp) {
 
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
-                   uint64_t* non_finite, float* passes, int* rows_done) {
+                   uint64_t* non_finite, float* passes, float* data, int* rows_done) {
   const RenderSettings& s = *context.settings;
   const Camera& camera = context.scene->camera;
   const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
@@ -36,6 +37,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
   std::vector<Vec3> sums(n);
   std::vector<Vec3> pass_sums(passes ? n * kPassCount : 0);
   std::vector<float> alphas(n);
+  std::unique_ptr<DataPassRow> data_row;
+  if (data) data_row = std::make_unique<DataPassRow>(context, s.data_passes, n);
   if (rows_done) *rows_done = 0;
 
   for (int row = 0; row < height; ++row) {
@@ -43,6 +46,7 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
     std::fill(sums.begin(), sums.end(), Vec3(0.0f));
     std::fill(alphas.begin(), alphas.end(), 0.0f);
     std::fill(pass_sums.begin(), pass_sums.end(), Vec3(0.0f));
+    if (data_row) data_row->clear();
     for (int k = 0; k < s.samples; ++k) {
       if (cancel.load(std::memory_order_relaxed)) return false;
       for (size_t i = 0; i < n; ++i) {
@@ -64,6 +68,7 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         CameraHit first;
         first.found = found[i];
         if (first.found) first.hit = hits[i];
+        if (data_row) data_row->add(i, k, rays[i], first);
         const RadianceSample r = integrator.radiance_from_hit(context, rays[i], first, samplers[i]);
         const Vec3 radiance = r.radiance();
         if (!is_finite(radiance) || !is_finite(r.photon_map)) {
@@ -99,6 +104,9 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         pout[3 * i + 2] = finite_average(pass_sums[i].z, inv_spp);
       }
     }
+    if (data_row)
+      data_row->finish(s.samples,
+                       data + static_cast<size_t>(row) * n * data_pass_floats(s.data_passes.mask));
     if (rows_done) *rows_done = row + 1;
   }
   return true;

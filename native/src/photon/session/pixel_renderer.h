@@ -18,10 +18,13 @@ namespace photon {
 // dropped and counted in `non_finite`.
 // `passes` (optional, width * height * kPassFloats floats) receives the light passes per pixel:
 // Direct RGB, Indirect RGB, Caustics RGB, Photon Map RGB; Combined RGB is their light sum.
+// `data` (optional, width * height * data_pass_floats(settings->data_passes.mask) floats)
+// receives the data passes (data_passes.h) from the same camera rays.
 constexpr int kPassCount = 4;
 constexpr int kPassFloats = 3 * kPassCount;
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
-                   uint64_t* non_finite, float* passes = nullptr, int* rows_done = nullptr);
+                   uint64_t* non_finite, float* passes = nullptr, float* data = nullptr,
+                   int* rows_done = nullptr);
 
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/integrators/render_params.h"
 #include "photon/render/scene_resources.h"
 #include "photon/scene/camera_clip_check.h"
+#include "photon/session/data_passes.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/quick_preview.h"
 
@@ -239,6 +240,9 @@ void RenderSession::run() {
             tile.rgba.resize(static_cast<size_t>(rows) * tile.width * 4);
             if (!tile.passes.empty())
               tile.passes.resize(static_cast<size_t>(rows) * tile.width * kPassFloats);
+            if (!tile.data.empty())
+              tile.data.resize(static_cast<size_t>(rows) * tile.width *
+                               data_pass_floats(settings_.data_passes.mask));
             deliver_tile(std::move(tile));
           }
           return;
@@ -275,11 +279,15 @@ int RenderSession::render_tile(const RenderContext& context, const Integrator& i
   tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
   if (settings_.light_passes)
     tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
+  const int data_floats = data_pass_floats(settings_.data_passes.mask);
+  if (data_floats)
+    tile->data.assign(static_cast<size_t>(tile->width) * tile->height * data_floats, 0.0f);
   uint64_t bad = 0;
   int rows = 0;
   render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
                 tile->height, tile->rgba.data(), cancel_flag(), &bad,
-                settings_.light_passes ? tile->passes.data() : nullptr, &rows);
+                settings_.light_passes ? tile->passes.data() : nullptr,
+                data_floats ? tile->data.data() : nullptr, &rows);
   if (bad) {
     std::lock_guard<std::mutex> lock(mutex_);
     stats_.non_finite_samples += bad;

@@ -25,6 +25,8 @@ struct Tile {
   std::vector<float> rgba;
   // With RenderSettings::light_passes: kPassFloats floats per pixel (see pixel_renderer.h).
   std::vector<float> passes;
+  // With RenderSettings::data_passes: data_pass_floats(mask) floats per pixel (data_passes.h).
+  std::vector<float> data;
 };
 
 // `settings` clamped to what the renderer accepts (also used by lighting bakes); a clamp the
@@ -76,6 +78,7 @@ class RenderSession : public Job {
   bool take_preview(std::vector<float>* rgba);
 
   RenderStats stats() const;
+  const RenderSettings& settings() const { return settings_; }  // as sanitized
   int region_width() const { return settings_.x1 - settings_.x0; }
   int region_height() const { return settings_.y1 - settings_.y0; }
   // The render region assembled from all finished tiles (RGBA, top row first).

@@ -1,0 +1,106 @@
+"""Blender's standard passes beyond Combined (View Layer > Passes > Data: Z, Mist, Normal,
+Position, UV, Object Index, Material Index; > Light: Diffuse / Glossy / Transmission Color,
+Emission): which the view layer enables, their registration, the native settings that make the
+renderer write them, and one warning naming the enabled passes Photon does not render."""
+
+# View layer toggle -> native pass name (as DATA_PASSES names them: Cycles' pass names).
+DATA_PASS_TOGGLES = (
+    ("use_pass_z", "Depth"),
+    ("use_pass_mist", "Mist"),
+    ("use_pass_normal", "Normal"),
+    ("use_pass_position", "Position"),
+    ("use_pass_uv", "UV"),
+    ("use_pass_object_index", "IndexOB"),
+    ("use_pass_material_index", "IndexMA"),
+    ("use_pass_diffuse_color", "DiffCol"),
+    ("use_pass_glossy_color", "GlossCol"),
+    ("use_pass_transmission_color", "TransCol"),
+    ("use_pass_emit", "Emit"),
+)
+
+# View layer toggles of passes Photon does not render, with their labels in View Layer > Passes.
+_UNSUPPORTED_TOGGLES = (
+    ("use_pass_vector", "Vector"),
+    ("use_pass_diffuse_direct", "Diffuse Direct"),
+    ("use_pass_diffuse_indirect", "Diffuse Indirect"),
+    ("use_pass_glossy_direct", "Glossy Direct"),
+    ("use_pass_glossy_indirect", "Glossy Indirect"),
+    ("use_pass_transmission_direct", "Transmission Direct"),
+    ("use_pass_transmission_indirect", "Transmission Indirect"),
+    ("use_pass_environment", "Environment"),
+    ("use_pass_ambient_occlusion", "Ambient Occlusion"),
+    ("use_pass_shadow", "Shadow"),
+    ("use_pass_cryptomatte_object", "Cryptomatte Object"),
+    ("use_pass_cryptomatte_material", "Cryptomatte Material"),
+    ("use_pass_cryptomatte_asset", "Cryptomatte Asset"),
+)
+# The same under view_layer.cycles (present while the Cycles add-on is enabled).
+_UNSUPPORTED_CYCLES_TOGGLES = (
+    ("denoising_store_passes", "Denoising Data"),
+    ("use_pass_volume_direct", "Volume Direct"),
+    ("use_pass_volume_indirect", "Volume Indirect"),
+    ("use_pass_shadow_catcher", "Shadow Catcher"),
+)
+
+# Pass type for register_pass, as Cycles registers each.
+_PASS_TYPES = {"Depth": "VALUE", "Mist": "VALUE", "IndexOB": "VALUE", "IndexMA": "VALUE",
+               "Normal": "VECTOR", "Position": "VECTOR", "UV": "VECTOR", "DiffCol": "COLOR",
+               "GlossCol": "COLOR", "TransCol": "COLOR", "Emit": "COLOR"}
+
+# World > Mist Pass falloff -> Cycles' exponent.
+_MIST_FALLOFF = {"QUADRATIC": 2.0, "LINEAR": 1.0, "INVERSE_QUADRATIC": 0.5}
+
+
+def enabled(native, view_layer):
+    """[(name, channels, channel ids, bit)] of the data passes the view layer enables, in the
+    native table's order."""
+    names = {name for prop, name in DATA_PASS_TOGGLES if getattr(view_layer, prop, False)}
+    return [p for p in native.DATA_PASSES if p[0] in names]
+
+
+def register(engine, native, scene, view_layer):
+    """Registers the enabled data passes (the compositor's Render Layers node shows them)."""
+    for name, channels, chan_id, _bit in enabled(native, view_layer):
+        engine.register_pass(scene, view_layer, name, channels, chan_id, _PASS_TYPES[name])
+
+
+def settings(native, scene, view_layer, origin=None):
+    """The native DataPassSettings for the view layer's passes and the scene's world mist."""
+    out = native.DataPassSettings()
+    mask = 0
+    for _name, _channels, _chan_id, bit in enabled(native, view_layer):
+        mask |= bit
+    out.mask = mask
+    out.alpha_threshold = float(getattr(view_layer, "pass_alpha_threshold", 0.5))
+    world = scene.world
+    mist = getattr(world, "mist_settings", None) if world is not None else None
+    if mist is None:  # Cycles' film defaults without a world
+        out.mist_start, out.mist_depth, out.mist_falloff = 0.0, 100.0, 1.0
+    else:
+        out.mist_start = float(mist.start)
+        out.mist_depth = float(mist.depth)
+        out.mist_falloff = _MIST_FALLOFF.get(mist.falloff, 2.0)
+    if origin is not None:
+        out.origin = [float(v) for v in origin]
+    return out
+
+
+def unsupported(view_layer):
+    """Labels of the passes the view layer enables that Photon does not render (they are not
+    registered, so the result has none of them), AOVs and light groups included."""
+    labels = [label for prop, label in _UNSUPPORTED_TOGGLES if getattr(view_layer, prop, False)]
+    cycles = getattr(view_layer, "cycles", None)
+    if cycles is not None:
+        labels += [label for prop, label in _UNSUPPORTED_CYCLES_TOGGLES
+                   if getattr(cycles, prop, False)]
+    labels += [f"AOV '{aov.name}'" for aov in getattr(view_layer, "aovs", ())]
+    labels += [f"Light Group '{group.name}'" for group in getattr(view_layer, "lightgroups", ())]
+    return labels
+
+
+def warn_unsupported(reporter, view_layer):
+    """One warning naming every enabled pass Photon does not render."""
+    labels = unsupported(view_layer)
+    if labels:
+        reporter.warning(f"passes not rendered by Photon (View Layer > Passes), left out of "
+                         f"the result: {', '.join(labels)}")
