@@ -82,9 +82,10 @@ const ParamSchema<FilmParams>& film_schema() {
           param(&S::filter_width,
                 {.name = "filter_width",
                  .label = "Width",
-                 .description = "Pixel filter width in pixels (Cycles' meaning: a box of this "
-                                "width; Gaussian and Blackman-Harris reach 1.5 and 1 widths from "
-                                "the pixel centre); 0.01 samples the pixel's centre",
+                 .description = "Pixel filter width in pixels, as Cycles': Gaussian and "
+                                "Blackman-Harris reach 1.5 and 1 widths from the pixel centre; "
+                                "Box is that wide (1 covers the pixel, 0.01 samples its centre). "
+                                "In Blender, with Cycles enabled, only Box's width is read here",
                  .min = kMinFilterWidth,
                  .max = kMaxFilterWidth,
                  .subtype = "PIXEL"}),
