@@ -38,7 +38,8 @@ def filter_density(kind, width):
     else:
         def f(x):
             v = 2.0 * math.pi * (x / support + 0.5)
-            return 0.35875 - 0.48829 * np.cos(v) + 0.14128 * np.cos(2 * v) - 0.01168 * np.cos(3 * v)
+            return (0.35875 - 0.48829 * np.cos(v) + 0.14128 * np.cos(2 * v)
+                    - 0.01168 * np.cos(3 * v))
     xs = np.linspace(-support / 2, support / 2, 20001)
     total = np.trapz(f(xs), xs)
     return (lambda x: np.where(np.abs(x) <= support / 2, f(x) / total, 0.0)), support / 2
@@ -93,7 +94,8 @@ def test_pixels_around_small_emitters_match_cycles(renders, case, kind, width):
         expected, window = expected_window(kind, width, emitter)
         check(cycles, expected, window, tolerance, f"{case} Cycles {emitter}")  # the model holds
         check(photon, expected, window, tolerance, f"{case} Photon {emitter}")
-        check(photon, cycles[window], window, 1.5 * tolerance, f"{case} Photon vs Cycles {emitter}")
+        check(photon, cycles[window], window, 1.5 * tolerance,
+              f"{case} Photon vs Cycles {emitter}")
 
 
 def test_photon_box_width_is_its_own(renders):
