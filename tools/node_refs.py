@@ -89,16 +89,17 @@ def _scene(engine):
     scene.render.image_settings.color_mode = 'RGB'
     scene.view_settings.view_transform = 'Standard'
     scene.view_settings.look = 'None'
+    if hasattr(scene, "cycles"):  # Cycles' Film, which Photon reads too: a Box filter
+        scene.cycles.pixel_filter_type = 'BOX'
+        scene.cycles.filter_width = 0.01
     if engine == 'CYCLES':
         scene.cycles.samples = 1
         scene.cycles.use_denoising = False
-        scene.cycles.pixel_filter_type = 'BOX'
-        scene.cycles.filter_width = 0.01
         scene.cycles.max_bounces = 0
     if engine == 'PHOTON':  # direct emission only, one sample per pixel
         scene.photon.integrator = 'RAY_TRACE'
         scene.photon.samples = 1
-        scene.photon.filter_width = 0.01  # the pixel's centre, as the references
+        scene.photon.filter_width = 0.01  # Photon's Box width: pixel centres, as the references
     world = bpy.data.worlds.new("black")
     world.color = (0.0, 0.0, 0.0)
     scene.world = world

@@ -27,6 +27,28 @@ def native_module():
     return _photon
 
 
+def uses_cycles_film(scene):
+    """Whether Photon's Film follows Cycles' own settings (scene.cycles: film_exposure,
+    pixel_filter_type, filter_width), as it does whenever Cycles is enabled (the default in
+    Blender 3.4), so one .blend renders alike in both engines."""
+    cycles = getattr(scene, "cycles", None)
+    return cycles is not None and hasattr(cycles, "pixel_filter_type")
+
+
+def film_settings(scene):
+    """(filter type, filter width, exposure) of the render. Cycles renders Box at width 1
+    whatever its (then hidden) width says; Photon's Box width is its own scene.photon.filter_width
+    (default 1, as Cycles; 0.01 samples pixel centres). Without Cycles, all three are
+    scene.photon's."""
+    props = scene.photon
+    if not uses_cycles_film(scene):
+        return props.filter_type, props.filter_width, props.exposure
+    cycles = scene.cycles
+    kind = cycles.pixel_filter_type
+    width = props.filter_width if kind == "BOX" else cycles.filter_width
+    return kind, width, cycles.film_exposure
+
+
 def make_settings(native, scene, full_width, full_height, region):
     props = scene.photon
     settings = native.RenderSettings()
@@ -37,6 +59,8 @@ def make_settings(native, scene, full_width, full_height, region):
     # Every schema parameter by name; out-of-range values are clamped (with a warning) natively.
     for p in schema.params():
         setattr(settings, p["name"], schema.native_value(p, getattr(props, p["name"])))
+    kind, width, exposure = film_settings(scene)
+    settings.filter_type, settings.filter_width, settings.exposure = kind, width, exposure
     return settings
 
 

@@ -109,6 +109,36 @@ class PHOTON_PT_radiosity(PhotonPanel, bpy.types.Panel):
         schema.draw(layout, context.scene.photon, "radiosity")
 
 
+class PHOTON_PT_film(PhotonPanel, bpy.types.Panel):
+    """Film: with Cycles enabled, the very properties Cycles' Film panel edits (Photon renders
+    them alike, engine.film_settings), plus Photon's Box width; else Photon's own. Cycles'
+    Transparent Glass is not drawn: Photon does not honour it."""
+    bl_label = "Film"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context):
+        from .engine import uses_cycles_film
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        scene = context.scene
+        props = scene.photon
+        col = layout.column()
+        if uses_cycles_film(scene):
+            col.prop(scene.cycles, "film_exposure", text="Exposure")
+            col.prop(scene.cycles, "pixel_filter_type", text="Pixel Filter")
+            # Cycles' Box is always one pixel wide; Photon's Box width is its own.
+            if scene.cycles.pixel_filter_type == "BOX":
+                col.prop(props, "filter_width", text="Width")
+            else:
+                col.prop(scene.cycles, "filter_width", text="Width")
+        else:
+            col.prop(props, "exposure")
+            col.prop(props, "filter_type")
+            col.prop(props, "filter_width")
+        layout.prop(scene.render, "film_transparent", text="Transparent")
+
+
 class PhotonViewLayerPanel(PhotonPanel):
     bl_context = "view_layer"
 
@@ -285,8 +315,9 @@ class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
 
 
 classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_performance,
-           PHOTON_PT_passes, PHOTON_PT_passes_data, PHOTON_PT_layer_override, PHOTON_PT_light,
-           PHOTON_PT_spot, PHOTON_PT_object_ray_visibility, PHOTON_PT_object_mask)
+           PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data, PHOTON_PT_layer_override,
+           PHOTON_PT_light, PHOTON_PT_spot, PHOTON_PT_object_ray_visibility,
+           PHOTON_PT_object_mask)
 
 
 def register():

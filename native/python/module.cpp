@@ -121,7 +121,11 @@ void bind_render_params(py::class_<RenderSettings>& cls) {
               case ParamType::kFloat:
                 return py::float_(v);
               case ParamType::kEnum:
-                return py::cast(static_cast<IntegratorType>(static_cast<int>(v)));
+                if (param->spec->name == "integrator")
+                  return py::cast(static_cast<IntegratorType>(static_cast<int>(v)));
+                for (const ParamEnumItem& item : param->spec->items)  // other enums: item id
+                  if (item.value == static_cast<int>(v)) return py::str(item.id);
+                return py::none();
               case ParamType::kUInt64:
                 return py::int_(static_cast<unsigned long long>(v));
               case ParamType::kInt:
@@ -138,6 +142,7 @@ void bind_render_params(py::class_<RenderSettings>& cls) {
                   if (item.id == id) return param->set(s, item.value);
                 throw py::value_error(spec.name + ": no item '" + id + "'");
               }
+              if (spec.name != "integrator") throw py::value_error(spec.name + ": give an item id");
               return param->set(s, static_cast<int>(value.cast<IntegratorType>()));
             }
             param->set(s, value.cast<double>());

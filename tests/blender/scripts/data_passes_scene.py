@@ -128,11 +128,12 @@ if "shaders" in extra:
     area.visible_camera = True
 
 render.engine = engine
+# Photon reads Cycles' Film settings too: Box, and Photon's own Box width below.
+scene.cycles.pixel_filter_type = "BOX"
 if engine == "CYCLES":
     scene.cycles.samples = 1
     scene.cycles.use_adaptive_sampling = False
     scene.cycles.use_denoising = False
-    scene.cycles.pixel_filter_type = "BOX"
     scene.cycles.filter_width = 0.01
     scene.cycles.device = "CPU"
 else:

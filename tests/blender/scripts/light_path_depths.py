@@ -58,11 +58,12 @@ def scene_for(engine, samples, outputs):
     scene.render.resolution_x, scene.render.resolution_y = 48, 24
     scene.render.image_settings.file_format = 'OPEN_EXR'
     scene.view_settings.view_transform = 'Standard'
+    # Cycles' Film, which Photon reads too: a one-pixel box in both engines.
+    scene.cycles.pixel_filter_type = 'BOX'
+    scene.cycles.filter_width = 1.0
     if engine == 'CYCLES':
         scene.cycles.samples = samples
         scene.cycles.use_denoising = False
-        scene.cycles.pixel_filter_type = 'BOX'
-        scene.cycles.filter_width = 1.0
     else:
         scene.photon.samples = samples
         scene.photon.integrator = 'RAY_TRACE'

@@ -30,7 +30,11 @@ class TextureSet;
 // their schemas; render_params.h lists them all and clamps them). The parameter structs are
 // bases so every field keeps its flat name (settings.photons), which is also its name in the
 // schema, the Blender property and the command line.
-struct RenderSettings : SamplingParams, PerformanceParams, PhotonMapParams, RadiosityParams {
+struct RenderSettings : SamplingParams,
+                        FilmParams,
+                        PerformanceParams,
+                        PhotonMapParams,
+                        RadiosityParams {
   int full_width = 64, full_height = 64;  // whole frame in pixels
   // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;

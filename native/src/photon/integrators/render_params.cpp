@@ -98,7 +98,7 @@ std::string spec_json(const ParamSpec& s) {
 
 const std::vector<RenderParamGroup>& render_param_groups() {
   static const std::vector<RenderParamGroup> groups{
-      make_group(sampling_schema()), make_group(photon_map_schema()),
+      make_group(sampling_schema()), make_group(film_schema()), make_group(photon_map_schema()),
       make_group(radiosity_schema()), make_group(performance_schema())};
   return groups;
 }
@@ -112,6 +112,7 @@ const RenderParam* find_render_param(const std::string& name) {
 
 void clamp_render_params(RenderSettings* settings, std::vector<std::string>* warnings) {
   clamp_params<SamplingParams>(*settings, sampling_schema(), warnings);
+  clamp_params<FilmParams>(*settings, film_schema(), warnings);
   clamp_params<PerformanceParams>(*settings, performance_schema(), warnings);
   clamp_params<PhotonMapParams>(*settings, photon_map_schema(), warnings);
   clamp_params<RadiosityParams>(*settings, radiosity_schema(), warnings);

@@ -33,6 +33,7 @@ void expect_covers_every_field(const ParamSchema<S>& schema) {
 
 TEST(RenderParams, SchemasCoverEveryField) {
   expect_covers_every_field(sampling_schema());
+  expect_covers_every_field(film_schema());
   expect_covers_every_field(performance_schema());
   expect_covers_every_field(photon_map_schema());
   expect_covers_every_field(radiosity_schema());
@@ -53,7 +54,7 @@ TEST(RenderParams, NamesAreUniqueAndDefaultsInRange) {
       EXPECT_EQ(find_render_param(spec.name), &p);
     }
   // RenderSettings holds the parameters plus the frame (size, border, film, passes) only.
-  EXPECT_EQ(names.size(), 20u);
+  EXPECT_EQ(names.size(), 22u);
 }
 
 // Every numeric entry: a value just beyond each end of its hard range comes back at that end

@@ -51,15 +51,44 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                            .description = "Random seed; the same seed renders the same image",
                            .min = 0,
                            .max = 9007199254740992.0}),  // 2^53: exact as a double
+      }};
+  return schema;
+}
+
+const ParamSchema<FilmParams>& film_schema() {
+  using S = FilmParams;
+  static const ParamSchema<S> schema{
+      "film",
+      "Film",
+      "",
+      {
+          param(&S::exposure, {.name = "exposure",
+                               .label = "Exposure",
+                               .description = "Image brightness scale: pixel colours are "
+                                              "multiplied by it (Cycles' film exposure)",
+                               .min = 0.0,
+                               .max = 10.0}),
+          param(&S::filter_type,
+                {.name = "filter_type",
+                 .label = "Pixel Filter",
+                 .description = "Pixel filter type, importance sampled as in Cycles",
+                 .min = 0,
+                 .max = 2,
+                 .items = {{"BOX", "Box", "Box filter", static_cast<int>(PixelFilterType::kBox)},
+                           {"GAUSSIAN", "Gaussian", "Gaussian filter",
+                            static_cast<int>(PixelFilterType::kGaussian)},
+                           {"BLACKMAN_HARRIS", "Blackman-Harris", "Blackman-Harris filter",
+                            static_cast<int>(PixelFilterType::kBlackmanHarris)}}}),
           param(&S::filter_width,
                 {.name = "filter_width",
-                 .label = "Filter Width",
-                 .description = "Width in pixels of the box filter camera samples spread over "
-                                "(Cycles' Box pixel filter); 1 covers the pixel",
-                 .min = 0.01,
-                 .max = 10.0,
-                 .subtype = "PIXEL",
-                 .ui = {.column = 1}}),
+                 .label = "Width",
+                 .description = "Pixel filter width in pixels, as Cycles': Gaussian and "
+                                "Blackman-Harris reach 1.5 and 1 widths from the pixel centre; "
+                                "Box is that wide (1 covers the pixel, 0.01 samples its centre). "
+                                "In Blender, with Cycles enabled, only Box's width is read here",
+                 .min = kMinFilterWidth,
+                 .max = kMaxFilterWidth,
+                 .subtype = "PIXEL"}),
       }};
   return schema;
 }

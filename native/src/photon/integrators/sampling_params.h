@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "photon/base/param_schema.h"
+#include "photon/scene/pixel_filter.h"
 
 namespace photon {
 
@@ -15,9 +16,16 @@ struct SamplingParams {
   int samples = 64;   // camera samples per pixel
   int max_depth = 8;  // specular bounces after the camera ray
   uint64_t seed = 0;
-  // Width in pixels of the box each pixel's camera samples spread over, centred on the pixel
-  // (Cycles' Box pixel filter): 1 covers the pixel; 0.01 samples its centre.
+};
+
+// The film: how camera samples are spread around their pixel (pixel_filter.h) and how the pixel
+// values are scaled, as Cycles' Film settings.
+struct FilmParams {
+  PixelFilterType filter_type = PixelFilterType::kBox;
+  // Box: the width of the box around the pixel's centre (1 covers the pixel; 0.01 samples its
+  // centre). Gaussian and Blackman-Harris: Cycles' width, a third and a half of the support.
   float filter_width = 1.0f;
+  float exposure = 1.0f;  // pixel colours are multiplied by it (Cycles' film exposure)
 };
 
 struct PerformanceParams {
@@ -26,6 +34,7 @@ struct PerformanceParams {
 };
 
 const ParamSchema<SamplingParams>& sampling_schema();
+const ParamSchema<FilmParams>& film_schema();
 const ParamSchema<PerformanceParams>& performance_schema();
 
 }  // namespace photon

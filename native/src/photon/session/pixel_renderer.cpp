@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "photon/scene/camera.h"
+#include "photon/scene/pixel_filter.h"
 #include "photon/session/data_passes.h"
 
 namespace photon {
@@ -28,6 +29,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
   const Camera& camera = context.scene->camera;
   const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
   const float inv_spp = 1.0f / s.samples;
+  const PixelFilter filter(s.filter_type, s.filter_width);
+  const float colour_scale = inv_spp * s.exposure;  // the film's exposure scales colour only
   const size_t n = static_cast<size_t>(width);
 
   std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
@@ -55,10 +58,7 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
         samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
                               static_cast<uint32_t>(s.samples));
-        Vec2 jitter = samplers[i].get_2d();
-        if (s.filter_width != 1.0f)  // a box of that width around the pixel's centre
-          jitter = Vec2(0.5f + (jitter.x - 0.5f) * s.filter_width,
-                        0.5f + (jitter.y - 0.5f) * s.filter_width);
+        const Vec2 jitter = filter.sample(samplers[i].get_2d());
         const Vec2 lens = samplers[i].get_2d();
         rays[i] =
             generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
@@ -91,17 +91,17 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
     }
     float* out = rgba + static_cast<size_t>(row) * n * 4;
     for (size_t i = 0; i < n; ++i) {
-      out[4 * i + 0] = finite_average(sums[i].x, inv_spp);
-      out[4 * i + 1] = finite_average(sums[i].y, inv_spp);
-      out[4 * i + 2] = finite_average(sums[i].z, inv_spp);
+      out[4 * i + 0] = finite_average(sums[i].x, colour_scale);
+      out[4 * i + 1] = finite_average(sums[i].y, colour_scale);
+      out[4 * i + 2] = finite_average(sums[i].z, colour_scale);
       out[4 * i + 3] = alphas[i] * inv_spp;
     }
     if (passes) {
       float* pout = passes + static_cast<size_t>(row) * n * kPassFloats;
       for (size_t i = 0; i < n * kPassCount; ++i) {
-        pout[3 * i + 0] = finite_average(pass_sums[i].x, inv_spp);
-        pout[3 * i + 1] = finite_average(pass_sums[i].y, inv_spp);
-        pout[3 * i + 2] = finite_average(pass_sums[i].z, inv_spp);
+        pout[3 * i + 0] = finite_average(pass_sums[i].x, colour_scale);
+        pout[3 * i + 1] = finite_average(pass_sums[i].y, colour_scale);
+        pout[3 * i + 2] = finite_average(pass_sums[i].z, colour_scale);
       }
     }
     if (data_row)
