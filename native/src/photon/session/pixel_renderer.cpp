@@ -20,12 +20,23 @@ float finite_average(float sum, float inv_spp) {
 
 }  // namespace
 
+Ray camera_sample_ray(const RenderSettings& s, const Camera& camera, int full_width,
+                      int full_height, int px, int py, Sampler& sampler) {
+  Vec2 jitter = sampler.get_2d();
+  if (s.filter_width != 1.0f)  // a box of that width around the pixel's centre
+    jitter =
+        Vec2(0.5f + (jitter.x - 0.5f) * s.filter_width, 0.5f + (jitter.y - 0.5f) * s.filter_width);
+  const Vec2 lens = sampler.get_2d();
+  // Times the reciprocal, not divided: the reference images depend on these exact bits.
+  const float inv_w = 1.0f / full_width, inv_h = 1.0f / full_height;
+  return generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
+}
+
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
                    uint64_t* non_finite, float* passes) {
   const RenderSettings& s = *context.settings;
   const Camera& camera = context.scene->camera;
-  const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
   const float inv_spp = 1.0f / s.samples;
   const size_t n = static_cast<size_t>(width);
 
@@ -50,13 +61,7 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
         samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
                               static_cast<uint32_t>(s.samples));
-        Vec2 jitter = samplers[i].get_2d();
-        if (s.filter_width != 1.0f)  // a box of that width around the pixel's centre
-          jitter = Vec2(0.5f + (jitter.x - 0.5f) * s.filter_width,
-                        0.5f + (jitter.y - 0.5f) * s.filter_width);
-        const Vec2 lens = samplers[i].get_2d();
-        rays[i] = generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h,
-                                      lens);
+        rays[i] = camera_sample_ray(s, camera, s.full_width, s.full_height, px, py, samplers[i]);
       }
       context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
       for (size_t i = 0; i < n; ++i) {

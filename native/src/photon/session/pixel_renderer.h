@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "photon/base/rng.h"
 #include "photon/integrators/integrator.h"
 
 namespace photon {
@@ -18,6 +19,13 @@ namespace photon {
 // `passes` (optional, width * height * kPassFloats floats) receives the light passes per pixel:
 // Direct RGB, Indirect RGB, Caustics RGB, Photon Map RGB; Combined RGB is their light sum.
 constexpr int kPassCount = 4;
+// The camera ray of sample `sampler` (already seeded with (seed, pixel, sample)) through pixel
+// (px, py) of a full_width x full_height frame seen by `camera`: the pixel filter's jitter,
+// then the lens. Every renderer (tiles, progressive passes) draws camera samples here, so a
+// (seed, pixel, sample) triple gives the same ray in all of them.
+Ray camera_sample_ray(const RenderSettings& settings, const Camera& camera, int full_width,
+                      int full_height, int px, int py, Sampler& sampler);
+
 constexpr int kPassFloats = 3 * kPassCount;
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
