@@ -10,6 +10,7 @@ PACKAGES=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools python3-openimageio
   pybind11-dev python3-dev python3-numpy python3-pytest
   libgtest-dev libbenchmark-dev libnanoflann-dev
+  xvfb xauth libgl1-mesa-dri  # the viewport GUI test (tests/blender/test_viewport_gui.py)
 )
 
 install_packages() {

@@ -20,6 +20,7 @@ EXTRA_PANELS = (
     "DATA_PT_camera_dof",
     "DATA_PT_camera_dof_aperture",
     "RENDER_PT_film",
+    "MATERIAL_PT_preview",  # rendered by Photon (bl_use_preview)
 )
 EXCLUDED_PANELS = {"VIEWLAYER_PT_filter", "VIEWLAYER_PT_layer_passes"}
 

@@ -38,6 +38,8 @@ PREVIEW_CAUSTIC_PHOTONS = 10000
 last_edit_to_image_seconds = None
 # The last view_draw's state (samples shown, converged), for tests and benchmarks.
 last_draw = {}
+# Preview thumbnails rendered to the end (tests).
+previews_rendered = 0
 
 
 def _settings(native, scene, width, height, region, preview=False):
@@ -347,6 +349,8 @@ def render_preview(engine, depsgraph):
                     _write_result(engine, image[0], width, height)
                     shown = image[1:3]
                 if samples >= settings.samples or session.finished:
+                    global previews_rendered
+                    previews_rendered += 1
                     break
         finally:
             session.cancel()

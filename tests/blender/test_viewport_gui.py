@@ -93,6 +93,22 @@ def test_viewport_follows_edits_and_views(gui_run):
           f" (Cornell box)")
 
 
+def test_orthographic_view_renders(gui_run):
+    ortho = read_image(gui_run["ortho"])[:, :, :3]
+    orbit = read_image(gui_run["orbit"])[:, :, :3]
+    h, w = ortho.shape[:2]
+    assert ortho[h // 4:3 * h // 4, w // 4:3 * w // 4].mean() > 0.1  # the box, lit
+    # Another projection of the same view: the box's outline moves.
+    changed = np.abs(ortho - orbit).max(axis=2) > 0.1
+    assert changed.mean() > 0.03
+
+
+def test_preview_thumbnail_rendered_by_photon(gui_run):
+    width, height = gui_run["preview_size"]
+    assert width > 0 and height > 0
+    assert gui_run["preview_mean"] > 0.05
+
+
 def test_material_preview_is_not_blank(gui_run):
     image = read_image(gui_run["material_preview"])[:, :, :3]
     centre = image[image.shape[0] // 4:3 * image.shape[0] // 4,

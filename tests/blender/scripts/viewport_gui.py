@@ -112,10 +112,39 @@ def steps():
     # A view change alone (orbit) restarts the session's accumulation, never a sync.
     vp.last_edit_to_image_seconds = None
     space.region_3d.view_perspective = 'PERSP'
+    space.region_3d.view_location = (0.0, 0.0, 1.0)  # the box's centre, seen from 6 m
+    space.region_3d.view_distance = 6.0
     space.region_3d.view_rotation.rotate(__import__("mathutils").Euler((0.0, 0.0, 0.3)))
     yield from wait_converged()
     result["orbit_resynced"] = vp.last_edit_to_image_seconds is not None
     result["orbit"] = screenshot("orbit")
+
+    # An orthographic user view (Blender clips it from -far/2 to far/2 around the view point).
+    space.region_3d.view_perspective = 'ORTHO'
+    yield from wait_converged()
+    result["ortho"] = screenshot("ortho")
+
+    # A material thumbnail (Material Properties > Preview) rendered by Photon.
+    done = vp.previews_rendered
+    box = scene.objects["TallBox"]
+    bpy.context.view_layer.objects.active = box
+    box.select_set(True)
+    material = box.active_material
+    yield 0.5  # the Properties editor offers the object's tabs once it redrew
+    window = bpy.context.window_manager.windows[0]
+    for props in (a for a in window.screen.areas if a.type == 'PROPERTIES'):
+        props.spaces[0].context = 'MATERIAL'  # its Preview panel and slot icons render
+        props.tag_redraw()
+    t0 = time.time()
+    while vp.previews_rendered == done:
+        if time.time() - t0 > TIMEOUT:
+            raise RuntimeError("no preview thumbnail rendered")
+        yield 0.1
+    yield 0.5
+    preview = material.preview
+    pixels = list(preview.icon_pixels_float) + list(preview.image_pixels_float)
+    result["preview_size"] = list(preview.icon_size)
+    result["preview_mean"] = sum(pixels) / max(len(pixels), 1)
 
     space.shading.type = 'MATERIAL'
     yield 4.0  # EEVEE compiles its shaders
