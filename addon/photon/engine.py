@@ -117,7 +117,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     def view_update(self, context, depsgraph):
         if self._viewport is None:
             self._viewport = viewport.ViewportRender(native_module())
-        self._viewport.update(depsgraph)
+        if self._viewport.update(depsgraph):
+            self.tag_redraw()
 
     def view_draw(self, context, depsgraph):
         if self._viewport is None:

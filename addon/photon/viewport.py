@@ -42,6 +42,14 @@ last_draw = {}
 previews_rendered = 0
 
 
+def tag_rendered_viewports():
+    """Redraws every 3D viewport in Rendered shading (their view_draw notices new settings)."""
+    for window in bpy.context.window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == 'VIEW_3D' and area.spaces[0].shading.type == 'RENDERED':
+                area.tag_redraw()
+
+
 def _settings(native, scene, width, height, region, preview=False):
     """Render settings of a viewport or preview render: the scene's, at the viewport sample
     count; previews also trace fewer photons."""
@@ -189,19 +197,22 @@ class ViewportRender:
 
     # -- view_update --
     def update(self, depsgraph):
-        """view_update: marks a re-sync when something other than a camera changed."""
+        """view_update: marks a re-sync when something other than a camera changed. True when
+        the viewport must redraw (an edit, or new render settings, which draw() notices by
+        their key): a script's change sends no notifier that would redraw it."""
         if self.native_scene is None:
             self.needs_sync = True
-            return
+            return True
         for update in depsgraph.updates:
             data = update.id
             if isinstance(data, bpy.types.Object) and data.type == 'CAMERA':
                 continue  # view_draw reads the camera
             if isinstance(data, (bpy.types.Camera, bpy.types.Scene)):
-                continue  # settings changes are noticed by their key in draw()
+                continue
             self.needs_sync = True
             self.edit_time = time.perf_counter()  # for the edit-to-image benchmark
-            return
+            return True
+        return _settings_key(depsgraph.scene) != self.settings_key
 
     def _stop(self):
         if self.session is not None:
@@ -239,6 +250,9 @@ class ViewportRender:
         self.camera_scene.set_camera(*args)
         self.view_serial = self.session.set_view(self.camera_scene, width, height, list(border))
         self.session.start()
+        # A new session counts views and samples from the start again: whatever it shows first
+        # replaces the texture (which stays up meanwhile).
+        self.texture_key = (None, None, None)
         self.settings_key = _settings_key(scene)
 
     # -- view_draw --
@@ -273,7 +287,7 @@ class ViewportRender:
         converged = self.session.converged
         image = self.session.image()
         if not converged and (image is None or image[3] != self.view_serial
-                                           or image[1:3] == self.texture_key[1:]):
+                              or (image[3], image[1], image[2]) == self.texture_key):
             # Nothing new yet: wait a moment for the next pass rather than spin the UI. (The
             # previous view's image stays up until the new view's first pass.)
             self.session.wait_for_samples(max(self.session.samples_done, 0) + 1,

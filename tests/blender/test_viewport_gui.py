@@ -93,6 +93,14 @@ def test_viewport_follows_edits_and_views(gui_run):
           f" (Cornell box)")
 
 
+def test_settings_change_restarts_with_new_integrator(gui_run):
+    photon_map = frame_pixels(gui_run["moved"], gui_run["frame"])
+    ray_trace = frame_pixels(gui_run["ray_trace"], gui_run["frame"])
+    print(f"viewport mean: photon map {photon_map.mean():.4f}, ray trace {ray_trace.mean():.4f}")
+    assert ray_trace.mean() < 0.9 * photon_map.mean()  # no indirect light
+    assert ray_trace.mean() > 0.05
+
+
 def test_orthographic_view_renders(gui_run):
     ortho = read_image(gui_run["ortho"])[:, :, :3]
     orbit = read_image(gui_run["orbit"])[:, :, :3]

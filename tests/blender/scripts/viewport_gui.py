@@ -100,6 +100,7 @@ def steps():
     box = scene.objects["TallBox"]
     box.location.x += 0.35
     box.location.y -= 0.2
+    vp.last_draw.clear()  # wait for a draw after the change
     t0 = time.time()
     while vp.last_edit_to_image_seconds is None:
         if time.time() - t0 > TIMEOUT:
@@ -109,11 +110,22 @@ def steps():
     yield from wait_converged()
     result["moved"] = screenshot("moved")
 
+    # Another integrator: a new session (no quick pass for ray tracing) whose converged image
+    # replaces the photon-mapped one; ray tracing has no indirect light, so it is darker.
+    scene.photon.integrator = 'RAY_TRACE'
+    vp.last_draw.clear()  # wait for a draw after the change
+    yield 0.3
+    yield from wait_converged()
+    result["ray_trace"] = screenshot("ray_trace")
+    scene.photon.integrator = 'PHOTON_MAP'
+
     # A view change alone (orbit) restarts the session's accumulation, never a sync.
     vp.last_edit_to_image_seconds = None
     space.region_3d.view_perspective = 'PERSP'
     space.region_3d.view_location = (0.0, 0.0, 1.0)  # the box's centre, seen from 6 m
     space.region_3d.view_distance = 6.0
+    vp.last_draw.clear()  # wait for a draw after the change
+    area.tag_redraw()  # as navigating the view does
     space.region_3d.view_rotation.rotate(__import__("mathutils").Euler((0.0, 0.0, 0.3)))
     yield from wait_converged()
     result["orbit_resynced"] = vp.last_edit_to_image_seconds is not None
@@ -121,6 +133,8 @@ def steps():
 
     # An orthographic user view (Blender clips it from -far/2 to far/2 around the view point).
     space.region_3d.view_perspective = 'ORTHO'
+    vp.last_draw.clear()  # wait for a draw after the change
+    area.tag_redraw()  # as navigating the view does
     yield from wait_converged()
     result["ortho"] = screenshot("ortho")
 
