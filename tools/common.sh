@@ -10,7 +10,7 @@ PACKAGES=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools python3-openimageio
   pybind11-dev python3-dev python3-numpy python3-pytest
   libgtest-dev libbenchmark-dev libnanoflann-dev
-  xvfb xauth xdotool libgl1-mesa-dri
+  xvfb xauth xdotool libgl1-mesa-dri  # the GUI tests (tests/blender/test_*_gui.py)
 )
 
 install_packages() {

@@ -7,7 +7,7 @@ import traceback
 import bpy
 import numpy as np
 
-from . import data_passes, properties, report, schema, sync
+from . import data_passes, properties, report, schema, sync, viewport
 from . import progress as render_progress
 from .sync import cache as sync_cache
 from .sync import camera as sync_camera
@@ -110,7 +110,10 @@ def prepare_report(prepared):
 class PhotonRenderEngine(bpy.types.RenderEngine):
     bl_idname = "PHOTON"
     bl_label = "Photon"
-    bl_use_preview = False
+    # Material, light and world thumbnails render with Photon (viewport.render_preview).
+    bl_use_preview = True
+    # Material Preview shading draws with EEVEE, as for Cycles; Rendered shading is Photon's.
+    bl_use_eevee_viewport = True
     bl_use_postprocess = True
     # Keep Blender's shader nodes visible so artists author Principled materials for Photon.
     bl_use_shading_nodes_custom = False
@@ -124,6 +127,24 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     _blas_cache = None
     _cache_frame = None
     _session_blas_cache = None  # the BlasCache of the render in progress, or None
+
+    _viewport = None  # viewport.ViewportRender of this engine's 3D viewport
+
+    def __del__(self):
+        # Blender frees the engine when the viewport leaves Rendered shading or closes.
+        if self._viewport is not None:
+            self._viewport.free()
+
+    def view_update(self, context, depsgraph):
+        if self._viewport is None:
+            self._viewport = viewport.ViewportRender(native_module())
+        if self._viewport.update(depsgraph):
+            self.tag_redraw()
+
+    def view_draw(self, context, depsgraph):
+        if self._viewport is None:
+            self._viewport = viewport.ViewportRender(native_module())
+        self._viewport.draw(self, context, depsgraph)
 
     def update_render_passes(self, scene=None, renderlayer=None):
         # Registering makes the passes exist in the compositor's Render Layers node.
@@ -140,6 +161,9 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         # An exception escaping render() makes Blender write an empty file and crash in
         # background mode: everything is caught and reported instead.
         try:
+            if self.is_preview:  # a material/light/world thumbnail
+                viewport.render_preview(self, depsgraph)
+                return
             self._render(depsgraph)
         except report.SceneError as exc:  # the scene's own fault: its message, no traceback
             message = f"Photon: {exc}"

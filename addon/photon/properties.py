@@ -95,9 +95,17 @@ def enabled_passes(view_layer):
     return [(name, index) for name, prop, index in LIGHT_PASSES if getattr(settings, prop)]
 
 
+def _redraw_rendered_viewports(_settings, _context):
+    """A render setting changed: Rendered viewports redraw, and their view_draw restarts the
+    render with it (a property change alone reaches no view_update)."""
+    from . import viewport
+    viewport.tag_rendered_viewports()
+
+
 def _add_schema_properties():
     for p in schema.params():
-        PhotonRenderSettings.__annotations__[p["name"]] = schema.make_property(p)
+        PhotonRenderSettings.__annotations__[p["name"]] = schema.make_property(
+            p, update=_redraw_rendered_viewports)
 
 
 _add_schema_properties()

@@ -40,11 +40,14 @@ def _int32(value):
     return max(-INT32_MAX - 1, min(INT32_MAX, int(value)))
 
 
-def make_property(p):
+def make_property(p, update=None):
     """The bpy.props definition of schema parameter p. Integer and float properties hold
-    value / ui_scale (radiosity rays in thousands); Blender integers stop at 2^31 - 1."""
+    value / ui_scale (radiosity rays in thousands); Blender integers stop at 2^31 - 1.
+    `update(self, context)` runs after every change."""
     from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty
     common = {"name": p["label"], "description": p["description"]}
+    if update is not None:
+        common["update"] = update
     kind = p["type"]
     if kind == "bool":
         return BoolProperty(default=bool(p["default"]), **common)

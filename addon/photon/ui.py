@@ -17,6 +17,7 @@ EXTRA_PANELS = (
     "EEVEE_WORLD_PT_surface",
     "DATA_PT_camera_dof",
     "DATA_PT_camera_dof_aperture",
+    "MATERIAL_PT_preview",  # rendered by Photon (bl_use_preview)
 )
 # Blender's light panels are EEVEE's (diffuse/specular/volume factors, custom distance) or show
 # only the type: Photon draws its own (PHOTON_PT_light).

@@ -25,6 +25,7 @@ using namespace photon;
 
 void bind_bake(py::module_& m);  // bake_bindings.cpp
 void bind_persistent(py::module_& m);  // persistent_bindings.cpp
+void bind_progressive(py::module_& m);  // progressive_bindings.cpp
 
 namespace {
 
@@ -588,4 +589,5 @@ PYBIND11_MODULE(_photon, m) {
   m.attr("VISIBLE_SHADOW") = static_cast<uint32_t>(kVisibleShadow);
 
   bind_bake(m);
+  bind_progressive(m);
 }

@@ -13,7 +13,10 @@ enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity };
 
 struct SamplingParams {
   IntegratorType integrator = IntegratorType::kPhotonMap;
-  int samples = 64;   // camera samples per pixel
+  int samples = 64;  // camera samples per pixel
+  // Samples per pixel of the 3D viewport's Rendered mode and of material/light/world previews
+  // (the progressive session stops there; Cycles' "Viewport" samples).
+  int preview_samples = 16;
   int max_depth = 8;  // specular bounces after the camera ray
   uint64_t seed = 0;
 };

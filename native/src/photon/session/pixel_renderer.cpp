@@ -22,12 +22,20 @@ float finite_average(float sum, float inv_spp) {
 
 }  // namespace
 
+Ray camera_sample_ray(const PixelFilter& filter, const Camera& camera, int full_width,
+                      int full_height, int px, int py, Sampler& sampler) {
+  const Vec2 jitter = filter.sample(sampler.get_2d());
+  const Vec2 lens = sampler.get_2d();
+  // Times the reciprocal, not divided: the reference images depend on these exact bits.
+  const float inv_w = 1.0f / full_width, inv_h = 1.0f / full_height;
+  return generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
+}
+
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
                    uint64_t* non_finite, float* passes, float* data, int* rows_done) {
   const RenderSettings& s = *context.settings;
   const Camera& camera = context.scene->camera;
-  const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
   const float inv_spp = 1.0f / s.samples;
   const PixelFilter filter(s.filter_type, s.filter_width);
   const float colour_scale = inv_spp * s.exposure;  // the film's exposure scales colour only
@@ -58,10 +66,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
         samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
                               static_cast<uint32_t>(s.samples));
-        const Vec2 jitter = filter.sample(samplers[i].get_2d());
-        const Vec2 lens = samplers[i].get_2d();
         rays[i] =
-            generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
+            camera_sample_ray(filter, camera, s.full_width, s.full_height, px, py, samplers[i]);
       }
       context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
       for (size_t i = 0; i < n; ++i) {

@@ -4,7 +4,9 @@
 #include <atomic>
 #include <cstdint>
 
+#include "photon/base/rng.h"
 #include "photon/integrators/integrator.h"
+#include "photon/scene/pixel_filter.h"
 
 namespace photon {
 
@@ -21,6 +23,13 @@ namespace photon {
 // `data` (optional, width * height * data_pass_floats(settings->data_passes.mask) floats)
 // receives the data passes (data_passes.h) from the same camera rays.
 constexpr int kPassCount = 4;
+// The camera ray of sample `sampler` (already seeded with (seed, pixel, sample)) through pixel
+// (px, py) of a full_width x full_height frame seen by `camera`: the pixel filter's jitter,
+// then the lens. Every renderer (tiles, progressive passes) draws camera samples here, so a
+// (seed, pixel, sample) triple gives the same ray in all of them.
+Ray camera_sample_ray(const PixelFilter& filter, const Camera& camera, int full_width,
+                      int full_height, int px, int py, Sampler& sampler);
+
 constexpr int kPassFloats = 3 * kPassCount;
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,

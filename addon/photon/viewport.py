@@ -1,0 +1,384 @@
+"""Rendered shading in the 3D viewport and material/light/world preview thumbnails, on the
+native ProgressiveSession (session/progressive_session.h).
+
+view_update syncs only when `depsgraph.updates` names something besides the camera (meshes
+unchanged since the last sync are replayed from a MeshCache and keep their BVH in a BlasCache);
+view_draw reads the view from `context.region_data`, re-aims the running session when it
+changed (no sync, no rebuild), and draws its latest pass as a float texture through Blender's
+display transform. All native work runs on the session's threads, off the GIL.
+"""
+
+import math
+import time
+
+import bpy
+import gpu
+import numpy as np
+from bpy_extras import view3d_utils
+from gpu_extras.presets import draw_texture_2d
+
+from . import report, schema, sync
+from .sync import cache as sync_cache
+from .sync import camera as sync_camera
+from .sync.origin import rebased_matrix
+
+# While a pass is on its way, a redraw waits this long for it instead of spinning the UI.
+DRAW_WAIT_SECONDS = 0.01
+# The viewport final-gathers at every sample (no irradiance cache: its records are placed for
+# the scene camera's pixels, and a moving view would keep missing them) with at most this many
+# rays per sample; over the viewport's samples the pixel averages as many rays as a final
+# render's cached gathers, so the image converges to the same brightness.
+VIEWPORT_FINAL_GATHER_RAYS = 4
+# Material/light/world thumbnails: a few photons are plenty at 128 px.
+PREVIEW_PHOTONS = 20000
+PREVIEW_CAUSTIC_PHOTONS = 10000
+
+# Seconds from the last edit (a view_update that synced) to the first image of the session it
+# started, for the benchmark in tests/blender/test_viewport_gui.py; None before the first.
+last_edit_to_image_seconds = None
+# The last view_draw's state (samples shown, converged), for tests and benchmarks.
+last_draw = {}
+# Preview thumbnails rendered to the end (tests).
+previews_rendered = 0
+
+
+def tag_rendered_viewports():
+    """Redraws every 3D viewport in Rendered shading (their view_draw notices new settings)."""
+    for window in bpy.context.window_manager.windows:
+        for area in window.screen.areas:
+            if area.type == 'VIEW_3D' and area.spaces[0].shading.type == 'RENDERED':
+                area.tag_redraw()
+
+
+def _settings(native, scene, width, height, region, preview=False):
+    """Render settings of a viewport or preview render: the scene's, at the viewport sample
+    count; previews also trace fewer photons."""
+    from .engine import make_settings
+    settings = make_settings(native, scene, width, height, region)
+    settings.samples = max(1, int(scene.photon.preview_samples))
+    settings.irradiance_cache = False
+    settings.final_gather_rays = min(settings.final_gather_rays, VIEWPORT_FINAL_GATHER_RAYS)
+    if preview:
+        settings.photons = min(settings.photons, PREVIEW_PHOTONS)
+        settings.caustic_photons = min(settings.caustic_photons, PREVIEW_CAUSTIC_PHOTONS)
+        settings.photon_time = 0.0
+    return settings
+
+
+def _settings_key(scene):
+    """What a session was started with besides the view: a change restarts the session."""
+    values = tuple(getattr(scene.photon, p["name"]) for p in schema.params())
+    return values + (bool(scene.render.film_transparent),)
+
+
+# ---- The viewport's camera ----
+
+def _projection_window(window_matrix, perspective):
+    """(window [min_x, max_x, min_y, max_y], clip_start, clip_end) of an OpenGL projection
+    matrix: the image-plane window at distance 1 (perspective) or in scene units (ortho)."""
+    p = np.array(window_matrix, dtype=np.float64)
+    if perspective:
+        # x_ndc = p00 * (x / -z) - p02 (glFrustum), so x / -z = (x_ndc + p02) / p00.
+        window = [(-1.0 + p[0, 2]) / p[0, 0], (1.0 + p[0, 2]) / p[0, 0],
+                  (-1.0 + p[1, 2]) / p[1, 1], (1.0 + p[1, 2]) / p[1, 1]]
+        near, far = p[2, 3] / (p[2, 2] - 1.0), p[2, 3] / (p[2, 2] + 1.0)
+    else:
+        # x_ndc = p00 * x + p03 (glOrtho).
+        window = [(-1.0 - p[0, 3]) / p[0, 0], (1.0 - p[0, 3]) / p[0, 0],
+                  (-1.0 - p[1, 3]) / p[1, 1], (1.0 - p[1, 3]) / p[1, 1]]
+        near, far = (p[2, 3] + 1.0) / p[2, 2], (p[2, 3] - 1.0) / p[2, 2]
+    return window, near, far
+
+
+def _camera_dof(scene, depsgraph, camera_matrix):
+    """(aperture radius, focus distance) of the scene camera's depth of field, as the final
+    render uses it (sync/camera.export_camera)."""
+    cam_obj = scene.camera
+    if cam_obj is None or cam_obj.type != 'CAMERA' or not cam_obj.data.dof.use_dof:
+        return 0.0, 10.0
+    cam = cam_obj.data
+    fstop = max(cam.dof.aperture_fstop, 1e-5)
+    aperture = (1.0 / (2.0 * fstop) if cam.type == 'ORTHO'
+                else (cam.lens * 1e-3) / (2.0 * fstop))
+    if cam.dof.focus_object is not None:
+        focus = cam.dof.focus_object.evaluated_get(depsgraph).matrix_world.translation
+        axis = camera_matrix.to_3x3().normalized().col[2]
+        distance = abs(axis.dot(camera_matrix.translation - focus))
+    else:
+        distance = cam.dof.focus_distance
+    return float(aperture), float(max(distance, 1e-5))
+
+
+def _border(context, scene, width, height):
+    """Rendered pixel rectangle (x0, y0, x1, y1), y downwards, of the region: the viewport's
+    render border, or in camera view the scene's render border within the camera frame."""
+    space, rv3d = context.space_data, context.region_data
+    if rv3d.view_perspective == 'CAMERA':
+        if not scene.render.use_border or scene.camera is None:
+            return 0, 0, width, height
+        cam_obj = scene.camera
+        corners = [cam_obj.matrix_world @ v for v in cam_obj.data.view_frame(scene=scene)]
+        points = [view3d_utils.location_3d_to_region_2d(context.region, rv3d, c)
+                  for c in corners]
+        if any(p is None for p in points):
+            return 0, 0, width, height
+        xs, ys = [p.x for p in points], [p.y for p in points]
+        fx0, fx1, fy0, fy1 = min(xs), max(xs), min(ys), max(ys)
+        bx0 = fx0 + scene.render.border_min_x * (fx1 - fx0)
+        bx1 = fx0 + scene.render.border_max_x * (fx1 - fx0)
+        by0 = fy0 + scene.render.border_min_y * (fy1 - fy0)
+        by1 = fy0 + scene.render.border_max_y * (fy1 - fy0)
+    elif space.use_render_border:
+        bx0, bx1 = space.render_border_min_x * width, space.render_border_max_x * width
+        by0, by1 = space.render_border_min_y * height, space.render_border_max_y * height
+    else:
+        return 0, 0, width, height
+    x0 = min(max(int(math.floor(bx0)), 0), width - 1)
+    x1 = min(max(int(math.ceil(bx1)), x0 + 1), width)
+    y0 = min(max(int(math.floor(by0)), 0), height - 1)  # from the bottom
+    y1 = min(max(int(math.ceil(by1)), y0 + 1), height)
+    return x0, height - y1, x1, height - y0
+
+
+def viewport_view(context, depsgraph, origin):
+    """The native camera arguments and frame of a 3D viewport region: a key that changes
+    whenever the image would, and (set_camera args, width, height, region)."""
+    region, rv3d = context.region, context.region_data
+    scene = depsgraph.scene
+    width, height = max(region.width, 1), max(region.height, 1)
+    perspective = rv3d.is_perspective
+    window, near, far = _projection_window(rv3d.window_matrix, perspective)
+    camera_matrix = rv3d.view_matrix.inverted()
+    if not perspective:
+        # Blender's orthographic views clip from -far/2 to far/2 around the view point
+        # (negative near clip, as Cycles' viewport camera has); the native camera clips from
+        # 0, so its origin moves back along the view axis, which an orthographic image does
+        # not see.
+        back = camera_matrix.to_3x3().normalized().col[2] * (-near)
+        camera_matrix = camera_matrix.copy()
+        camera_matrix.translation += back
+        near, far = 0.0, far - near
+    aperture, focus = 0.0, 10.0
+    if rv3d.view_perspective == 'CAMERA':
+        aperture, focus = _camera_dof(scene, depsgraph, camera_matrix)
+    matrix = rebased_matrix(camera_matrix, origin)
+    args = ("PERSP" if perspective else "ORTHO", matrix, [float(w) for w in window],
+            float(max(near, 0.0)), float(far), aperture, focus)
+    border = _border(context, scene, width, height)
+    key = (args[0], matrix.tobytes(), tuple(args[2]), args[3], args[4], aperture, focus,
+           width, height, border)
+    return key, (args, width, height, border)
+
+
+# ---- Per-viewport state ----
+
+class ViewportRender:
+    """One viewport's render: the synced native scene, its progressive session and the texture
+    of its latest pass. Lives on the RenderEngine instance Blender keeps for that viewport."""
+
+    def __init__(self, native):
+        self.native = native
+        self.reporter = report.Reporter(None)  # prints each distinct warning once
+        self.mesh_cache = sync_cache.MeshCache()
+        self.blas_cache = native.BlasCache()
+        self.camera_scene = native.Scene()  # holds the viewport camera handed to set_view
+        self.native_scene = None
+        self.sync_stats = None
+        self.session = None
+        self.needs_sync = True
+        self.settings_key = None
+        self.view_key = None
+        self.texture = None
+        self.texture_key = (None, None, None)  # (view serial, samples, quick) uploaded
+        self.view_serial = None   # of the session's current view
+        self.texture_rect = None  # (x, y, width, height) in region pixels, from the bottom
+        self.edit_time = None     # perf_counter() of the sync the session started from
+        self.error = None
+
+    # -- view_update --
+    def update(self, depsgraph):
+        """view_update: marks a re-sync when something other than a camera changed. True when
+        the viewport must redraw (an edit, or new render settings, which draw() notices by
+        their key): a script's change sends no notifier that would redraw it."""
+        if self.native_scene is None:
+            self.needs_sync = True
+            return True
+        for update in depsgraph.updates:
+            data = update.id
+            if isinstance(data, bpy.types.Object) and data.type == 'CAMERA':
+                continue  # view_draw reads the camera
+            if isinstance(data, (bpy.types.Camera, bpy.types.Scene)):
+                continue
+            self.needs_sync = True
+            self.edit_time = time.perf_counter()  # for the edit-to-image benchmark
+            return True
+        return _settings_key(depsgraph.scene) != self.settings_key
+
+    def _stop(self):
+        if self.session is not None:
+            self.session.cancel()
+            self.session.wait()
+            for message in self.session.warnings:
+                self.reporter.warning(message)
+            self.session = None
+
+    def _drop_scene(self):
+        """Ends the session and gives the synced scene's meshes back to the MeshCache (they
+        are moved into the scene, not copied: the scene cannot render afterwards)."""
+        self._stop()
+        if self.native_scene is not None:
+            self.mesh_cache.reclaim(self.native_scene)
+            self.native_scene = None
+        if self.sync_stats is not None:
+            self.sync_stats.release()
+            self.sync_stats = None
+
+    def _sync(self, depsgraph):
+        self._drop_scene()
+        if self.edit_time is None:
+            self.edit_time = time.perf_counter()
+        self.blas_cache.begin_frame()  # BVHs of meshes the last sync no longer had go
+        self.native_scene, self.sync_stats = sync.sync_scene(
+            self.native, depsgraph, self.reporter, mesh_cache=self.mesh_cache)
+        self.needs_sync = False
+
+    def _start(self, scene, view):
+        (args, width, height, border) = view
+        settings = _settings(self.native, scene, width, height, border)
+        self.session = self.native.ProgressiveSession(self.native_scene, settings,
+                                                      blas_cache=self.blas_cache)
+        self.camera_scene.set_camera(*args)
+        self.view_serial = self.session.set_view(self.camera_scene, width, height, list(border))
+        self.session.start()
+        # A new session counts views and samples from the start again: whatever it shows first
+        # replaces the texture (which stays up meanwhile).
+        self.texture_key = (None, None, None)
+        self.settings_key = _settings_key(scene)
+
+    # -- view_draw --
+    def draw(self, engine, context, depsgraph):
+        scene = depsgraph.scene
+        try:
+            if self.needs_sync or self.native_scene is None:
+                self._sync(depsgraph)
+            key, view = viewport_view(context, depsgraph, self.sync_stats.origin)
+            if self.session is None or _settings_key(scene) != self.settings_key:
+                self._stop()
+                self._start(scene, view)
+                self.view_key = key
+            elif key != self.view_key:
+                args, width, height, border = view
+                self.camera_scene.set_camera(*args)
+                self.view_serial = self.session.set_view(self.camera_scene, width, height,
+                                                         list(border))
+                self.view_key = key
+            self.error = None
+        except Exception as exc:  # noqa: BLE001 - a failed viewport must not take Blender down
+            self._drop_scene()
+            self.needs_sync = True
+            self.error = f"Photon: {exc}"
+            if not isinstance(exc, report.SceneError):
+                import traceback
+                traceback.print_exc()
+            engine.update_stats("", self.error)
+            return
+
+        # Read before the image: a session converged by then has published its last pass.
+        converged = self.session.converged
+        image = self.session.image()
+        if not converged and (image is None or image[3] != self.view_serial
+                              or (image[3], image[1], image[2]) == self.texture_key):
+            # Nothing new yet: wait a moment for the next pass rather than spin the UI. (The
+            # previous view's image stays up until the new view's first pass.)
+            self.session.wait_for_samples(max(self.session.samples_done, 0) + 1,
+                                          DRAW_WAIT_SECONDS)
+            image = self.session.image()
+        if image is not None:
+            self._upload(image, view)
+        if self.texture is not None:
+            gpu.state.blend_set('ALPHA_PREMULT')
+            engine.bind_display_space_shader(scene)
+            draw_texture_2d(self.texture, self.texture_rect[:2], *self.texture_rect[2:])
+            engine.unbind_display_space_shader()
+            gpu.state.blend_set('NONE')
+        engine.update_stats("", self._status())
+        last_draw.update(samples=self.texture_key[1], quick=self.texture_key[2],
+                         current=self.texture_key[0] == self.view_serial,
+                         converged=converged, status=self.session.status)
+        if not converged:
+            engine.tag_redraw()
+
+    def _upload(self, image, view):
+        pixels, samples, quick, serial = image
+        key = (serial, samples, quick)
+        if key == self.texture_key:
+            return
+        height, width = pixels.shape[:2]
+        _, region_w, region_h, border = view
+        flat = np.ascontiguousarray(pixels[::-1], dtype=np.float32).ravel()  # rows bottom-up
+        buffer = gpu.types.Buffer('FLOAT', flat.size, flat)
+        self.texture = gpu.types.GPUTexture((width, height), format='RGBA16F', data=buffer)
+        x0, y0, x1, y1 = border
+        self.texture_rect = (x0, region_h - y1, width, height)
+        self.texture_key = key
+        if self.edit_time is not None:
+            global last_edit_to_image_seconds
+            last_edit_to_image_seconds = time.perf_counter() - self.edit_time
+            self.edit_time = None
+
+    def _status(self):
+        session = self.session
+        done, target = session.samples_done, session.target_samples
+        if session.preparing or done == 0:
+            return f"Photon | {session.status}"
+        return f"Photon | Sample {done}/{target}"
+
+    def free(self):
+        self._drop_scene()
+
+
+# ---- Preview thumbnails (material, light, world) ----
+
+def render_preview(engine, depsgraph):
+    """Renders Blender's preview scene (engine.is_preview) progressively into the result,
+    quickly: the viewport sample count and few photons."""
+    from .engine import native_module
+    native = native_module()
+    scene = depsgraph.scene
+    reporter = report.Reporter(None)
+    width, height = sync_camera.render_size(scene.render)
+    native_scene, stats = sync.sync_scene(native, depsgraph, reporter)
+    try:
+        settings = _settings(native, scene, width, height, (0, 0, width, height), preview=True)
+        session = native.ProgressiveSession(native_scene, settings)
+        session.start()
+        shown = None
+        try:
+            while True:
+                if engine.test_break():
+                    break
+                samples = session.wait_for_samples(settings.samples, 0.05)
+                image = session.image()
+                if image is not None and image[1:3] != shown:
+                    _write_result(engine, image[0], width, height)
+                    shown = image[1:3]
+                if samples >= settings.samples or session.finished:
+                    global previews_rendered
+                    previews_rendered += 1
+                    break
+        finally:
+            session.cancel()
+            session.wait()
+    finally:
+        stats.release()
+
+
+def _write_result(engine, pixels, width, height):
+    """The whole preview image (top row first) into the result; other passes left black."""
+    result = engine.begin_result(0, 0, width, height)
+    passes = result.layers[0].passes
+    rgba = np.ascontiguousarray(pixels[::-1], dtype=np.float32).ravel()
+    parts = [rgba if p.name == "Combined" else np.zeros(width * height * p.channels, np.float32)
+             for p in passes]
+    passes.foreach_set("rect", np.concatenate(parts))
+    engine.end_result(result)

@@ -1,0 +1,288 @@
+#include "photon/session/progressive_session.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+
+#include "photon/render/scene_resources.h"
+#include "photon/session/pixel_renderer.h"
+#include "photon/session/render_session.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A pass aims at this long, so the viewport shows a new image a few times a second and a
+// restart (the camera moved) waits for at most one row of it.
+constexpr double kPassSeconds = 0.25;
+
+ProgressiveView view_of(const Scene& scene, const RenderSettings& s) {
+  ProgressiveView v;
+  v.camera = scene.camera;
+  v.full_width = s.full_width;
+  v.full_height = s.full_height;
+  v.x0 = s.x0;
+  v.y0 = s.y0;
+  v.x1 = s.x1;
+  v.y1 = s.y1;
+  return v;
+}
+
+ProgressiveView sanitized(ProgressiveView v) {
+  v.full_width = std::clamp(v.full_width, 1, 65536);
+  v.full_height = std::clamp(v.full_height, 1, 65536);
+  v.x0 = std::clamp(v.x0, 0, v.full_width - 1);
+  v.y0 = std::clamp(v.y0, 0, v.full_height - 1);
+  v.x1 = std::clamp(v.x1, v.x0 + 1, v.full_width);
+  v.y1 = std::clamp(v.y1, v.y0 + 1, v.full_height);
+  return v;
+}
+
+// As render_pixels writes a pixel: a sum that left the float range is the largest float.
+float finite_average(float sum, float inv_spp) {
+  const float v = sum * inv_spp;
+  return std::isnan(v) ? 0.0f : std::clamp(v, -FLT_MAX, FLT_MAX);
+}
+
+}  // namespace
+
+ProgressiveSession::ProgressiveSession(std::shared_ptr<const Scene> scene,
+                                       const RenderSettings& settings,
+                                       std::shared_ptr<BlasCache> blas_cache, bool quick_first_pass)
+    : Job("Viewport render"),
+      scene_(std::move(scene)),
+      blas_cache_(std::move(blas_cache)),
+      quick_first_pass_(quick_first_pass) {
+  std::vector<std::string> warnings;
+  settings_ = sanitized_settings(settings, &warnings);
+  add_warnings(warnings);
+  view_ = view_of(*scene_, settings_);
+  set_work_total(static_cast<size_t>(settings_.samples));
+}
+
+ProgressiveSession::~ProgressiveSession() {
+  stop_worker();
+}
+
+uint64_t ProgressiveSession::set_view(const ProgressiveView& view) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  view_ = sanitized(view);
+  converged_ = false;
+  const uint64_t serial = ++serial_;
+  changed_.notify_all();
+  return serial;
+}
+
+ProgressiveImage ProgressiveSession::image() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return image_;
+}
+
+int ProgressiveSession::samples_done() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return image_.view_serial == serial_ && !image_.quick ? image_.samples : 0;
+}
+
+bool ProgressiveSession::converged() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return converged_;
+}
+
+int ProgressiveSession::wait_for_samples(int samples, double timeout_seconds) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait_for(lock, std::chrono::duration<double>(std::max(timeout_seconds, 0.0)), [&] {
+    const bool current = image_.view_serial == serial_ && !image_.quick;
+    return (current && image_.samples >= samples) || converged_ || finished();
+  });
+  return image_.view_serial == serial_ && !image_.quick ? image_.samples : 0;
+}
+
+double ProgressiveSession::first_image_seconds() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return first_image_seconds_;
+}
+
+void ProgressiveSession::on_finished() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  changed_.notify_all();
+}
+
+bool ProgressiveSession::interrupted(uint64_t serial) const {
+  return cancel_flag().load(std::memory_order_relaxed) ||
+         serial_.load(std::memory_order_relaxed) != serial;
+}
+
+bool ProgressiveSession::render_pass(const RenderContext& context, const Integrator& integrator,
+                                     const ProgressiveView& view, int first, int end,
+                                     uint64_t serial) {
+  const RenderSettings& s = settings_;
+  const int width = view.x1 - view.x0, height = view.y1 - view.y0;
+  const PixelFilter filter(s.filter_type, s.filter_width);
+  std::atomic<bool> stopped{false};
+  std::atomic<uint64_t> non_finite{0};
+  // Rows in any order on any thread: a pixel's sum depends only on its own samples, added in
+  // sample order, exactly as render_pixels adds them (so N samples in passes equal a render
+  // of N samples bit for bit).
+  tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), [&](const tbb::blocked_range<int>& r) {
+    const size_t n = static_cast<size_t>(width);
+    std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
+    std::vector<Ray> rays(n);
+    std::vector<Hit> hits(n);
+    std::unique_ptr<bool[]> found(new bool[n]);
+    uint64_t bad = 0;
+    for (int row = r.begin(); row < r.end(); ++row) {
+      const int py = view.y0 + row;
+      float* sums = &accum_[static_cast<size_t>(row) * n * 4];
+      for (int k = first; k < end; ++k) {
+        if (stopped.load(std::memory_order_relaxed) || interrupted(serial)) {
+          stopped = true;
+          return;
+        }
+        for (size_t i = 0; i < n; ++i) {
+          const int px = view.x0 + static_cast<int>(i);
+          const uint64_t pixel_index = static_cast<uint64_t>(py) * view.full_width + px;
+          samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
+                                static_cast<uint32_t>(s.samples));
+          rays[i] = camera_sample_ray(filter, view.camera, view.full_width, view.full_height, px,
+                                      py, samplers[i]);
+        }
+        context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
+        for (size_t i = 0; i < n; ++i) {
+          CameraHit hit;
+          hit.found = found[i];
+          if (hit.found) hit.hit = hits[i];
+          const RadianceSample rs =
+              integrator.radiance_from_hit(context, rays[i], hit, samplers[i]);
+          const Vec3 radiance = rs.radiance();
+          if (!is_finite(radiance) || !is_finite(rs.photon_map)) {
+            ++bad;
+            continue;
+          }
+          sums[4 * i + 0] += radiance.x;
+          sums[4 * i + 1] += radiance.y;
+          sums[4 * i + 2] += radiance.z;
+          const float coverage = s.transparent_background ? rs.alpha : 1.0f;
+          sums[4 * i + 3] += rs.holdout > 0.0f ? std::max(coverage - rs.holdout, 0.0f) : coverage;
+        }
+      }
+    }
+    non_finite += bad;
+  });
+  non_finite_ += non_finite.load();
+  return !stopped.load() && !interrupted(serial);
+}
+
+void ProgressiveSession::publish(const ProgressiveView& view, int samples, bool quick,
+                                 uint64_t serial) {
+  ProgressiveImage image;
+  image.width = view.x1 - view.x0;
+  image.height = view.y1 - view.y0;
+  image.samples = samples;
+  image.quick = quick;
+  image.view_serial = serial;
+  image.rgba.resize(accum_.size());
+  const float inv_spp = 1.0f / samples;
+  const float colour_scale = inv_spp * settings_.exposure;  // as render_pixels scales colour
+  for (size_t i = 0; i < accum_.size(); i += 4) {
+    image.rgba[i + 0] = finite_average(accum_[i + 0], colour_scale);
+    image.rgba[i + 1] = finite_average(accum_[i + 1], colour_scale);
+    image.rgba[i + 2] = finite_average(accum_[i + 2], colour_scale);
+    image.rgba[i + 3] = accum_[i + 3] * inv_spp;
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  image_ = std::move(image);
+  // Converged together with the last pass's image, so a reader never sees one without the other.
+  if (!quick && samples >= settings_.samples && serial == serial_) converged_ = true;
+  changed_.notify_all();
+}
+
+void ProgressiveSession::run() {
+  const auto t_start = Clock::now();
+  const std::atomic<bool>& cancel = cancel_flag();
+  auto mark_first_image = [&] {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (first_image_seconds_ < 0.0)
+      first_image_seconds_ = std::chrono::duration<double>(Clock::now() - t_start).count();
+  };
+  auto current_view = [&](uint64_t* serial) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    *serial = serial_;
+    return view_;
+  };
+
+  run_in_arena(settings_.threads, [&] {
+    std::vector<std::string> warnings;
+    set_status("Building BVH and lights");
+    SceneResources resources(*scene_, settings_, &warnings, &cancel, blas_cache_.get());
+    add_warnings(warnings);
+    if (cancel) return;
+    const RenderContext& context = resources.context();
+    PrepareControl control = prepare_control();
+
+    const IntegratorCapabilities caps = integrator_capabilities(settings_.integrator);
+    if (quick_first_pass_ && settings_.integrator != IntegratorType::kRayTrace) {
+      // A first look while photons are traced or radiosity solved: one ray-traced sample of
+      // direct light, replaced by the integrator's own passes once it is prepared.
+      set_status("Quick preview");
+      std::unique_ptr<Integrator> quick = make_integrator(IntegratorType::kRayTrace);
+      quick->prepare(context, control);
+      uint64_t serial = 0;
+      const ProgressiveView view = current_view(&serial);
+      accum_.assign(static_cast<size_t>(view.x1 - view.x0) * (view.y1 - view.y0) * 4, 0.0f);
+      if (render_pass(context, *quick, view, 0, 1, serial)) {
+        publish(view, 1, true, serial);
+        mark_first_image();
+      }
+      if (cancel) return;
+    }
+
+    std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
+    set_status(caps.stop_early ? "Preparing" : "Rendering");
+    set_preparing(true);
+    integrator->prepare(context, control);
+    set_preparing(false);
+    if (cancel) return;
+    set_status("Rendering");
+
+    const int target = settings_.samples;
+    while (!cancel) {
+      uint64_t serial = 0;
+      const ProgressiveView view = current_view(&serial);
+      accum_.assign(static_cast<size_t>(view.x1 - view.x0) * (view.y1 - view.y0) * 4, 0.0f);
+      work_done() = 0;
+      int done = 0;
+      double seconds_per_sample = 0.0;
+      while (done < target && !interrupted(serial)) {
+        // One sample first, then as many as fit kPassSeconds, at most doubling each pass.
+        int count = 1;
+        if (done > 0 && seconds_per_sample > 0.0)
+          count = static_cast<int>(kPassSeconds / seconds_per_sample);
+        count = std::clamp(count, 1, std::min(std::max(done, 1), target - done));
+        const auto t0 = Clock::now();
+        if (!render_pass(context, *integrator, view, done, done + count, serial)) break;
+        seconds_per_sample = std::chrono::duration<double>(Clock::now() - t0).count() / count;
+        done += count;
+        publish(view, done, false, serial);
+        mark_first_image();
+        work_done() = static_cast<size_t>(done);
+      }
+      if (cancel) break;
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (serial_ == serial) {
+        set_status("Converged");
+        // Sleeps until a new view (or cancel, which is polled: Job::cancel does not notify).
+        while (serial_ == serial && !cancel) changed_.wait_for(lock, std::chrono::milliseconds(50));
+        set_status("Rendering");
+      }
+    }
+  });
+  if (non_finite_)
+    add_warning(std::to_string(non_finite_) + " samples were NaN or infinite and were dropped");
+}
+
+}  // namespace photon
