@@ -61,8 +61,6 @@ def draw_message(layout, title, message):
 
 class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
     bl_label = "Photon"
-    # Before Blender's own render panels (Simplify, ...), which register first.
-    bl_order = -1
 
     def draw(self, context):
         from . import NATIVE_IMPORT_ERROR

@@ -1,5 +1,5 @@
 """The Properties editor with Photon as the engine shows the settings Photon honours, once each:
-one Light panel without EEVEE's factors, the object's ray visibility, Photon's panel first."""
+one Light panel without EEVEE's factors, the object's ray visibility."""
 
 
 def panels(blender):
@@ -21,10 +21,3 @@ def test_object_visibility_shows_the_ray_flags_photon_reads(blender):
     names = {name for name, _l, _p, _o in panels(blender)["object"]}
     assert {"OBJECT_PT_visibility", "PHOTON_PT_object_ray_visibility",
             "PHOTON_PT_object_mask"} <= names
-
-
-def test_photons_render_panel_comes_before_blenders_own(blender):
-    render = panels(blender)["render"]
-    orders = {name: order for name, _l, parent, order in render if not parent}
-    assert orders["PHOTON_PT_render"] < min(o for n, o in orders.items()
-                                             if n != "PHOTON_PT_render"), orders
