@@ -11,16 +11,11 @@
 #include "photon/session/data_passes.h"
 
 namespace photon {
-namespace {
 
-// Samples are finite, but their sum can still overflow (a 1e38 W lamp): an average that left the
-// float range is written as the largest float, never as inf.
 float finite_average(float sum, float inv_spp) {
   const float v = sum * inv_spp;
   return std::isnan(v) ? 0.0f : std::clamp(v, -FLT_MAX, FLT_MAX);
 }
-
-}  // namespace
 
 Ray camera_sample_ray(const PixelFilter& filter, const Camera& camera, int full_width,
                       int full_height, int px, int py, Sampler& sampler) {

@@ -23,6 +23,10 @@ namespace photon {
 // `data` (optional, width * height * data_pass_floats(settings->data_passes.mask) floats)
 // receives the data passes (data_passes.h) from the same camera rays.
 constexpr int kPassCount = 4;
+// A pixel's value from its sample sum: samples are finite, but their sum can still overflow (a
+// 1e38 W lamp), so an average that left the float range is the largest float, never inf (NaN
+// is 0). Every renderer (tiles, progressive passes) writes pixels through it.
+float finite_average(float sum, float inv_spp);
 // The camera ray of sample `sampler` (already seeded with (seed, pixel, sample)) through pixel
 // (px, py) of a full_width x full_height frame seen by `camera`: the pixel filter's jitter,
 // then the lens. Every renderer (tiles, progressive passes) draws camera samples here, so a

@@ -43,12 +43,6 @@ ProgressiveView sanitized(ProgressiveView v) {
   return v;
 }
 
-// As render_pixels writes a pixel: a sum that left the float range is the largest float.
-float finite_average(float sum, float inv_spp) {
-  const float v = sum * inv_spp;
-  return std::isnan(v) ? 0.0f : std::clamp(v, -FLT_MAX, FLT_MAX);
-}
-
 }  // namespace
 
 ProgressiveSession::ProgressiveSession(std::shared_ptr<const Scene> scene,
