@@ -183,7 +183,28 @@ class PHOTON_PT_passes_data(PhotonViewLayerPanel, bpy.types.Panel):
         col.prop(view_layer, "use_pass_glossy_color", text="Glossy")
         col.prop(view_layer, "use_pass_transmission_color", text="Transmission")
         col.prop(view_layer, "use_pass_emit", text="Emission")
+        cycles = getattr(view_layer, "cycles", None)  # Cycles keeps the Denoising Data toggle
+        if cycles is not None:
+            layout.column(heading="Denoising").prop(cycles, "denoising_store_passes",
+                                                    text="Denoising Data")
         layout.prop(view_layer, "pass_alpha_threshold")
+
+
+class PHOTON_PT_passes_cryptomatte(PhotonViewLayerPanel, bpy.types.Panel):
+    """Blender's Cryptomatte toggles (Photon's IDs are always exact: no Accurate Mode)."""
+    bl_label = "Cryptomatte"
+    bl_parent_id = "PHOTON_PT_passes"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        view_layer = context.view_layer
+        col = layout.column(heading="Include", align=True)
+        col.prop(view_layer, "use_pass_cryptomatte_object", text="Object")
+        col.prop(view_layer, "use_pass_cryptomatte_material", text="Material")
+        col.prop(view_layer, "use_pass_cryptomatte_asset", text="Asset")
+        layout.prop(view_layer, "pass_cryptomatte_depth", text="Levels")
 
 
 class PHOTON_PT_layer_override(PhotonViewLayerPanel, bpy.types.Panel):
@@ -314,7 +335,8 @@ class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
 
 
 classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_performance,
-           PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data, PHOTON_PT_layer_override,
+           PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data, PHOTON_PT_passes_cryptomatte,
+           PHOTON_PT_layer_override,
            PHOTON_PT_light, PHOTON_PT_spot, PHOTON_PT_object_ray_visibility,
            PHOTON_PT_object_mask)
 

@@ -21,3 +21,13 @@ def test_object_visibility_shows_the_ray_flags_photon_reads(blender):
     names = {name for name, _l, _p, _o in panels(blender)["object"]}
     assert {"OBJECT_PT_visibility", "PHOTON_PT_object_ray_visibility",
             "PHOTON_PT_object_mask"} <= names
+
+
+def test_view_layer_passes_offer_cryptomatte_and_denoising_data(blender):
+    """Passes Photon writes have their toggles under Photon Passes (Blender's own Passes
+    panel, which lists passes Photon does not write, is hidden)."""
+    data = panels(blender)["view_layer"]
+    children = {name: parent for name, _label, parent, _order in data}
+    assert children.get("PHOTON_PT_passes_cryptomatte") == "PHOTON_PT_passes", data
+    assert children.get("PHOTON_PT_passes_data") == "PHOTON_PT_passes", data
+    assert "VIEWLAYER_PT_layer_passes" not in children

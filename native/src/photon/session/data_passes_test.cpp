@@ -68,7 +68,7 @@ Frame render(std::shared_ptr<const Scene> scene, const RenderSettings& s) {
   session.start();
   Frame f;
   f.width = s.full_width;
-  f.floats = data_pass_floats(s.data_passes.mask);
+  f.floats = data_pass_pixel_floats(s.data_passes);
   f.data.assign(static_cast<size_t>(s.full_width) * s.full_height * f.floats, -1.0f);
   while (true) {
     const bool done = session.finished();
@@ -89,7 +89,7 @@ Frame render(std::shared_ptr<const Scene> scene, const RenderSettings& s) {
 }
 
 TEST(DataPasses, LayoutFollowsTheTable) {
-  EXPECT_EQ(data_pass_floats(kPassAllData), 1 + 1 + 3 + 3 + 3 + 1 + 1 + 4 * 3);
+  EXPECT_EQ(data_pass_floats(kPassAllData), 1 + 1 + 3 + 3 + 3 + 1 + 1 + 4 * 3 + 3 + 3 + 1);
   EXPECT_EQ(data_pass_floats(0), 0);
   const uint32_t mask = kPassMist | kPassUv | kPassMaterialIndex;
   EXPECT_EQ(data_pass_offset(mask, kPassMist), 0);
