@@ -402,8 +402,11 @@ void DataPassRow::finish(int samples, float* out) const {
          {kPassNormal, kPassUv, kPassDiffuseColor, kPassGlossyColor, kPassTransmissionColor,
           kPassEmission, kPassDenoisingNormal, kPassDenoisingAlbedo}) {
       if (!(mask & bit)) continue;
+      // Emit is light: the film's exposure scales it as it scales Combined (Cycles' passes
+      // with use_exposure); colours, albedos and geometry are not light.
+      const float scale = bit == kPassEmission ? inv * context_.settings->exposure : inv;
       float* p = dst + data_pass_offset(mask, bit);
-      for (int c = 0; c < 3; ++c) p[c] *= inv;
+      for (int c = 0; c < 3; ++c) p[c] *= scale;
     }
     if (mask & kPassMist) dst[data_pass_offset(mask, kPassMist)] = 1.0f - mist_[i] * inv;
     if (mask & kPassDenoisingDepth) dst[data_pass_offset(mask, kPassDenoisingDepth)] *= inv;
