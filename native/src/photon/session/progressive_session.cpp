@@ -48,14 +48,18 @@ ProgressiveView sanitized(ProgressiveView v) {
 ProgressiveSession::ProgressiveSession(std::shared_ptr<const Scene> scene,
                                        const RenderSettings& settings,
                                        std::shared_ptr<BlasCache> blas_cache, bool quick_first_pass)
+    : ProgressiveSession(std::make_shared<ViewportScene>(std::move(scene), std::move(blas_cache)),
+                         settings, quick_first_pass) {}
+
+ProgressiveSession::ProgressiveSession(std::shared_ptr<ViewportScene> viewport_scene,
+                                       const RenderSettings& settings, bool quick_first_pass)
     : Job("Viewport render"),
-      scene_(std::move(scene)),
-      blas_cache_(std::move(blas_cache)),
+      viewport_scene_(std::move(viewport_scene)),
       quick_first_pass_(quick_first_pass) {
   std::vector<std::string> warnings;
   settings_ = sanitized_settings(settings, &warnings);
   add_warnings(warnings);
-  view_ = view_of(*scene_, settings_);
+  view_ = view_of(viewport_scene_->scene(), settings_);
   set_work_total(static_cast<size_t>(settings_.samples));
 }
 
@@ -210,12 +214,17 @@ void ProgressiveSession::run() {
   };
 
   run_in_arena(settings_.threads, [&] {
-    std::vector<std::string> warnings;
-    set_status("Building BVH and lights");
-    SceneResources resources(*scene_, settings_, &warnings, &cancel, blas_cache_.get());
-    add_warnings(warnings);
+    // Held until the session ends: the scene's instances and resources do not change under it.
+    std::lock_guard<std::mutex> scene_lock(viewport_scene_->mutex());
     if (cancel) return;
-    const RenderContext& context = resources.context();
+    std::vector<std::string> warnings;
+    if (!viewport_scene_->built()) set_status("Building BVH and lights");
+    const SceneResources* resources = viewport_scene_->resources(settings_, &cancel, &warnings);
+    add_warnings(warnings);
+    if (cancel || !resources) return;
+    // The shared resources' context, rendering with this session's settings.
+    RenderContext context = resources->context();
+    context.settings = &settings_;
     PrepareControl control = prepare_control();
 
     const IntegratorCapabilities caps = integrator_capabilities(settings_.integrator);

@@ -2,6 +2,8 @@
 // and its integrator prepared once, then the whole frame is rendered in passes of a few
 // samples each, accumulated, and shown between passes. A new view (the viewport camera moved,
 // the region resized) restarts the accumulation without rebuilding or re-preparing anything.
+// Sessions on one ViewportScene share its resources: the next session (new settings, moved
+// objects) only prepares its integrator again.
 #pragma once
 
 #include <condition_variable>
@@ -14,6 +16,7 @@
 #include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 #include "photon/session/job.h"
+#include "photon/session/viewport_scene.h"
 
 namespace photon {
 
@@ -44,6 +47,10 @@ class ProgressiveSession : public Job {
   // ray-traced sample so an image shows within the time of a BVH build.
   ProgressiveSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
                      std::shared_ptr<BlasCache> blas_cache = nullptr, bool quick_first_pass = true);
+  // Renders `viewport_scene`, building its resources only if no earlier session did. At most
+  // one session renders a ViewportScene at a time (a second one waits for the first to end).
+  ProgressiveSession(std::shared_ptr<ViewportScene> viewport_scene, const RenderSettings& settings,
+                     bool quick_first_pass = true);
   ~ProgressiveSession() override;  // cancels and joins the worker
 
   // Restarts accumulation from the new view at the next row; returns its serial.
@@ -69,8 +76,7 @@ class ProgressiveSession : public Job {
   void publish(const ProgressiveView& view, int samples, bool quick, uint64_t serial);
   bool interrupted(uint64_t serial) const;
 
-  std::shared_ptr<const Scene> scene_;
-  std::shared_ptr<BlasCache> blas_cache_;
+  std::shared_ptr<ViewportScene> viewport_scene_;
   RenderSettings settings_;
   bool quick_first_pass_;
 
