@@ -41,6 +41,15 @@ void bind_progressive(py::module_& m) {
           "resources built they are updated in place (top-level BVH only): True. False when "
           "they had to be dropped (the next session rebuilds them from the moved scene). No "
           "session may be running (RuntimeError).")
+      .def_property_readonly(
+          "bounds",
+          [](ViewportScene& vs) -> py::object {
+            Vec3 lo, hi;
+            if (!vs.bounds(&lo, &hi)) return py::none();
+            return py::make_tuple(py::make_tuple(lo.x, lo.y, lo.z),
+                                  py::make_tuple(hi.x, hi.y, hi.z));
+          },
+          "((min x, y, z), (max x, y, z)) of the built BVH, or None (not built, or empty).")
       .def_property_readonly("builds", &ViewportScene::builds)
       .def_property_readonly("moves_in_place", &ViewportScene::moves_in_place)
       .def_property_readonly("built", &ViewportScene::built);
@@ -102,6 +111,9 @@ void bind_progressive(py::module_& m) {
       .def_property_readonly("converged", &ProgressiveSession::converged)
       .def("wait_for_samples", &ProgressiveSession::wait_for_samples, py::arg("samples"),
            py::arg("timeout"), py::call_guard<py::gil_scoped_release>())
+      .def("wait_for_image", &ProgressiveSession::wait_for_image, py::arg("timeout"),
+           py::call_guard<py::gil_scoped_release>(),
+           "Waits until an image (quick included) of the current view exists; True then.")
       .def_property_readonly("first_image_seconds", &ProgressiveSession::first_image_seconds)
       .def_property_readonly("finished", &ProgressiveSession::finished)
       .def_property_readonly("cancelled", &ProgressiveSession::cancelled)

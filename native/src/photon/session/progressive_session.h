@@ -37,6 +37,9 @@ struct ProgressiveImage {
   // before the integrator's preparation (photon maps, a radiosity solve) has finished.
   bool quick = false;
   uint64_t view_serial = 0;  // the set_view() call this image belongs to (0: the initial view)
+  // A coarse quick image has one pixel per step x step block of the view's rectangle (width
+  // and height are then the coarse image's, rounded up), to be shown scaled up.
+  int step = 1;
 };
 
 class ProgressiveSession : public Job {
@@ -64,12 +67,20 @@ class ProgressiveSession : public Job {
   // Blocks until the current view has at least `samples` samples (or is converged, or the
   // session ended) or `timeout_seconds` passed; returns samples_done().
   int wait_for_samples(int samples, double timeout_seconds) const;
+  // Blocks until an image (quick ones included) of the current view exists, the session
+  // ended, or `timeout_seconds` passed; true when there is one.
+  bool wait_for_image(double timeout_seconds) const;
   // Seconds from start() to the first image of any kind (quick or not); negative before.
   double first_image_seconds() const;
 
  private:
   void run() override;
   void on_finished() override;
+  // Cycles' viewport "start resolution": sample 0 of every step-th pixel of every step-th
+  // row, standing for its step x step block, published as a coarse quick image (accum_
+  // untouched); false when interrupted.
+  bool render_coarse_pass(const RenderContext& context, const Integrator& integrator,
+                          const ProgressiveView& view, int step, uint64_t serial);
   // Renders samples [first, end) of `view` into accum_ (sums); false when interrupted.
   bool render_pass(const RenderContext& context, const Integrator& integrator,
                    const ProgressiveView& view, int first, int end, uint64_t serial);

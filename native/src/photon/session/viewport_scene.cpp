@@ -37,6 +37,14 @@ bool ViewportScene::move_instances(const std::vector<uint32_t>& indices,
   return false;
 }
 
+bool ViewportScene::bounds(Vec3* lo, Vec3* hi) {
+  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock() || !resources_ || resources_->accel().instance_count() == 0) return false;
+  *lo = resources_->accel().bounds_min();
+  *hi = resources_->accel().bounds_max();
+  return true;
+}
+
 const SceneResources* ViewportScene::resources(const RenderSettings& settings,
                                                const std::atomic<bool>* cancel,
                                                std::vector<std::string>* warnings) {

@@ -49,6 +49,9 @@ class ViewportScene {
   const SceneResources* resources(const RenderSettings& settings, const std::atomic<bool>* cancel,
                                   std::vector<std::string>* warnings);
   bool built() const { return resources_ != nullptr; }
+  // World bounds of the built BVH (what a fresh build of the scene would have); false when not
+  // built, nothing is instanced, or a session is rendering.
+  bool bounds(Vec3* lo, Vec3* hi);
   std::mutex& mutex() { return mutex_; }
 
  private:
