@@ -34,6 +34,7 @@ bool ViewportScene::move_instances(const std::vector<uint32_t>& indices,
     return true;
   }
   resources_.reset();
+  built_ = false;
   return false;
 }
 
@@ -63,6 +64,7 @@ const SceneResources* ViewportScene::resources(const RenderSettings& settings,
     return nullptr;
   }
   ++builds_;
+  built_ = true;
   return resources_.get();
 }
 

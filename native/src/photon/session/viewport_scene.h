@@ -48,7 +48,7 @@ class ViewportScene {
   // again). `settings` only chooses the BVH quality; sessions render with their own settings.
   const SceneResources* resources(const RenderSettings& settings, const std::atomic<bool>* cancel,
                                   std::vector<std::string>* warnings);
-  bool built() const { return resources_ != nullptr; }
+  bool built() const { return built_.load(); }
   // World bounds of the built BVH (what a fresh build of the scene would have); false when not
   // built, nothing is instanced, or a session is rendering.
   bool bounds(Vec3* lo, Vec3* hi);
@@ -63,6 +63,7 @@ class ViewportScene {
   // Embree errors of an Accel without a cache go here (it keeps the pointer).
   std::vector<std::string> build_warnings_;
   std::unique_ptr<SceneResources> resources_;
+  std::atomic<bool> built_{false};  // resources_ is set (readable while a session renders)
   std::atomic<int> builds_{0};
   std::atomic<int> moves_in_place_{0};
 };
