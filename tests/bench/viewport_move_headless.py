@@ -4,7 +4,9 @@ cube, synced once; the cube moves MOVES times. For each move, the old path (sync
 again through the MeshCache and BlasCache, new session building the top level, lights and
 textures) and the new one (ViewportScene.move_instances, new session on the shared
 resources) are timed from the edit to the session's first image (the coarse quick image) and
-to its first full-resolution image.
+to its first full-resolution image. Both paths start sessions with the coarse first pass, so
+the difference is what the transform path saves (sync, top-level/lights/emitter build); the
+figures before the coarse pass came from the GUI benchmark (viewport_incremental_benchmark.py).
 
     BLENDER_USER_SCRIPTS=build/stage blender -b --factory-startup --addons photon \
         -P tests/bench/viewport_move_headless.py -- [MOVES]
