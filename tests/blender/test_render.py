@@ -20,6 +20,12 @@ REFERENCE_MAX_RELATIVE_RMSE = 0.005
 REFERENCE_MAX_MEAN_DIFFERENCE = 0.001
 
 
+# The Cornell box at a fraction of its shipped samples and photons, for tests that check an
+# output path or pixel bookkeeping rather than the image itself.
+QUICK = ("--python-expr", "import bpy; p = bpy.context.scene.photon; p.samples = 8; "
+         "p.photons = 20000; p.caustic_photons = 10000")
+
+
 def render_frames(blender, blend, out_prefix, *frame_args, fmt="OPEN_EXR", extra=()):
     proc = blender.run([str(blend), "-E", "PHOTON", "-o", f"{out_prefix}####", "-F", fmt,
                         "-x", "1", *extra, *frame_args])
@@ -55,7 +61,7 @@ def test_exr_output_is_scene_linear_float(blender, tmp_path):
 
 
 def test_png_output(blender, tmp_path):
-    render_frames(blender, CORNELL, tmp_path / "cornell_", "-f", "1", fmt="PNG")
+    render_frames(blender, CORNELL, tmp_path / "cornell_", "-f", "1", fmt="PNG", extra=QUICK)
     image = read_image(tmp_path / "cornell_0001.png")
     assert image.shape[:2] == (256, 256)
     assert 0.05 < image[:, :, :3].mean() < 0.95
@@ -87,13 +93,13 @@ def test_single_frame_flag_renders_that_frame_only(blender, tmp_path):
 
 def test_render_border_matches_full_frame_pixels(blender, tmp_path):
     """A border render gives exactly the pixels of the full render inside the border."""
-    full_proc = render_frames(blender, CORNELL, tmp_path / "full_", "-f", "1")
+    full_proc = render_frames(blender, CORNELL, tmp_path / "full_", "-f", "1", extra=QUICK)
     assert full_proc.returncode == 0
     script = ("import bpy; r = bpy.context.scene.render; r.use_border = True; "
               "r.use_crop_to_border = True; r.border_min_x, r.border_max_x = 0.25, 0.75; "
               "r.border_min_y, r.border_max_y = 0.5, 1.0")
     render_frames(blender, CORNELL, tmp_path / "border_", "-f", "1",
-                  extra=("--python-expr", script))
+                  extra=(*QUICK, "--python-expr", script))
     full = read_image(tmp_path / "full_0001.exr")
     border = read_image(tmp_path / "border_0001.exr")
     assert border.shape[:2] == (128, 128)
