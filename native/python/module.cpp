@@ -456,7 +456,8 @@ PYBIND11_MODULE(_photon, m) {
   py::enum_<IntegratorType>(m, "Integrator")
       .value("RAY_TRACE", IntegratorType::kRayTrace)
       .value("PHOTON_MAP", IntegratorType::kPhotonMap)
-      .value("RADIOSITY", IntegratorType::kRadiosity);
+      .value("RADIOSITY", IntegratorType::kRadiosity)
+      .value("SPPM", IntegratorType::kSppm);
 
   m.def(
       "integrator_capabilities",
@@ -470,6 +471,7 @@ PYBIND11_MODULE(_photon, m) {
         d["stop_early_status"] = c.stop_early_status;
         d["prepares"] = c.prepares;
         d["stop_early_effect"] = c.stop_early_effect;
+        d["iterative"] = c.iterative;
         return d;
       },
       py::arg("integrator"),

@@ -94,7 +94,12 @@ class CameraVisitor {
     if (walk_.radiance && (bsdf.flags() & walk_.light_sampled))
       result_->direct +=
           state.throughput * direct_radiance(context_, si, bsdf, wo, sampler_, walk_.light_sampled);
-    if (bsdf.flags() & kLobeDiffuse) {
+    if (walk_.visible_point) {
+      if (walk_.visible_point(bsdf)) {
+        at_diffuse_(v, result_);
+        return VertexStep::stop();
+      }
+    } else if (bsdf.flags() & kLobeDiffuse) {
       at_diffuse_(v, result_);
       diffuse_seen_ = true;
     }

@@ -39,6 +39,10 @@ struct CameraWalk {
   // The lobes lit by light sampling at every vertex (radiosity leaves out the diffuse lobes:
   // its solution already holds their direct light).
   uint8_t light_sampled = kLobeDiffuse | kLobeGlossy;
+  // Stochastic progressive photon mapping: when set, the first vertex whose BSDF it accepts is
+  // the path's visible point (Hachisuka & Jensen 2009): `at_diffuse` is called there, and only
+  // there, and the path ends (photons estimate all of that BSDF's non-delta lobes).
+  bool (*visible_point)(const Bsdf& bsdf) = nullptr;
 };
 
 // The render's camera walk: glossy and specular lobes ray traced up to max_depth bounces,

@@ -1,0 +1,179 @@
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <cmath>
+#include <memory>
+
+#include "photon/integrators/sppm/photon_grid.h"
+#include "photon/session/render_session.h"
+#include "photon/testing/test_scenes.h"
+
+namespace photon {
+namespace {
+
+RenderSettings sppm_settings(int size, int iterations, uint64_t photons) {
+  RenderSettings s;
+  s.full_width = s.full_height = size;
+  s.x1 = s.y1 = size;
+  s.seed = 5;
+  s.integrator = IntegratorType::kSppm;
+  s.sppm_iterations = iterations;
+  s.sppm_photons_per_iteration = photons;
+  return s;
+}
+
+struct Rendered {
+  std::vector<float> rgba;
+  RenderStats stats;
+  std::vector<Tile> tiles;
+};
+
+Rendered render(const Scene& scene, const RenderSettings& s) {
+  RenderSession session(std::make_shared<Scene>(scene), s);
+  session.start();
+  session.wait();
+  return {session.image(), session.stats(), session.take_tiles(0.0)};
+}
+
+double mean_channel(const std::vector<float>& rgba, int c) {
+  double sum = 0.0;
+  for (size_t i = c; i < rgba.size(); i += 4) sum += rgba[i];
+  return sum / (rgba.size() / 4);
+}
+
+double rms_error(const std::vector<float>& rgba, double expected) {
+  double sum = 0.0;
+  for (size_t i = 0; i < rgba.size(); i += 4) sum += (rgba[i] - expected) * (rgba[i] - expected);
+  return std::sqrt(sum / (rgba.size() / 4));
+}
+
+// A closed box whose walls emit Le and reflect albedo rho: L = Le / (1 - rho) everywhere.
+Scene emissive_furnace(float rho, float le) {
+  Scene scene;
+  scene.materials.push_back(Material::diffuse(Vec3(rho)).with_emission(Vec3(le)));
+  add_mesh_instance(&scene, make_box({-1, -1, -1}, {1, 1, 1}), 0);
+  scene.camera = make_look_at_camera({0, -0.5f, 0}, {0, 1, 0.2f}, 1.2f, 1.0f);
+  return scene;
+}
+
+TEST(Sppm, EmissiveFurnaceConvergesToLeOverOneMinusAlbedo) {
+  const Rendered r = render(emissive_furnace(0.6f, 1.0f), sppm_settings(24, 16, 20000));
+  EXPECT_EQ(r.stats.sppm.iterations, 16);
+  EXPECT_NEAR(mean_channel(r.rgba, 0), 1.0 / (1.0 - 0.6), 0.02 * 2.5);
+  EXPECT_NEAR(mean_channel(r.rgba, 2), 1.0 / (1.0 - 0.6), 0.02 * 2.5);
+  EXPECT_NEAR(mean_channel(r.rgba, 3), 1.0, 1e-6);
+}
+
+TEST(Sppm, FurnaceErrorFallsWithIterations) {
+  // Uniform radiance: the density estimate has no blur bias here, so the error is noise, which
+  // the iterations average away.
+  const Scene scene = emissive_furnace(0.8f, 1.0f);
+  const double expected = 1.0 / (1.0 - 0.8);
+  const double few = rms_error(render(scene, sppm_settings(24, 2, 5000)).rgba, expected);
+  const double many = rms_error(render(scene, sppm_settings(24, 32, 5000)).rgba, expected);
+  EXPECT_LT(many, 0.5 * few) << "2 iterations: " << few << ", 32: " << many;
+}
+
+// A diffuse plane under a point light of intensity I at height h: E = I cos(theta) / d^2 and no
+// indirect light.
+TEST(Sppm, PlaneUnderPointLightMatchesInverseSquareLaw) {
+  Scene scene;
+  scene.materials.push_back(Material::diffuse(Vec3(0.5f)));
+  add_mesh_instance(&scene, make_quad({-10, -10, 0}, {20, 0, 0}, {0, 20, 0}), 0);
+  Light light;
+  light.type = LightType::kPoint;
+  light.power = 100.0f;
+  const float h = 1.0f;
+  light.light_to_world = Transform::translation(Vec3(0, 0, h));
+  scene.lights.push_back(light);
+  scene.camera.projection = Projection::kOrthographic;
+  scene.camera.set_camera_to_world(Transform::translation(Vec3(0, 0, 3)));
+  scene.camera.window_min_x = scene.camera.window_min_y = -0.33f;
+  scene.camera.window_max_x = scene.camera.window_max_y = 0.33f;
+  const Rendered r = render(scene, sppm_settings(33, 16, 2000));
+  const double intensity = 100.0 / (4.0 * kPi);
+  auto pixel = [&](int x, int y) { return r.rgba[(static_cast<size_t>(y) * 33 + x) * 4]; };
+  EXPECT_NEAR(pixel(16, 16), 0.5 / kPi * intensity / (h * h), 0.01 * 0.5 / kPi * intensity);
+  const double rr = 0.3, d2 = h * h + rr * rr;
+  const double expected = 0.5 / kPi * intensity * (h / std::sqrt(d2)) / d2;
+  for (auto [x, y] : {std::pair{1, 16}, std::pair{31, 16}, std::pair{16, 1}, std::pair{16, 31}})
+    EXPECT_NEAR(pixel(x, y), expected, 0.01 * expected) << x << "," << y;
+}
+
+TEST(Sppm, ImageIsTheSameForAnyThreadCountAndTileSize) {
+  const Scene scene = make_caustic_box();
+  RenderSettings s = sppm_settings(32, 3, 20000);
+  s.light_passes = true;
+  std::vector<float> reference;
+  for (auto [threads, tile] : {std::pair{1, 64}, std::pair{2, 8}, std::pair{3, 5}}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    s.threads = threads;
+    s.tile_size = tile;
+    const Rendered r = render(scene, s);
+    EXPECT_GT(mean_channel(r.rgba, 0), 0.01);
+    if (reference.empty())
+      reference = r.rgba;
+    else
+      EXPECT_EQ(r.rgba, reference) << threads << " threads, tiles of " << tile;
+  }
+}
+
+TEST(Sppm, CornellBoxMeanMatchesPhotonMapping) {
+  const Scene scene = make_cornell_box();
+  RenderSettings s = sppm_settings(32, 32, 50000);
+  const Rendered sppm = render(scene, s);
+  s.integrator = IntegratorType::kPhotonMap;
+  s.samples = 32;
+  s.photons = 200000;
+  const Rendered pm = render(scene, s);
+  for (int c = 0; c < 3; ++c) {
+    const double a = mean_channel(sppm.rgba, c), b = mean_channel(pm.rgba, c);
+    EXPECT_NEAR(a, b, 0.03 * b) << "channel " << c;
+  }
+}
+
+TEST(Sppm, EveryCompleteIterationReachesTheResultAndCancelKeepsTheLast) {
+  const Scene scene = make_cornell_box();
+  RenderSettings s = sppm_settings(16, 1000000, 2000);
+  RenderSession session(std::make_shared<Scene>(scene), s);
+  session.start();
+  std::vector<Tile> tiles;
+  while (tiles.empty()) {
+    tiles = session.take_tiles(5.0);
+    ASSERT_FALSE(session.finished() && tiles.empty());
+  }
+  session.cancel();
+  session.wait();
+  for (Tile& t : session.take_tiles(0.0)) tiles.push_back(std::move(t));
+  ASSERT_FALSE(tiles.empty());
+  const Tile& last = tiles.back();
+  EXPECT_EQ(last.x, 0);
+  EXPECT_EQ(last.width, 16);
+  EXPECT_EQ(last.height, 16);
+  // The session's image is the last complete iteration's, not a partly updated one.
+  EXPECT_EQ(session.image(), last.rgba);
+  EXPECT_GT(mean_channel(last.rgba, 0), 0.0);
+}
+
+TEST(PhotonGrid, FindsExactlyThePhotonsWithinTheRadiusInTraceOrder) {
+  std::vector<SppmPhoton> photons;
+  for (int i = 0; i < 2000; ++i) {
+    const float t = static_cast<float>(i);
+    photons.push_back({Vec3(std::sin(t * 1.7f), std::cos(t * 2.3f), std::sin(t * 0.37f)),
+                       Vec3(0, 0, 1), Vec3(t)});
+  }
+  for (float cell : {0.05f, 0.3f, 5.0f}) {
+    const PhotonGrid grid(photons, cell);
+    for (const Vec3 q : {Vec3(0.1f, 0.2f, -0.3f), Vec3(0.9f, -0.9f, 0.0f)}) {
+      std::vector<float> found, expected;
+      grid.for_each_within(q, 0.25f, [&](const SppmPhoton& ph) { found.push_back(ph.beta.x); });
+      for (const SppmPhoton& ph : photons)
+        if (dot(ph.p - q, ph.p - q) <= 0.25f * 0.25f) expected.push_back(ph.beta.x);
+      std::sort(found.begin(), found.end());
+      EXPECT_EQ(found, expected) << "cell " << cell;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace photon
