@@ -69,6 +69,14 @@ def integrator_capabilities(native, scene):
     return native.integrator_capabilities(getattr(native.Integrator, scene.photon.integrator))
 
 
+def sppm_report(sppm):
+    """The report line of an SPPM render (RenderStats.sppm)."""
+    return (f"sppm: {sppm.iterations} iterations, {sppm.photons_emitted:,} photons emitted "
+            f"in {sppm.photon_seconds:.3f} s, camera passes {sppm.camera_seconds:.3f} s; "
+            f"{sppm.bytes_per_pixel} bytes per pixel, photons of one iteration "
+            f"{sppm.peak_photon_bytes / 1e6:.1f} MB at most")
+
+
 def prepare_report(prepared):
     """Report lines for a PrepareStats (photon maps, irradiance cache, radiosity): one per
     stage that ran."""
@@ -347,6 +355,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             f"{self._layer_view_label(scene, view)}")
         for line in prepare_report(stats.integrator):
             reporter.info(line)
+        if stats.sppm.iterations:
+            reporter.info(sppm_report(stats.sppm))
         if sync_stats.meshes_reused is not None:
             meshes = sync_stats.meshes_reused + sync_stats.meshes_exported
             reporter.info(f"persistent data: reused {sync_stats.meshes_reused} of {meshes} "

@@ -18,6 +18,7 @@
 #include "photon/scene/scene.h"
 #include "photon/render/texture_convert.h"
 #include "data_pass_bindings.h"
+#include "sppm_bindings.h"
 #include "stats_bindings.h"
 
 namespace py = pybind11;
@@ -581,6 +582,7 @@ PYBIND11_MODULE(_photon, m) {
   photon_python::register_material_functions(m);
   photon_python::register_program_functions(m);
   photon_python::register_stats_classes(m);
+  photon_python::register_sppm_classes(m);
 
   // Largest lamp power (W, a sun's W/m^2) and world radiance rendered; larger ones are clamped.
   m.attr("MAX_EMISSION") = emitter_range().hi;
