@@ -283,11 +283,14 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         # A user watching the render sees the whole frame (direct light) before the slow
         # stages; in background mode nobody does and it would only cost time.
         session.set_quick_preview(not bpy.app.background)
-        prepares = integrator_capabilities(native, scene)["prepares"]
+        capabilities = integrator_capabilities(native, scene)
+        prepares = capabilities["prepares"]
         bar = render_progress.RenderProgress(prepares)
         session.start()
         tiles_total = ((region_w + settings.tile_size - 1) // settings.tile_size) * (
             (region_h + settings.tile_size - 1) // settings.tile_size)
+        if capabilities.get("iterative"):
+            tiles_total = 1  # SPPM: the whole region, written again after each iteration
         tiles_done = 0
         cancelled_during = None  # the stage Esc cancelled, or None
         RENDER_STATUS.clear()
@@ -316,7 +319,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 RENDER_STATUS.update(status=snapshot["status"], tiles_done=tiles_done,
                                      tiles_total=tiles_total, progress=fraction)
                 self.update_stats("", self._stats_line(snapshot["status"], sync_stats,
-                                                       tiles_done, tiles_total, t_start,
+                                                       min(tiles_done, tiles_total),
+                                                       tiles_total, t_start,
                                                        time_left))
                 if session.finished:
                     for x, y, w, h, rgba, passes, data in session.take_tiles(0.0):
@@ -347,7 +351,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         state = "cancelled" if cancelled else "rendered"
         reporter.info(
             f"{state} frame {scene.frame_current} {region_w}x{region_h} "
-            f"({settings.samples} spp, {stats.threads} threads): sync {sync_stats.seconds:.3f} s "
+            f"({self._samples_label(settings, stats)}, {stats.threads} threads): sync {sync_stats.seconds:.3f} s "
             f"({sync_stats.triangles} triangles, {sync_stats.instances} instances, "
             f"{sync_stats.lights} lights), {self._texture_stats(stats)}"
             f"BVH {stats.build_seconds:.3f} s, "
@@ -406,6 +410,13 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                     parts.append(np.zeros(w * h * render_pass.channels, dtype=np.float32))
             passes.foreach_set("rect", np.concatenate(parts))
         self.end_result(result)
+
+    @staticmethod
+    def _samples_label(settings, stats):
+        """'64 spp', or 'N iterations' for SPPM."""
+        if stats.sppm.iterations:
+            return f"{stats.sppm.iterations} SPPM iterations"
+        return f"{settings.samples} spp"
 
     @staticmethod
     def _stats_line(status, sync_stats, tiles_done, tiles_total, t_start, time_left=""):
