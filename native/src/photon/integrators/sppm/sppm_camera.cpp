@@ -29,7 +29,7 @@ bool is_visible_point(const Bsdf& bsdf) {
 }
 
 SppmCameraSample trace_sppm_camera(const RenderContext& context, const Ray& camera_ray,
-                                   Sampler& sampler, const PhotonGrid& grid, float radius) {
+                                   Sampler& sampler, const PhotonKdTree& photons, float radius) {
   CameraWalk walk = camera_render_walk(context);
   walk.visible_point = &is_visible_point;
   SppmCameraSample out;
@@ -38,7 +38,7 @@ SppmCameraSample trace_sppm_camera(const RenderContext& context, const Ray& came
     const Bsdf& bsdf = v.shading->bsdf;
     Vec3 phi(0.0f);
     uint32_t m = 0;
-    grid.for_each_within(v.si->p, radius, [&](const SppmPhoton& ph) {
+    photons.for_each_within(v.si->p, radius, [&](const SppmPhoton& ph) {
       phi += ph.beta * bsdf.eval(v.wo, ph.wi);
       ++m;
     });

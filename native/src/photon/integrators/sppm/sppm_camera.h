@@ -10,7 +10,7 @@
 #include <cstdint>
 
 #include "photon/integrators/integrator.h"
-#include "photon/integrators/sppm/photon_grid.h"
+#include "photon/integrators/sppm/photon_kdtree.h"
 #include "photon/render/bsdf.h"
 
 namespace photon {
@@ -32,9 +32,9 @@ struct SppmCameraSample {
   float holdout = 0.0f;  // as RadianceSample::holdout
 };
 
-// Traces the camera ray through a pixel and gathers `grid`'s photons within `radius` of its
-// visible point.
+// Traces the camera ray through a pixel and gathers the iteration's `photons` within `radius` of
+// its visible point.
 SppmCameraSample trace_sppm_camera(const RenderContext& context, const Ray& camera_ray,
-                                   Sampler& sampler, const PhotonGrid& grid, float radius);
+                                   Sampler& sampler, const PhotonKdTree& photons, float radius);
 
 }  // namespace photon

@@ -7,7 +7,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "photon/integrators/sppm/photon_grid.h"
+#include "photon/integrators/sppm/photon_kdtree.h"
 #include "photon/integrators/sppm/sppm_camera.h"
 #include "photon/integrators/sppm/sppm_photons.h"
 #include "photon/scene/camera.h"
@@ -80,17 +80,6 @@ void SppmRenderer::initial_radii(const std::atomic<bool>& cancel) {
     p.radius = std::max(p.radius > 0.0f ? p.radius : fallback, floor_radius);
 }
 
-float SppmRenderer::grid_cell_size() const {
-  // Twice the median radius, so most queries visit at most 2 x 2 x 2 cells, but at least half
-  // the largest, so none visits more than 5 x 5 x 5.
-  std::vector<float> radii(pixels_.size());
-  for (size_t i = 0; i < pixels_.size(); ++i) radii[i] = pixels_[i].radius;
-  if (radii.empty()) return 1.0f;
-  const float largest = *std::max_element(radii.begin(), radii.end());
-  std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-  return 2.0f * std::max(radii[radii.size() / 2], 0.25f * largest);
-}
-
 bool SppmRenderer::iterate(const std::atomic<bool>& cancel) {
   const RenderSettings& s = *context_.settings;
   if (!radii_set_) {
@@ -106,8 +95,8 @@ bool SppmRenderer::iterate(const std::atomic<bool>& cancel) {
   if (pass.cancelled) return false;
   stats_.rays += pass.rays;
   stats_.photons_recorded = pass.photons.size();
-  const PhotonGrid grid(std::move(pass.photons), grid_cell_size());
-  stats_.peak_photon_bytes = std::max(stats_.peak_photon_bytes, grid.memory_bytes());
+  const PhotonKdTree photons(std::move(pass.photons));
+  stats_.peak_photon_bytes = std::max(stats_.peak_photon_bytes, photons.memory_bytes());
   stats_.photon_seconds += seconds_since(t0);
 
   t0 = Clock::now();
@@ -127,7 +116,7 @@ bool SppmRenderer::iterate(const std::atomic<bool>& cancel) {
                         static_cast<uint32_t>(s.sppm_iterations));
         const Ray ray =
             camera_sample_ray(filter, camera, s.full_width, s.full_height, px, py, sampler);
-        const SppmCameraSample c = trace_sppm_camera(context_, ray, sampler, grid, pixel.radius);
+        const SppmCameraSample c = trace_sppm_camera(context_, ray, sampler, photons, pixel.radius);
         if (!is_finite(c.direct) || !is_finite(c.phi)) {
           non_finite.fetch_add(1, std::memory_order_relaxed);
           continue;

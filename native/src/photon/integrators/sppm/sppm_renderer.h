@@ -1,6 +1,6 @@
 // Stochastic progressive photon mapping (Hachisuka & Jensen 2009, "Stochastic Progressive
 // Photon Mapping"): each iteration traces a photon pass (sppm_photons.h), hashes its photons in
-// a grid (photon_grid.h), then traces one camera path per pixel to its visible point
+// a kd-tree (photon_kdtree.h), then traces one camera path per pixel to its visible point
 // (sppm_camera.h), which gathers the photons within the pixel's radius R. The pixel's statistics
 // then follow eqs. 6-8 of the paper (Hachisuka et al. 2008, eqs. 7-9, with Phi and M of this
 // iteration's visible point):
@@ -10,12 +10,12 @@
 // which converges as R shrinks (alpha in (0, 1)).
 //
 // Memory: kBytesPerPixel of pixel state, plus the current iteration's photons (36 bytes per
-// recorded bounce) and their table (4 bytes per photon, rounded up to a power of two), freed
-// before the next iteration's photons are traced.
+// recorded bounce) and their kd-tree's split axes (1 byte per photon), freed before the next
+// iteration's photons are traced.
 //
 // Determinism: camera samples draw from (seed, pixel, iteration) streams and photons from
 // (seed, iteration, photon index); each pixel is updated by one thread from its own visible
-// point, which sums photons in the grid's fixed order. The image after k iterations is the
+// point, which sums photons in the kd-tree's fixed order. The image after k iterations is the
 // same bits for any thread count, and tiles play no part.
 #pragma once
 
@@ -32,7 +32,7 @@ struct SppmStats {
   int iterations = 0;
   uint64_t photons_emitted = 0;
   size_t photons_recorded = 0;   // in the last iteration
-  size_t peak_photon_bytes = 0;  // largest grid (photons and table) of an iteration
+  size_t peak_photon_bytes = 0;  // largest kd-tree (photons and axes) of an iteration
   uint64_t rays = 0;             // photon rays
   uint64_t non_finite = 0;       // camera samples dropped for a NaN / inf value
   double photon_seconds = 0.0, camera_seconds = 0.0;
@@ -69,7 +69,6 @@ class SppmRenderer {
   // R for every pixel before the first iteration: the setting, or kAutoRadiusPixels pixel
   // footprints at the surface the pixel's centre sees.
   void initial_radii(const std::atomic<bool>& cancel);
-  float grid_cell_size() const;
 
   const RenderContext& context_;
   PhotonSources sources_;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <memory>
 
-#include "photon/integrators/sppm/photon_grid.h"
+#include "photon/integrators/sppm/photon_kdtree.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"
 
@@ -155,23 +155,29 @@ TEST(Sppm, EveryCompleteIterationReachesTheResultAndCancelKeepsTheLast) {
   EXPECT_GT(mean_channel(last.rgba, 0), 0.0);
 }
 
-TEST(PhotonGrid, FindsExactlyThePhotonsWithinTheRadiusInTraceOrder) {
-  std::vector<SppmPhoton> photons;
-  for (int i = 0; i < 2000; ++i) {
-    const float t = static_cast<float>(i);
-    photons.push_back({Vec3(std::sin(t * 1.7f), std::cos(t * 2.3f), std::sin(t * 0.37f)),
-                       Vec3(0, 0, 1), Vec3(t)});
-  }
-  for (float cell : {0.05f, 0.3f, 5.0f}) {
-    const PhotonGrid grid(photons, cell);
-    for (const Vec3 q : {Vec3(0.1f, 0.2f, -0.3f), Vec3(0.9f, -0.9f, 0.0f)}) {
-      std::vector<float> found, expected;
-      grid.for_each_within(q, 0.25f, [&](const SppmPhoton& ph) { found.push_back(ph.beta.x); });
-      for (const SppmPhoton& ph : photons)
-        if (dot(ph.p - q, ph.p - q) <= 0.25f * 0.25f) expected.push_back(ph.beta.x);
-      std::sort(found.begin(), found.end());
-      EXPECT_EQ(found, expected) << "cell " << cell;
+TEST(PhotonKdTree, FindsExactlyThePhotonsWithinTheRadiusInOneOrder) {
+  for (int count : {0, 5, 2000, 50000}) {
+    std::vector<SppmPhoton> photons;
+    for (int i = 0; i < count; ++i) {
+      const float t = static_cast<float>(i);
+      // Points on a few planes with repeated coordinates, as photons on walls are.
+      photons.push_back(
+          {Vec3(std::sin(t * 1.7f), std::round(std::cos(t * 2.3f) * 4) / 4, std::sin(t * 0.37f)),
+           Vec3(0, 0, 1), Vec3(t)});
     }
+    const PhotonKdTree tree(photons), again(photons);
+    for (const float radius : {0.01f, 0.25f, 3.0f})
+      for (const Vec3 q : {Vec3(0.1f, 0.25f, -0.3f), Vec3(0.9f, -0.9f, 0.0f)}) {
+        std::vector<float> found, found_again, expected;
+        tree.for_each_within(q, radius, [&](const SppmPhoton& ph) { found.push_back(ph.beta.x); });
+        again.for_each_within(q, radius,
+                              [&](const SppmPhoton& ph) { found_again.push_back(ph.beta.x); });
+        EXPECT_EQ(found, found_again);  // the same photons in the same order: the same sum
+        for (const SppmPhoton& ph : photons)
+          if (dot(ph.p - q, ph.p - q) <= radius * radius) expected.push_back(ph.beta.x);
+        std::sort(found.begin(), found.end());
+        EXPECT_EQ(found, expected) << count << " photons, radius " << radius;
+      }
   }
 }
 
