@@ -132,6 +132,55 @@ TEST(Sppm, CornellBoxMeanMatchesPhotonMapping) {
   }
 }
 
+// A glass ball over a diffuse 2 m floor, seen from the side just under the ball, lit by an
+// emissive quad above it or by a uniform world. Shadow rays stop at glass, so the floor the ball
+// shadows is lit only through the glass: by caustics (L S+ D), which only photons carry.
+Scene glass_ball_over_floor(bool world_light, float ior, bool ball = true) {
+  Scene scene;
+  scene.materials.push_back(Material::diffuse(Vec3(0.8f)));
+  add_mesh_instance(&scene, make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}), 0);
+  scene.materials.push_back(Material::glass(ior));
+  if (ball) add_mesh_instance(&scene, make_uv_sphere({0, 0, 0.5f}, 0.3f, 64, 32), 1);
+  if (world_light) {
+    scene.world = World::uniform(Vec3(1.0f));
+  } else {
+    scene.materials.push_back(Material::emission(Vec3(40.0f)));
+    add_mesh_instance(&scene, make_quad({-0.2f, -0.2f, 2.0f}, {0, 0.4f, 0}, {0.4f, 0, 0}),
+                      static_cast<int32_t>(scene.materials.size() - 1));
+  }
+  scene.camera = make_look_at_camera({0, -2, 1}, {0, 0, 0}, 0.06f, 1.0f);
+  return scene;
+}
+
+TEST(Sppm, LightThroughAnInvisibleGlassBallArrivesExactlyAsPhotons) {
+  // Glass of IOR 1 bends and reflects nothing: the floor is lit as if the ball were not there
+  // (ray tracing without it gives that exactly), but under the ball only by photons that
+  // passed through it. From the world and from an emissive mesh.
+  for (const bool world : {true, false}) {
+    RenderSettings s = sppm_settings(16, 32, 50000);
+    const double sppm = mean_channel(render(glass_ball_over_floor(world, 1.0f), s).rgba, 0);
+    s.integrator = IntegratorType::kRayTrace;
+    s.samples = 64;
+    const double shadowed = mean_channel(render(glass_ball_over_floor(world, 1.0f), s).rgba, 0);
+    const double open = mean_channel(render(glass_ball_over_floor(world, 1.0f, false), s).rgba, 0);
+    if (world) EXPECT_NEAR(open, 0.8, 1e-4);  // albedo times the world's radiance
+    EXPECT_NEAR(sppm, open, 0.03 * open) << (world ? "world" : "emissive quad");
+    EXPECT_LT(shadowed, 0.8 * open) << "the ball must shadow the floor the camera sees";
+  }
+}
+
+TEST(Sppm, CausticOfAnEmissiveMeshMatchesPhotonMapping) {
+  const Scene scene = glass_ball_over_floor(false, 1.5f);
+  RenderSettings s = sppm_settings(16, 32, 50000);
+  const double sppm = mean_channel(render(scene, s).rgba, 0);
+  s.integrator = IntegratorType::kPhotonMap;
+  s.samples = 16;
+  s.photons = 50000;
+  s.caustic_photons = 400000;
+  const double pm = mean_channel(render(scene, s).rgba, 0);
+  EXPECT_NEAR(sppm, pm, 0.03 * pm);
+}
+
 TEST(Sppm, EveryCompleteIterationReachesTheResultAndCancelKeepsTheLast) {
   const Scene scene = make_cornell_box();
   RenderSettings s = sppm_settings(16, 1000000, 2000);
