@@ -40,7 +40,9 @@ void SppmRenderer::initial_radii(const std::atomic<bool>& cancel) {
   const RenderSettings& s = *context_.settings;
   const float floor_radius = 1e-6f * context_.accel->length_scale();
   if (s.sppm_initial_radius > 0.0f) {
-    for (SppmPixel& p : pixels_) p.radius = s.sppm_initial_radius;
+    // A disc wider than the scene gathers no more photons, only reads them all at every pixel.
+    const float radius = std::min(s.sppm_initial_radius, 2.0f * sources_.scene_radius());
+    for (SppmPixel& p : pixels_) p.radius = std::max(radius, floor_radius);
     return;
   }
   // The distance between the centre rays of a pixel and of its right neighbour, at the depth

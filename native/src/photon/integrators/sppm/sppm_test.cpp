@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "photon/integrators/sppm/photon_kdtree.h"
+#include "photon/session/progressive_session.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"
 
@@ -202,6 +203,22 @@ TEST(Sppm, EveryCompleteIterationReachesTheResultAndCancelKeepsTheLast) {
   // The session's image is the last complete iteration's, not a partly updated one.
   EXPECT_EQ(session.image(), last.rgba);
   EXPECT_GT(mean_channel(last.rgba, 0), 0.0);
+}
+
+TEST(Sppm, ViewportSessionsShowTheSceneWithPhotonMapping) {
+  // The viewport renders per camera sample: SPPM scenes show there through make_integrator's
+  // stand-in, photon mapping, with the same brightness.
+  const auto scene = std::make_shared<Scene>(make_cornell_box());
+  RenderSettings s = sppm_settings(16, 4, 20000);
+  s.samples = 4;
+  s.photons = 20000;
+  ProgressiveSession session(scene, s, nullptr, false);
+  session.start();
+  EXPECT_EQ(session.wait_for_samples(s.samples, 120.0), s.samples);
+  const ProgressiveImage image = session.image();
+  const Rendered sppm = render(*scene, s);
+  EXPECT_NEAR(mean_channel(image.rgba, 0), mean_channel(sppm.rgba, 0),
+              0.1 * mean_channel(sppm.rgba, 0));
 }
 
 TEST(PhotonKdTree, FindsExactlyThePhotonsWithinTheRadiusInOneOrder) {
