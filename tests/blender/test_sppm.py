@@ -121,3 +121,34 @@ def test_sppm_caustic_under_the_glass_ball_matches_cycles(blender, tmp_path):
     assert 0.9 < power_ratio < 1.1
     assert peak > 1.5
     assert abs(image.mean() / reference.mean() - 1.0) < 0.03
+
+
+def _matte_render(blender, case):
+    """Regions of the holdout / shadow-catcher scenes (scripts/holdout_and_shadow_catcher.py)
+    rendered with SPPM (its default 64 iterations of 100k photons)."""
+    result, proc = blender.run_script("holdout_and_shadow_catcher.py",
+                                      blender.out_dir / "sppm_matte", case, "photon", "SPPM",
+                                      timeout=600)
+    assert "exception" not in result, result.get("exception")
+    assert "Photon: rendered frame" in proc.stdout, proc.log
+    return result["photon"]
+
+
+def test_sppm_holdout_leaves_a_hole(blender):
+    photon = _matte_render(blender, "holdout_object")
+    report = str(photon)
+    assert photon["sphere"]["alpha"] < 0.02, report
+    assert max(photon["sphere"]["rgb"]) < 0.02, report
+    for side in ("wall_left", "wall_right"):
+        assert photon[side]["alpha"] > 0.99, report
+        assert min(photon[side]["rgb"]) > 0.3, report
+
+
+def test_sppm_shadow_catcher_keeps_only_the_shadow(blender):
+    photon = _matte_render(blender, "catcher")
+    report = str(photon)
+    assert photon["shadow"]["alpha"] > 0.85, report
+    assert photon["away"]["alpha"] < 0.02, report
+    assert max(photon["away"]["rgb"]) < 0.01, report
+    assert photon["sphere"]["alpha"] > 0.99, report
+    assert photon["sphere"]["rgb"][0] > 0.3, report

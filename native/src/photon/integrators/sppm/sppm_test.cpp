@@ -221,6 +221,19 @@ TEST(Sppm, ViewportSessionsShowTheSceneWithPhotonMapping) {
               0.1 * mean_channel(sppm.rgba, 0));
 }
 
+TEST(Sppm, EmptySceneAndNoLightsRenderBlack) {
+  RenderSettings s = sppm_settings(8, 2, 1000);
+  const Rendered empty = render(Scene(), s);
+  EXPECT_EQ(empty.stats.sppm.iterations, 2);
+  EXPECT_EQ(mean_channel(empty.rgba, 0), 0.0);
+  Scene dark = make_cornell_box();
+  dark.lights.clear();
+  const Rendered d = render(dark, s);
+  EXPECT_EQ(d.stats.sppm.iterations, 2);
+  EXPECT_EQ(mean_channel(d.rgba, 0), 0.0);
+  EXPECT_EQ(mean_channel(d.rgba, 3), 1.0);
+}
+
 TEST(PhotonKdTree, FindsExactlyThePhotonsWithinTheRadiusInOneOrder) {
   for (int count : {0, 5, 2000, 50000}) {
     std::vector<SppmPhoton> photons;
