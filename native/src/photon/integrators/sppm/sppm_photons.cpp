@@ -5,6 +5,7 @@
 
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/path_walker.h"
+#include "photon/integrators/sppm/sppm_camera.h"
 
 namespace photon {
 namespace {
@@ -19,8 +20,9 @@ struct ChunkOutput {
   uint64_t rays = 0;
 };
 
-// Records the photon at every vertex after the first whose BSDF has a non-delta lobe: those
-// are the vertices a visible point can be (sppm_camera.h) and where the BSDF can be evaluated.
+// Records the photon at every vertex after the first that could be a visible point
+// (sppm_camera.h: a diffuse or rough glossy lobe); photons elsewhere could only leak into
+// visible points of nearby surfaces.
 struct SppmPhotonVisitor {
   const RenderContext& context;
   ChunkOutput* out;
@@ -33,7 +35,7 @@ struct SppmPhotonVisitor {
   VertexStep vertex(PathState& state, const Hit&, const SurfaceInteraction& si) {
     sp = shade(context, si, -state.ray.direction);
     const Bsdf& bsdf = sp.bsdf;
-    if (state.depth > 0 && (bsdf.flags() & (kLobeDiffuse | kLobeGlossy)))
+    if (state.depth > 0 && is_visible_point(bsdf))
       out->photons.push_back({si.p, -state.ray.direction, state.throughput});
     return VertexStep::scatter(bsdf);
   }

@@ -1,8 +1,9 @@
 // The photon pass of one SPPM iteration (Hachisuka & Jensen 2009, sec. 4): photons leave the
 // lights (lamps, emissive meshes, the world: photon_sources.h) and are traced with the shared
 // walker's power rules (path_walker.h: Russian roulette by the bounce's albedo). A photon is
-// recorded at every non-delta vertex after its first bounce: the first hit is direct light,
-// which the camera pass estimates by light sampling instead.
+// recorded at every vertex after its first bounce that could be a visible point (a diffuse or
+// rough glossy lobe): the first hit is direct light, which the camera pass estimates by light
+// sampling instead.
 //
 // Photons are traced in fixed chunks whose records are concatenated in chunk order, and photon
 // j of iteration i draws from the stream (seed, i, j), so the records (and their order) do not
