@@ -35,7 +35,8 @@ struct SppmPhotonVisitor {
   VertexStep vertex(PathState& state, const Hit&, const SurfaceInteraction& si) {
     sp = shade(context, si, -state.ray.direction);
     const Bsdf& bsdf = sp.bsdf;
-    if (state.depth > 0 && is_visible_point(bsdf))
+    // A non-finite position would break the kd-tree's ordering; such a photon is dropped.
+    if (state.depth > 0 && is_visible_point(bsdf) && is_finite(si.p) && is_finite(state.throughput))
       out->photons.push_back({si.p, -state.ray.direction, state.throughput});
     return VertexStep::scatter(bsdf);
   }

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "photon/integrators/sppm/photon_kdtree.h"
+#include "photon/integrators/sppm/sppm_camera.h"
 #include "photon/session/progressive_session.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"
@@ -232,6 +233,30 @@ TEST(Sppm, EmptySceneAndNoLightsRenderBlack) {
   EXPECT_EQ(d.stats.sppm.iterations, 2);
   EXPECT_EQ(mean_channel(d.rgba, 0), 0.0);
   EXPECT_EQ(mean_channel(d.rgba, 3), 1.0);
+}
+
+TEST(Sppm, VisiblePointsAreDiffuseOrGlossyFromRoughness03) {
+  const auto bsdf_of = [](LobeType type, float alpha) {
+    Bsdf bsdf(Vec3(0, 0, 1), Vec3(0, 0, 1), true);
+    Lobe lobe;
+    lobe.type = type;
+    lobe.alpha = alpha;
+    bsdf.add(lobe);
+    return bsdf;
+  };
+  EXPECT_TRUE(is_visible_point(bsdf_of(LobeType::kLambert, 0.0f)));
+  EXPECT_TRUE(is_visible_point(bsdf_of(LobeType::kGgxReflection, 0.3f * 0.3f)));
+  EXPECT_TRUE(is_visible_point(bsdf_of(LobeType::kGgxGlass, 0.25f)));
+  EXPECT_FALSE(is_visible_point(bsdf_of(LobeType::kGgxReflection, 0.29f * 0.29f)));
+  EXPECT_FALSE(is_visible_point(bsdf_of(LobeType::kGgxReflection, 0.0f)));  // a mirror
+  EXPECT_FALSE(is_visible_point(bsdf_of(LobeType::kTransparent, 0.0f)));
+  // Anisotropic: as sharp as its sharper direction.
+  Bsdf aniso = bsdf_of(LobeType::kGgxReflection, 0.5f);
+  Lobe lobe = aniso.lobe(0);
+  lobe.alpha_y = 0.01f;
+  Bsdf sharp(Vec3(0, 0, 1), Vec3(0, 0, 1), true);
+  sharp.add(lobe);
+  EXPECT_FALSE(is_visible_point(sharp));
 }
 
 TEST(PhotonKdTree, FindsExactlyThePhotonsWithinTheRadiusInOneOrder) {
