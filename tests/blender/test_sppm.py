@@ -152,3 +152,18 @@ def test_sppm_shadow_catcher_keeps_only_the_shadow(blender):
     assert max(photon["away"]["rgb"]) < 0.01, report
     assert photon["sphere"]["alpha"] > 0.99, report
     assert photon["sphere"]["rgb"][0] > 0.3, report
+
+
+def test_sppm_panel_shows_its_settings_only_for_sppm(blender):
+    expr = (
+        "import bpy\n"
+        "s = bpy.context.scene\n"
+        "s.render.engine = 'PHOTON'\n"
+        "panel = bpy.types.PHOTON_PT_sppm\n"
+        "shown = {}\n"
+        "for integrator in ('SPPM', 'PHOTON_MAP'):\n"
+        "    s.photon.integrator = integrator\n"
+        "    shown[integrator] = panel.poll(bpy.context)\n"
+        "print('sppm panel:', shown, s.photon.sppm_alpha, s.photon.sppm_iterations)\n")
+    proc = blender.run(["--python-expr", expr])
+    assert "sppm panel: {'SPPM': True, 'PHOTON_MAP': False} 0.666" in proc.stdout, proc.log
