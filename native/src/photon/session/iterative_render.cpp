@@ -37,7 +37,9 @@ void RenderSession::run_iterative(const RenderContext& context, tbb::task_arena&
   const auto t0 = Clock::now();
 
   std::unique_ptr<SppmRenderer> sppm;
-  arena.execute([&] { sppm = std::make_unique<SppmRenderer>(context); });
+  std::vector<std::string> warnings;
+  arena.execute([&] { sppm = std::make_unique<SppmRenderer>(context, &warnings); });
+  add_warnings(warnings);
   Tile latest;  // the image of the last complete iteration
   bool latest_published = true;
   auto last_publish = t0;

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "photon/integrators/photon_map/photon_memory.h"
 #include "photon/integrators/sppm/photon_kdtree.h"
 #include "photon/integrators/sppm/sppm_camera.h"
 #include "photon/integrators/sppm/sppm_photons.h"
@@ -29,12 +30,43 @@ double seconds_since(Clock::time_point t0) {
 
 }  // namespace
 
-SppmRenderer::SppmRenderer(const RenderContext& context)
+uint64_t sppm_photons_that_fit(uint64_t requested, double records_per_photon, double budget_bytes) {
+  const double per_photon = records_per_photon * kSppmPeakBytesPerRecord;
+  if (!(budget_bytes > 0.0) || !(per_photon > 0.0)) return requested;
+  const double fit = std::floor(budget_bytes / per_photon);
+  return fit >= static_cast<double>(requested) ? requested
+                                               : std::max<uint64_t>(1, static_cast<uint64_t>(fit));
+}
+
+SppmRenderer::SppmRenderer(const RenderContext& context, std::vector<std::string>* warnings)
     : context_(context),
       sources_(context),
       width_(context.settings->x1 - context.settings->x0),
       height_(context.settings->y1 - context.settings->y0),
-      pixels_(static_cast<size_t>(width_) * height_) {}
+      pixels_(static_cast<size_t>(width_) * height_) {
+  const uint64_t requested = context.settings->sppm_photons_per_iteration;
+  photons_per_iteration_ = requested;
+  // The pilot's photons come from an iteration index no render reaches.
+  constexpr uint64_t kPilotPhotons = 4096;
+  constexpr uint32_t kPilotIteration = 0xFFFFFFFFu;
+  const double budget = kSppmMemoryFraction * static_cast<double>(available_memory_bytes());
+  // A photon records at most one photon per bounce: below that bound no pilot is needed.
+  constexpr double kMaxRecordsPerPhoton = 64.0;
+  if (static_cast<double>(requested) * kMaxRecordsPerPhoton * kSppmPeakBytesPerRecord < budget)
+    return;
+  const std::atomic<bool> no_cancel{false};
+  const SppmPhotonPass pilot =
+      trace_sppm_photons(context, sources_, kPilotIteration, kPilotPhotons, no_cancel);
+  const double records = static_cast<double>(pilot.photons.size()) / kPilotPhotons;
+  photons_per_iteration_ = sppm_photons_that_fit(requested, records, budget);
+  if (photons_per_iteration_ < requested && warnings)
+    warnings->push_back(
+        "sppm_photons_per_iteration = " + std::to_string(requested) + " would need about " +
+        bytes_text(static_cast<double>(requested) * records * kSppmPeakBytesPerRecord) +
+        " for one iteration's photons, more than half of the memory available (" +
+        bytes_text(2.0 * budget) + "): " + std::to_string(photons_per_iteration_) +
+        " photons per iteration are traced instead");
+}
 
 void SppmRenderer::initial_radii(const std::atomic<bool>& cancel) {
   const RenderSettings& s = *context_.settings;
@@ -93,7 +125,7 @@ bool SppmRenderer::iterate(const std::atomic<bool>& cancel) {
 
   auto t0 = Clock::now();
   SppmPhotonPass pass =
-      trace_sppm_photons(context_, sources_, iteration, s.sppm_photons_per_iteration, cancel);
+      trace_sppm_photons(context_, sources_, iteration, photons_per_iteration_, cancel);
   if (pass.cancelled) return false;
   stats_.rays += pass.rays;
   stats_.photons_recorded = pass.photons.size();
@@ -142,7 +174,7 @@ bool SppmRenderer::iterate(const std::atomic<bool>& cancel) {
   stats_.camera_seconds += seconds_since(t0);
   if (cancel.load()) return false;
   stats_.non_finite += non_finite.load();
-  stats_.photons_emitted += s.sppm_photons_per_iteration;
+  stats_.photons_emitted += photons_per_iteration_;
   ++stats_.iterations;
   return true;
 }

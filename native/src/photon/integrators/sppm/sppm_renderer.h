@@ -21,10 +21,12 @@
 
 #include <atomic>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "photon/integrators/integrator.h"
 #include "photon/integrators/photon_map/photon_sources.h"
+#include "photon/integrators/sppm/sppm_photons.h"
 
 namespace photon {
 
@@ -37,6 +39,17 @@ struct SppmStats {
   uint64_t non_finite = 0;       // camera samples dropped for a NaN / inf value
   double photon_seconds = 0.0, camera_seconds = 0.0;
 };
+
+// Peak bytes per photon recorded in an iteration: the chunks' records and their concatenation
+// (2 x 36 bytes) exist together for a moment; the kd-tree then takes the array and adds 1 byte.
+constexpr double kSppmPeakBytesPerRecord = 2.0 * sizeof(SppmPhoton) + 1.0;
+// Share of the memory available at the start that one iteration's photons may use.
+constexpr double kSppmMemoryFraction = 0.5;
+
+// Photons per iteration that fit `budget_bytes` when each emitted photon records
+// `records_per_photon` photons on average: `requested`, or fewer (at least 1). A budget of 0
+// (unknown) keeps `requested`.
+uint64_t sppm_photons_that_fit(uint64_t requested, double records_per_photon, double budget_bytes);
 
 // The per-pixel state (Hachisuka & Jensen 2009, sec. 4).
 struct SppmPixel {
@@ -51,8 +64,12 @@ class SppmRenderer {
  public:
   static constexpr size_t kBytesPerPixel = sizeof(SppmPixel);
 
-  // Renders the region of context.settings (x0, y0, x1, y1 of the full frame).
-  explicit SppmRenderer(const RenderContext& context);
+  // Renders the region of context.settings (x0, y0, x1, y1 of the full frame). A pilot trace
+  // of a few thousand photons measures how many each records; when sppm_photons_per_iteration
+  // would not fit kSppmMemoryFraction of the available memory, fewer are traced per iteration
+  // and a warning says so.
+  explicit SppmRenderer(const RenderContext& context, std::vector<std::string>* warnings = nullptr);
+  uint64_t photons_per_iteration() const { return photons_per_iteration_; }
 
   // Runs the next iteration. False when cancelled during it: its pixels are then partly
   // updated, and the renderer is not to be iterated or read again.
@@ -75,6 +92,7 @@ class SppmRenderer {
   int width_, height_;
   std::vector<SppmPixel> pixels_;
   bool radii_set_ = false;
+  uint64_t photons_per_iteration_ = 0;
   SppmStats stats_;
 };
 

@@ -259,6 +259,15 @@ TEST(Sppm, VisiblePointsAreDiffuseOrGlossyFromRoughness03) {
   EXPECT_FALSE(is_visible_point(sharp));
 }
 
+TEST(Sppm, PhotonsPerIterationAreScaledDownToTheMemoryBudget) {
+  // 2 records per photon of kSppmPeakBytesPerRecord (73 bytes): 1e6 photons need 146 MB.
+  EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 1e9), 1000000u);
+  EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 73e6), 500000u);
+  EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 1.0), 1u);        // never none
+  EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 0.0), 1000000u);  // unknown memory
+  EXPECT_EQ(sppm_photons_that_fit(1000000, 0.0, 1.0), 1000000u);  // no photon is recorded
+}
+
 TEST(PhotonKdTree, FindsExactlyThePhotonsWithinTheRadiusInOneOrder) {
   for (int count : {0, 5, 2000, 50000}) {
     std::vector<SppmPhoton> photons;
