@@ -268,6 +268,22 @@ TEST(Sppm, PhotonsPerIterationAreScaledDownToTheMemoryBudget) {
   EXPECT_EQ(sppm_photons_that_fit(1000000, 0.0, 1.0), 1000000u);  // no photon is recorded
 }
 
+TEST(Sppm, MirrorLayerOverADiffuseVisiblePointKeepsItsReflection) {
+  // A floor of 0.5 diffuse plus a 0.5 mirror under a uniform world of radiance 1: the diffuse
+  // half reflects 0.5 x 1, the mirror half shows the world, 0.5 x 1. The visible point is the
+  // floor; its mirror lobe must still be ray traced.
+  Scene scene;
+  Material floor = Material::diffuse(Vec3(0.5f));
+  floor.closures.push_back(Material::mirror(Vec3(0.5f)).closures[0]);
+  scene.materials.push_back(floor);
+  add_mesh_instance(&scene, make_quad({-10, -10, 0}, {20, 0, 0}, {0, 20, 0}), 0);
+  scene.world = World::uniform(Vec3(1.0f));
+  scene.camera.projection = Projection::kOrthographic;
+  scene.camera.set_camera_to_world(Transform::translation(Vec3(0, 0, 3)));
+  const Rendered r = render(scene, sppm_settings(8, 16, 1000));
+  EXPECT_NEAR(mean_channel(r.rgba, 0), 1.0, 0.01);
+}
+
 TEST(PhotonKdTree, FindsExactlyThePhotonsWithinTheRadiusInOneOrder) {
   for (int count : {0, 5, 2000, 50000}) {
     std::vector<SppmPhoton> photons;
