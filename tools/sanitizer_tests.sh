@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Builds the C++ unit tests with AddressSanitizer + UndefinedBehaviorSanitizer (PHOTON_SANITIZE)
-# in their own build tree and runs them, the scene fuzzer included (PHOTON_FUZZ_SECONDS, 60 s by
+# in their own build tree and runs them, the scene fuzzer included (PHOTON_FUZZ_SECONDS, 30 s by
 # default). Any sanitizer report fails the run: errors halt, leaks are checked at exit, and
 # only the system-library reports listed (and justified) in tools/sanitizers/*.supp are
 # suppressed. Registered with ctest as `sanitizer_unit_tests`; extra arguments go to
@@ -34,7 +34,7 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$SUPP/ubsa
 # Sanitized code runs several times slower: wall-time bounds (cancel latency) get 5x room here;
 # the normal build checks them unscaled.
 export PHOTON_TIMING_SLACK="${PHOTON_TIMING_SLACK:-5}"
-export PHOTON_FUZZ_SECONDS="${PHOTON_FUZZ_SECONDS:-60}"
+export PHOTON_FUZZ_SECONDS="${PHOTON_FUZZ_SECONDS:-30}"
 # The Cycles-reference node tests run every case's node code at every 4th pixel (the plain
 # build checks every pixel).
 export PHOTON_NODE_REF_STRIDE="${PHOTON_NODE_REF_STRIDE:-4}"

@@ -1,7 +1,10 @@
 """Blender's standard passes beyond Combined (View Layer > Passes > Data: Z, Mist, Normal,
-Position, UV, Object Index, Material Index; > Light: Diffuse / Glossy / Transmission Color,
-Emission): which the view layer enables, their registration, the native settings that make the
-renderer write them, and one warning naming the enabled passes Photon does not render."""
+Position, UV, Object Index, Material Index, Denoising Data; > Light: Diffuse / Glossy /
+Transmission Color, Emission; > Cryptomatte: Object, Material, Asset): which the view layer
+enables, their registration, the native settings that make the renderer write them, and one
+warning naming the enabled passes Photon does not render."""
+
+from . import cryptomatte
 
 # View layer toggle -> native pass name (as DATA_PASSES names them: Cycles' pass names).
 DATA_PASS_TOGGLES = (
@@ -30,13 +33,9 @@ _UNSUPPORTED_TOGGLES = (
     ("use_pass_environment", "Environment"),
     ("use_pass_ambient_occlusion", "Ambient Occlusion"),
     ("use_pass_shadow", "Shadow"),
-    ("use_pass_cryptomatte_object", "Cryptomatte Object"),
-    ("use_pass_cryptomatte_material", "Cryptomatte Material"),
-    ("use_pass_cryptomatte_asset", "Cryptomatte Asset"),
 )
 # The same under view_layer.cycles (present while the Cycles add-on is enabled).
 _UNSUPPORTED_CYCLES_TOGGLES = (
-    ("denoising_store_passes", "Denoising Data"),
     ("use_pass_volume_direct", "Volume Direct"),
     ("use_pass_volume_indirect", "Volume Indirect"),
     ("use_pass_shadow_catcher", "Shadow Catcher"),
@@ -45,7 +44,11 @@ _UNSUPPORTED_CYCLES_TOGGLES = (
 # Pass type for register_pass, as Cycles registers each.
 _PASS_TYPES = {"Depth": "VALUE", "Mist": "VALUE", "IndexOB": "VALUE", "IndexMA": "VALUE",
                "Normal": "VECTOR", "Position": "VECTOR", "UV": "VECTOR", "DiffCol": "COLOR",
-               "GlossCol": "COLOR", "TransCol": "COLOR", "Emit": "COLOR"}
+               "GlossCol": "COLOR", "TransCol": "COLOR", "Emit": "COLOR",
+               "Denoising Normal": "VECTOR", "Denoising Albedo": "COLOR",
+               "Denoising Depth": "VALUE"}
+# View Layer > Passes > Data > Denoising Data (Cycles' toggle, under view_layer.cycles).
+DENOISING_PASSES = ("Denoising Normal", "Denoising Albedo", "Denoising Depth")
 
 # World > Mist Pass falloff -> Cycles' exponent.
 _MIST_FALLOFF = {"QUADRATIC": 2.0, "LINEAR": 1.0, "INVERSE_QUADRATIC": 0.5}
@@ -55,13 +58,27 @@ def enabled(native, view_layer):
     """[(name, channels, channel ids, bit)] of the data passes the view layer enables, in the
     native table's order."""
     names = {name for prop, name in DATA_PASS_TOGGLES if getattr(view_layer, prop, False)}
+    cycles = getattr(view_layer, "cycles", None)
+    if cycles is not None and getattr(cycles, "denoising_store_passes", False):
+        names.update(DENOISING_PASSES)
     return [p for p in native.DATA_PASSES if p[0] in names]
 
 
+def cryptomatte_bits(native, view_layer):
+    """The native CRYPTOMATTE_* bits of the Cryptomatte passes the view layer enables."""
+    bits = 0
+    for kind, (_pass, prop) in zip(("OBJECT", "MATERIAL", "ASSET"), cryptomatte.KINDS):
+        if getattr(view_layer, prop, False):
+            bits |= getattr(native, f"CRYPTOMATTE_{kind}")
+    return bits
+
+
 def register(engine, native, scene, view_layer):
-    """Registers the enabled data passes (the compositor's Render Layers node shows them)."""
-    for name, channels, chan_id, _bit in enabled(native, view_layer):
-        engine.register_pass(scene, view_layer, name, channels, chan_id, _PASS_TYPES[name])
+    """Registers the enabled data and Cryptomatte passes (the compositor's Render Layers node
+    shows them)."""
+    for name, channels, chan_id in native.data_pass_names(settings(native, scene, view_layer)):
+        engine.register_pass(scene, view_layer, name, channels, chan_id,
+                             _PASS_TYPES.get(name, "COLOR"))
 
 
 def settings(native, scene, view_layer, origin=None):
@@ -71,6 +88,9 @@ def settings(native, scene, view_layer, origin=None):
     for _name, _channels, _chan_id, bit in enabled(native, view_layer):
         mask |= bit
     out.mask = mask
+    out.cryptomatte = cryptomatte_bits(native, view_layer)
+    out.cryptomatte_depth = int(getattr(view_layer, "pass_cryptomatte_depth", 6))
+    out.cryptomatte_default_material = cryptomatte.name_id(cryptomatte.DEFAULT_MATERIAL)
     out.alpha_threshold = float(getattr(view_layer, "pass_alpha_threshold", 0.5))
     world = scene.world
     mist = getattr(world, "mist_settings", None) if world is not None else None

@@ -277,6 +277,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         settings.data_passes = data_passes.settings(native, scene, depsgraph.view_layer,
                                                     sync_stats.origin)
         self._missing_passes = set()
+        metadata = self._cryptomatte_metadata(sync_stats, self._layer)
+        if metadata:
+            final = self.get_result()  # the render's own result (not a tile's), as Cycles does
+            for key, value in metadata:
+                final.stamp_data_add_field(key, value)
 
         session = native.RenderSession(native_scene, settings,
                                        blas_cache=self._session_blas_cache)
@@ -368,6 +373,15 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         # Free native memory now rather than when Python collects: -a renders many frames.
         del session, native_scene
         return not cancelled
+
+    @staticmethod
+    def _cryptomatte_metadata(sync_stats, layer):
+        """[(key, value)] of the Cryptomatte layers' names, hashing and manifests, which the
+        result's metadata holds as Cycles writes it (Blender's Cryptomatte node reads it)."""
+        crypto = sync_stats.cryptomatte
+        if crypto is None or not crypto.any():
+            return []
+        return crypto.layer_metadata(layer)
 
     def _layer_view_label(self, scene, view):
         """', view layer 'X', view left' when a frame has several layers or views, else ''."""

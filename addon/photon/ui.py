@@ -21,7 +21,12 @@ EXTRA_PANELS = (
 )
 # Blender's light panels are EEVEE's (diffuse/specular/volume factors, custom distance) or show
 # only the type: Photon draws its own (PHOTON_PT_light).
-EXCLUDED_PANELS = {"VIEWLAYER_PT_filter", "VIEWLAYER_PT_layer_passes", "DATA_PT_light"}
+EXCLUDED_PANELS = {"VIEWLAYER_PT_filter", "VIEWLAYER_PT_layer_passes", "DATA_PT_light",
+                   # Registered before Photon's, Blender's Simplify would sit above them (as
+                   # Cycles', Photon's own is registered after its render panels); Grease
+                   # Pencil's part does not apply: Photon does not render Grease Pencil.
+                   "RENDER_PT_simplify", "RENDER_PT_simplify_viewport",
+                   "RENDER_PT_simplify_render", "RENDER_PT_simplify_greasepencil"}
 # Characters per line of a message in a panel's error box (Blender does not wrap labels).
 MESSAGE_WIDTH = 44
 
@@ -108,6 +113,42 @@ class PHOTON_PT_radiosity(PhotonPanel, bpy.types.Panel):
         schema.draw(layout, context.scene.photon, "radiosity")
 
 
+class PHOTON_PT_simplify(PhotonPanel, bpy.types.Panel):
+    """Render > Simplify, which Blender applies while evaluating the scene Photon syncs."""
+    bl_label = "Simplify"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.render, "use_simplify", text="")
+
+    def draw(self, context):
+        pass
+
+
+class PhotonSimplifyPanel(PhotonPanel):
+    bl_parent_id = "PHOTON_PT_simplify"
+    suffix = ""  # "_render" for the final render's limits
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        render = context.scene.render
+        layout.active = render.use_simplify
+        col = layout.column(align=True)
+        col.prop(render, "simplify_subdivision" + self.suffix, text="Max Subdivision")
+        col.prop(render, "simplify_child_particles" + self.suffix, text="Max Child Particles")
+
+
+class PHOTON_PT_simplify_viewport(PhotonSimplifyPanel, bpy.types.Panel):
+    bl_label = "Viewport"
+
+
+class PHOTON_PT_simplify_render(PhotonSimplifyPanel, bpy.types.Panel):
+    bl_label = "Render"
+    suffix = "_render"
+
+
 class PHOTON_PT_film(PhotonPanel, bpy.types.Panel):
     """Film: with Cycles enabled, the very properties Cycles' Film panel edits (Photon renders
     them alike, engine.film_settings), plus Photon's Box width; else Photon's own. Cycles'
@@ -183,7 +224,28 @@ class PHOTON_PT_passes_data(PhotonViewLayerPanel, bpy.types.Panel):
         col.prop(view_layer, "use_pass_glossy_color", text="Glossy")
         col.prop(view_layer, "use_pass_transmission_color", text="Transmission")
         col.prop(view_layer, "use_pass_emit", text="Emission")
+        cycles = getattr(view_layer, "cycles", None)  # Cycles keeps the Denoising Data toggle
+        if cycles is not None:
+            layout.column(heading="Denoising").prop(cycles, "denoising_store_passes",
+                                                    text="Denoising Data")
         layout.prop(view_layer, "pass_alpha_threshold")
+
+
+class PHOTON_PT_passes_cryptomatte(PhotonViewLayerPanel, bpy.types.Panel):
+    """Blender's Cryptomatte toggles (Photon's IDs are always exact: no Accurate Mode)."""
+    bl_label = "Cryptomatte"
+    bl_parent_id = "PHOTON_PT_passes"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        view_layer = context.view_layer
+        col = layout.column(heading="Include", align=True)
+        col.prop(view_layer, "use_pass_cryptomatte_object", text="Object")
+        col.prop(view_layer, "use_pass_cryptomatte_material", text="Material")
+        col.prop(view_layer, "use_pass_cryptomatte_asset", text="Asset")
+        layout.prop(view_layer, "pass_cryptomatte_depth", text="Levels")
 
 
 class PHOTON_PT_layer_override(PhotonViewLayerPanel, bpy.types.Panel):
@@ -331,8 +393,9 @@ class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
 
 
 classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_sppm,
-           PHOTON_PT_performance,
-           PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data, PHOTON_PT_layer_override,
+           PHOTON_PT_simplify, PHOTON_PT_simplify_viewport, PHOTON_PT_simplify_render,
+           PHOTON_PT_performance, PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data,
+           PHOTON_PT_passes_cryptomatte, PHOTON_PT_layer_override,
            PHOTON_PT_light, PHOTON_PT_spot, PHOTON_PT_object_ray_visibility,
            PHOTON_PT_object_mask)
 

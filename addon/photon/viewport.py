@@ -1,11 +1,15 @@
 """Rendered shading in the 3D viewport and material/light/world preview thumbnails, on the
 native ProgressiveSession (session/progressive_session.h).
 
-view_update syncs only when `depsgraph.updates` names something besides the camera (meshes
-unchanged since the last sync are replayed from a MeshCache and keep their BVH in a BlasCache);
-view_draw reads the view from `context.region_data`, re-aims the running session when it
-changed (no sync, no rebuild), and draws its latest pass as a float texture through Blender's
-display transform. All native work runs on the session's threads, off the GIL.
+view_update sorts `depsgraph.updates` (Cycles' viewport does the same): objects that only
+moved (a transform update of a plain mesh object) are re-placed in the synced scene's BVH top
+level (native ViewportScene.move_instances; no mesh, BVH, texture or light is rebuilt), and the
+session restarts on it, tracing photons again; anything else (geometry, materials, lights, the
+world, objects shown or hidden, instancers) syncs the scene again, with meshes unchanged since
+the last sync replayed from a MeshCache and their BVHs kept in a BlasCache. view_draw reads the
+view from `context.region_data`, re-aims the running session when it changed (no sync, no
+rebuild), and draws its latest pass as a float texture through Blender's display transform.
+All native work runs on the session's threads, off the GIL.
 """
 
 import math
@@ -20,10 +24,14 @@ from gpu_extras.presets import draw_texture_2d
 from . import report, schema, sync
 from .sync import cache as sync_cache
 from .sync import camera as sync_camera
-from .sync.origin import rebased_matrix
+from .sync.origin import REBASE_RATIO, rebased_matrix
 
 # While a pass is on its way, a redraw waits this long for it instead of spinning the UI.
 DRAW_WAIT_SECONDS = 0.01
+# After a restart (an edit, a new view), a redraw waits up to this long for the session's
+# coarse first image (a few ms of rendering) rather than show the old image for another
+# redraw, which under load comes a tenth of a second or more later.
+FIRST_IMAGE_WAIT_SECONDS = 0.05
 # The viewport final-gathers at every sample (no irradiance cache: its records are placed for
 # the scene camera's pixels, and a moving view would keep missing them) with at most this many
 # rays per sample; over the viewport's samples the pixel averages as many rays as a final
@@ -40,6 +48,9 @@ last_edit_to_image_seconds = None
 last_draw = {}
 # Preview thumbnails rendered to the end (tests).
 previews_rendered = 0
+# How the viewport took edits in (tests, benchmarks): "full" syncs of the whole scene and
+# "transform" updates that only moved instances; "last" is the latest one's kind.
+sync_counts = {"full": 0, "transform": 0, "last": None}
 
 
 def tag_rendered_viewports():
@@ -189,30 +200,66 @@ class ViewportRender:
         self.settings_key = None
         self.view_key = None
         self.texture = None
-        self.texture_key = (None, None, None)  # (view serial, samples, quick) uploaded
+        # (view serial, samples, quick, rows) uploaded: a coarse first image has fewer rows
+        self.texture_key = (None, None, None, None)
         self.view_serial = None   # of the session's current view
         self.texture_rect = None  # (x, y, width, height) in region pixels, from the bottom
         self.edit_time = None     # perf_counter() of the sync the session started from
         self.error = None
+        self.viewport_scene = None  # native ViewportScene: the synced scene and its BVH
+        self.instances = {}       # object name -> its native instance indices
+        self.movable = set()      # objects whose moves only re-place their instances
+        self.object_names = None  # the depsgraph's objects at the last sync (shown/hidden)
+        self.pending_moves = set()  # objects moved since the session started
 
     # -- view_update --
     def update(self, depsgraph):
-        """view_update: marks a re-sync when something other than a camera changed. True when
-        the viewport must redraw (an edit, or new render settings, which draw() notices by
-        their key): a script's change sends no notifier that would redraw it."""
+        """view_update: sorts the edits. Objects that only moved are queued for draw() to
+        re-place; anything else marks a full re-sync. True when the viewport must redraw (an
+        edit, or new render settings, which draw() notices by their key): a script's change
+        sends no notifier that would redraw it."""
         if self.native_scene is None:
             self.needs_sync = True
             return True
+        moved = set()
         for update in depsgraph.updates:
             data = update.id
             if isinstance(data, bpy.types.Object) and data.type == 'CAMERA':
                 continue  # view_draw reads the camera
-            if isinstance(data, (bpy.types.Camera, bpy.types.Scene)):
+            if isinstance(data, bpy.types.Camera):
                 continue
-            self.needs_sync = True
+            if isinstance(data, bpy.types.Scene):
+                # Hiding or showing an object updates only the scene (checked in Blender
+                # 3.4.1), as do render settings (draw() compares their key).
+                if self._objects_changed(depsgraph):
+                    return self._mark_sync()
+                continue
+            if isinstance(data, bpy.types.Object) and self._moved_only(update, data):
+                moved.add(data.name)
+                continue
+            return self._mark_sync()
+        if moved:
+            self.pending_moves |= moved
             self.edit_time = time.perf_counter()  # for the edit-to-image benchmark
             return True
         return _settings_key(depsgraph.scene) != self.settings_key
+
+    def _mark_sync(self):
+        self.needs_sync = True
+        self.pending_moves.clear()
+        self.edit_time = time.perf_counter()  # for the edit-to-image benchmark
+        return True
+
+    def _objects_changed(self, depsgraph):
+        return frozenset(o.name for o in depsgraph.objects) != self.object_names
+
+    def _moved_only(self, update, obj):
+        """True for an update that only moved a plain mesh object: a transform update (a
+        parent's move updates its children too), no geometry or shading update (ray
+        visibility, pass index and such are shading updates), of an object whose own
+        instances are all it puts in the scene."""
+        return (update.is_updated_transform and not update.is_updated_geometry
+                and not update.is_updated_shading and obj.name in self.movable)
 
     def _stop(self):
         if self.session is not None:
@@ -226,6 +273,8 @@ class ViewportRender:
         """Ends the session and gives the synced scene's meshes back to the MeshCache (they
         are moved into the scene, not copied: the scene cannot render afterwards)."""
         self._stop()
+        self.viewport_scene = None  # its BVH points into the meshes
+        self.pending_moves.clear()
         if self.native_scene is not None:
             self.mesh_cache.reclaim(self.native_scene)
             self.native_scene = None
@@ -238,21 +287,59 @@ class ViewportRender:
         if self.edit_time is None:
             self.edit_time = time.perf_counter()
         self.blas_cache.begin_frame()  # BVHs of meshes the last sync no longer had go
+        self.instances = {}
         self.native_scene, self.sync_stats = sync.sync_scene(
-            self.native, depsgraph, self.reporter, mesh_cache=self.mesh_cache)
+            self.native, depsgraph, self.reporter, object_instances=self.instances,
+            mesh_cache=self.mesh_cache)
+        self.viewport_scene = self.native.ViewportScene(self.native_scene, self.blas_cache)
+        self.movable = _movable_objects(depsgraph, self.instances)
+        self.object_names = frozenset(o.name for o in depsgraph.objects)
         self.needs_sync = False
+        self.pending_moves.clear()
+        sync_counts["full"] += 1
+        sync_counts["last"] = "full"
+
+    def _move(self, depsgraph):
+        """Re-places the instances of the objects that moved since the session started, in
+        the synced scene and its BVH's top level, as a full sync would place them. False when
+        that cannot be sure to give what a full sync would (the caller syncs then)."""
+        names, self.pending_moves = self.pending_moves, set()
+        origin = self.sync_stats.origin
+        if origin.any():
+            return False  # a move may change the rebased scene's origin: sync again
+        indices, matrices = [], []
+        for name in sorted(names):
+            obj = depsgraph.objects.get(name)
+            if obj is None or name not in self.instances:
+                return False
+            matrix = rebased_matrix(obj.matrix_world, origin)
+            for index in self.instances[name]:
+                indices.append(index)
+                matrices.append(matrix)
+        self._stop()
+        self.viewport_scene.move_instances(indices, np.stack(matrices))
+        # The scene moved far from its size off the origin would be rebased by a full sync
+        # (sync/origin.choose_origin); with margin, as the BVH's float bounds are checked here.
+        bounds = self.viewport_scene.bounds
+        if bounds is not None:
+            lo, hi = np.array(bounds[0], np.float64), np.array(bounds[1], np.float64)
+            extent = float(np.linalg.norm(hi - lo))
+            if not float(np.abs(0.5 * (lo + hi)).max()) <= 0.5 * REBASE_RATIO * extent:
+                return False
+        sync_counts["transform"] += 1
+        sync_counts["last"] = "transform"
+        return True
 
     def _start(self, scene, view):
         (args, width, height, border) = view
         settings = _settings(self.native, scene, width, height, border)
-        self.session = self.native.ProgressiveSession(self.native_scene, settings,
-                                                      blas_cache=self.blas_cache)
+        self.session = self.native.ProgressiveSession(self.viewport_scene, settings)
         self.camera_scene.set_camera(*args)
         self.view_serial = self.session.set_view(self.camera_scene, width, height, list(border))
         self.session.start()
         # A new session counts views and samples from the start again: whatever it shows first
         # replaces the texture (which stays up meanwhile).
-        self.texture_key = (None, None, None)
+        self.texture_key = (None, None, None, None)
         self.settings_key = _settings_key(scene)
 
     # -- view_draw --
@@ -260,6 +347,8 @@ class ViewportRender:
         scene = depsgraph.scene
         try:
             if self.needs_sync or self.native_scene is None:
+                self._sync(depsgraph)
+            elif self.pending_moves and not self._move(depsgraph):
                 self._sync(depsgraph)
             key, view = viewport_view(context, depsgraph, self.sync_stats.origin)
             if self.session is None or _settings_key(scene) != self.settings_key:
@@ -283,11 +372,14 @@ class ViewportRender:
             engine.update_stats("", self.error)
             return
 
+        image = self.session.image()
+        if image is None or image[3] != self.view_serial:
+            self.session.wait_for_image(FIRST_IMAGE_WAIT_SECONDS)
         # Read before the image: a session converged by then has published its last pass.
         converged = self.session.converged
         image = self.session.image()
         if not converged and (image is None or image[3] != self.view_serial
-                              or (image[3], image[1], image[2]) == self.texture_key):
+                              or _image_key(image) == self.texture_key):
             # Nothing new yet: wait a moment for the next pass rather than spin the UI. (The
             # previous view's image stays up until the new view's first pass.)
             self.session.wait_for_samples(max(self.session.samples_done, 0) + 1,
@@ -310,16 +402,16 @@ class ViewportRender:
 
     def _upload(self, image, view):
         pixels, samples, quick, serial = image
-        key = (serial, samples, quick)
+        key = _image_key(image)
         if key == self.texture_key:
             return
-        height, width = pixels.shape[:2]
+        height, width = pixels.shape[:2]  # a coarse first image is smaller: drawn scaled up
         _, region_w, region_h, border = view
         flat = np.ascontiguousarray(pixels[::-1], dtype=np.float32).ravel()  # rows bottom-up
         buffer = gpu.types.Buffer('FLOAT', flat.size, flat)
         self.texture = gpu.types.GPUTexture((width, height), format='RGBA16F', data=buffer)
         x0, y0, x1, y1 = border
-        self.texture_rect = (x0, region_h - y1, width, height)
+        self.texture_rect = (x0, region_h - y1, x1 - x0, y1 - y0)
         self.texture_key = key
         if self.edit_time is not None:
             global last_edit_to_image_seconds
@@ -335,6 +427,33 @@ class ViewportRender:
 
     def free(self):
         self._drop_scene()
+
+
+def _image_key(image):
+    """(view serial, samples, quick, rows) of a session image: what tells two apart."""
+    pixels, samples, quick, serial = image
+    return serial, samples, quick, pixels.shape[0]
+
+
+def _movable_objects(depsgraph, instances):
+    """Names of the objects whose moves only re-place their own native instances: plain mesh
+    objects that neither instance anything (collections, particles, geometry-node instances,
+    hair) nor are instanced by another object (whose copies a move would carry along)."""
+    generated = set()
+    for inst in depsgraph.object_instances:
+        # Instance items die when iteration moves on: names only.
+        if inst.is_instance:
+            generated.add(inst.object.name)
+            if inst.parent is not None:
+                generated.add(inst.parent.name)
+    movable = set()
+    for name in instances:
+        obj = depsgraph.objects.get(name)
+        if (obj is None or obj.type != 'MESH' or name in generated or obj.is_instancer
+                or len(obj.particle_systems) or any(m.type == 'NODES' for m in obj.modifiers)):
+            continue
+        movable.add(name)
+    return movable
 
 
 # ---- Preview thumbnails (material, light, world) ----
@@ -359,6 +478,8 @@ def render_preview(engine, depsgraph):
                     break
                 samples = session.wait_for_samples(settings.samples, 0.05)
                 image = session.image()
+                if image is not None and image[0].shape[:2] != (height, width):
+                    image = None  # a coarse first look: the thumbnail waits for a full pass
                 if image is not None and image[1:3] != shown:
                     _write_result(engine, image[0], width, height)
                     shown = image[1:3]

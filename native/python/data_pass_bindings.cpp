@@ -3,6 +3,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "photon/session/data_passes.h"
@@ -20,6 +21,14 @@ void register_data_pass_classes(py::module_& m) {
       .def_readwrite("mist_depth", &DataPassSettings::mist_depth)
       .def_readwrite("mist_falloff", &DataPassSettings::mist_falloff)
       .def_readwrite("alpha_threshold", &DataPassSettings::alpha_threshold)
+      .def_readwrite("cryptomatte", &DataPassSettings::cryptomatte,
+                     "CRYPTOMATTE_OBJECT | _MATERIAL | _ASSET bits")
+      .def_property(
+          "cryptomatte_depth", [](const DataPassSettings& s) { return s.cryptomatte_depth; },
+          [](DataPassSettings& s, int depth) { s.cryptomatte_depth = std::clamp(depth, 0, 32); },
+          "IDs kept per pixel (Blender's Levels), clamped to [0, 32]")
+      .def_readwrite("cryptomatte_default_material",
+                     &DataPassSettings::cryptomatte_default_material)
       .def_property(
           "origin",
           [](const DataPassSettings& s) {
@@ -33,21 +42,34 @@ void register_data_pass_classes(py::module_& m) {
   for (const DataPassInfo& p : data_pass_table())
     table.append(py::make_tuple(p.name, p.channels, p.channel_ids, p.bit));
   m.attr("DATA_PASSES") = py::tuple(table);
+  m.attr("CRYPTOMATTE_OBJECT") = static_cast<uint32_t>(kCryptoObject);
+  m.attr("CRYPTOMATTE_MATERIAL") = static_cast<uint32_t>(kCryptoMaterial);
+  m.attr("CRYPTOMATTE_ASSET") = static_cast<uint32_t>(kCryptoAsset);
+  m.def(
+      "data_pass_names",
+      [](const DataPassSettings& settings) {
+        py::list out;
+        for (const DataPassSlot& slot : data_pass_slots(settings))
+          out.append(py::make_tuple(slot.name, slot.channels, slot.channel_ids));
+        return out;
+      },
+      py::arg("settings"),
+      "(name, channels, channel ids) of every pass `settings` asks for, Cryptomatte layers "
+      "included, in the order take_tiles' data holds them.");
 }
 
-py::object data_passes_to_dict(std::vector<float>&& data, uint32_t mask, int height, int width) {
-  const int floats = data_pass_floats(mask);
+py::object data_passes_to_dict(std::vector<float>&& data, const DataPassSettings& settings,
+                               int height, int width) {
+  const int floats = data_pass_pixel_floats(settings);
   if (data.empty() || floats == 0) return py::none();
   auto* heap = new std::vector<float>(std::move(data));
   py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
   const py::ssize_t h = height, w = width, f = sizeof(float);
   py::dict out;
-  for (const DataPassInfo& p : data_pass_table()) {
-    if (!(mask & p.bit)) continue;
-    std::vector<py::ssize_t> shape{h, w, p.channels};
+  for (const DataPassSlot& slot : data_pass_slots(settings)) {
+    std::vector<py::ssize_t> shape{h, w, slot.channels};
     std::vector<py::ssize_t> strides{w * floats * f, floats * f, f};
-    out[p.name] =
-        py::array_t<float>(shape, strides, heap->data() + data_pass_offset(mask, p.bit), owner);
+    out[py::str(slot.name)] = py::array_t<float>(shape, strides, heap->data() + slot.offset, owner);
   }
   return std::move(out);
 }

@@ -7,14 +7,17 @@
 #include <cstdint>
 #include <vector>
 
+#include "photon/integrators/data_pass_settings.h"
+
 namespace photon_python {
 
 // DataPassSettings, DATA_PASSES (name, channels, channel ids, bit) and DATA_PASS_* bits.
 void register_data_pass_classes(pybind11::module_& m);
 
-// A tile's data passes (data_pass_floats(mask) floats per pixel) as {name: array[h, w, c]},
-// or None when the tile has none.
-pybind11::object data_passes_to_dict(std::vector<float>&& data, uint32_t mask, int height,
+// A tile's data and Cryptomatte passes (data_pass_pixel_floats(settings) floats per pixel) as
+// {name: array[h, w, c]}, or None when the tile has none.
+pybind11::object data_passes_to_dict(std::vector<float>&& data,
+                                     const photon::DataPassSettings& settings, int height,
                                      int width);
 
 }  // namespace photon_python

@@ -312,6 +312,30 @@ PYBIND11_MODULE(_photon, m) {
           "Object Info of instances first .. first + len(randoms): colour, random, pass index, "
           "alpha (the object colour's fourth channel).")
       .def(
+          "set_instance_cryptomatte",
+          [](Scene& scene, size_t first, const std::vector<float>& object_ids,
+             const std::vector<float>& asset_ids) {
+            if (asset_ids.size() != object_ids.size())
+              throw py::value_error("object_ids and asset_ids differ in length");
+            if (first + object_ids.size() > scene.instances.size())
+              throw std::out_of_range("instance index");
+            for (size_t i = 0; i < object_ids.size(); ++i) {
+              scene.instances[first + i].cryptomatte_object = object_ids[i];
+              scene.instances[first + i].cryptomatte_asset = asset_ids[i];
+            }
+          },
+          py::arg("first"), py::arg("object_ids"), py::arg("asset_ids"),
+          "Cryptomatte object and asset IDs (floats made from name hashes) of instances first "
+          ".. first + len(object_ids).")
+      .def(
+          "set_material_cryptomatte",
+          [](Scene& scene, size_t material, float id) {
+            if (material >= scene.materials.size()) throw std::out_of_range("material index");
+            scene.materials[material].cryptomatte_material = id;
+          },
+          py::arg("material"), py::arg("id"),
+          "A material's Cryptomatte ID (a float made from its name's hash).")
+      .def(
           "add_texture",
           [](Scene& scene, const std::string& path, bool srgb, const std::string& extension,
              const std::string& interpolation, const std::string& alpha, bool unassociate) {
@@ -544,7 +568,7 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "take_tiles",
           [](RenderSession& s, double timeout) {
-            const uint32_t data_mask = s.settings().data_passes.mask;
+            const DataPassSettings data_settings = s.settings().data_passes;
             std::vector<Tile> tiles;
             {
               py::gil_scoped_release release;
@@ -556,7 +580,7 @@ PYBIND11_MODULE(_photon, m) {
               py::object passes = py::none();
               if (!t.passes.empty()) passes = passes_to_numpy(std::move(t.passes), h, w);
               py::object data =
-                  photon_python::data_passes_to_dict(std::move(t.data), data_mask, h, w);
+                  photon_python::data_passes_to_dict(std::move(t.data), data_settings, h, w);
               out.append(
                   py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w), passes, data));
             }

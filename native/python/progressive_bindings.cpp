@@ -9,11 +9,51 @@
 
 #include "photon/render/blas_cache.h"
 #include "photon/session/progressive_session.h"
+#include "photon/session/viewport_scene.h"
 
 namespace py = pybind11;
 using namespace photon;
 
 void bind_progressive(py::module_& m) {
+  using FloatArray = py::array_t<float, py::array::c_style | py::array::forcecast>;
+  py::class_<ViewportScene, std::shared_ptr<ViewportScene>>(m, "ViewportScene")
+      .def(py::init([](std::shared_ptr<Scene> scene, std::shared_ptr<BlasCache> blas_cache) {
+             if (!scene) throw std::invalid_argument("ViewportScene: scene is None");
+             return std::make_shared<ViewportScene>(std::move(scene), std::move(blas_cache));
+           }),
+           py::arg("scene"), py::arg("blas_cache") = nullptr,
+           "A synced scene whose BVH, lights and textures the ProgressiveSessions started on it "
+           "share (built by the first).")
+      .def(
+          "move_instances",
+          [](ViewportScene& vs, const std::vector<uint32_t>& indices, const FloatArray& matrices) {
+            if (matrices.size() != static_cast<py::ssize_t>(16 * indices.size()))
+              throw std::invalid_argument("matrices: one 4 x 4 matrix per index expected");
+            std::vector<Transform> to_world;
+            to_world.reserve(indices.size());
+            for (size_t i = 0; i < indices.size(); ++i)
+              to_world.push_back(Transform::from_rows(matrices.data() + 16 * i));
+            py::gil_scoped_release release;
+            return vs.move_instances(indices, to_world);
+          },
+          py::arg("indices"), py::arg("matrices"),
+          "Moves Scene.instances[indices] to the (N, 4, 4) row-major matrices; with its "
+          "resources built they are updated in place (top-level BVH only): True. False when "
+          "they had to be dropped (the next session rebuilds them from the moved scene). No "
+          "session may be running (RuntimeError).")
+      .def_property_readonly(
+          "bounds",
+          [](ViewportScene& vs) -> py::object {
+            Vec3 lo, hi;
+            if (!vs.bounds(&lo, &hi)) return py::none();
+            return py::make_tuple(py::make_tuple(lo.x, lo.y, lo.z),
+                                  py::make_tuple(hi.x, hi.y, hi.z));
+          },
+          "((min x, y, z), (max x, y, z)) of the built BVH, or None (not built, or empty).")
+      .def_property_readonly("builds", &ViewportScene::builds)
+      .def_property_readonly("moves_in_place", &ViewportScene::moves_in_place)
+      .def_property_readonly("built", &ViewportScene::built);
+
   py::class_<ProgressiveSession>(m, "ProgressiveSession")
       .def(py::init([](std::shared_ptr<Scene> scene, const RenderSettings& settings,
                        std::shared_ptr<BlasCache> blas_cache, bool quick_first_pass) {
@@ -24,6 +64,14 @@ void bind_progressive(py::module_& m) {
            py::arg("scene"), py::arg("settings"), py::arg("blas_cache") = nullptr,
            py::arg("quick_first_pass") = true,
            "Renders `scene` from its camera in passes up to settings.samples; start() it.")
+      .def(py::init([](std::shared_ptr<ViewportScene> viewport_scene,
+                       const RenderSettings& settings, bool quick_first_pass) {
+             if (!viewport_scene) throw std::invalid_argument("ProgressiveSession: no scene");
+             return std::make_unique<ProgressiveSession>(std::move(viewport_scene), settings,
+                                                         quick_first_pass);
+           }),
+           py::arg("viewport_scene"), py::arg("settings"), py::arg("quick_first_pass") = true,
+           "Renders a ViewportScene, reusing the resources an earlier session on it built.")
       .def("start", &ProgressiveSession::start)
       .def("cancel", &ProgressiveSession::cancel)
       .def("wait", &ProgressiveSession::wait, py::call_guard<py::gil_scoped_release>())
@@ -63,6 +111,9 @@ void bind_progressive(py::module_& m) {
       .def_property_readonly("converged", &ProgressiveSession::converged)
       .def("wait_for_samples", &ProgressiveSession::wait_for_samples, py::arg("samples"),
            py::arg("timeout"), py::call_guard<py::gil_scoped_release>())
+      .def("wait_for_image", &ProgressiveSession::wait_for_image, py::arg("timeout"),
+           py::call_guard<py::gil_scoped_release>(),
+           "Waits until an image (quick included) of the current view exists; True then.")
       .def_property_readonly("first_image_seconds", &ProgressiveSession::first_image_seconds)
       .def_property_readonly("finished", &ProgressiveSession::finished)
       .def_property_readonly("cancelled", &ProgressiveSession::cancelled)

@@ -159,3 +159,38 @@ def test_render_layers_node_shows_the_passes(blender):
     line = next(line for line in proc.stdout.splitlines() if line.startswith("SOCKETS"))
     for name in DATA_PASSES + ("DiffCol", "GlossCol", "TransCol", "Emit"):
         assert f"'{name}'" in line, f"{name} missing: {line}"
+
+
+def test_denoising_passes_match_cycles(blender, tmp_path):
+    """Denoising Normal, Albedo and Depth (View Layer > Passes > Data > Denoising Data) follow
+    Cycles' feature paths: through the specular-looking surfaces to the first rough one, with
+    the albedo of its diffuse-like closures and the light met on the way (the emitting ball, the
+    area light the camera sees, the world). The cube's glass top sends Cycles' single sample and
+    Photon's different ways at random, so its pixels are compared as a mean only."""
+    render(blender, tmp_path / "photon_", "PHOTON", "shaders", "denoise")
+    render(blender, tmp_path / "cycles_", "CYCLES", "shaders", "denoise")
+    photon = read_passes(tmp_path / "photon_0001.exr")
+    cycles = read_passes(tmp_path / "cycles_0001.exr")
+    index = cycles["IndexOB"][..., 0]
+    inside = interior(cycles["IndexOB"])
+    random_ways = index == 7
+    for name, slack in (("Denoising Normal", 0.0), ("Denoising Depth", 0.0),
+                        ("Denoising Albedo", 0.02)):
+        assert name in photon, f"Photon wrote no {name} pass: {sorted(photon)}"
+        assert np.abs(cycles[name]).max() > 0.5, f"the scene does not exercise {name}"
+        diff = np.abs(photon[name] - cycles[name]).max(-1)
+        # Principled's albedo: Photon's Fresnel of its specular, sheen and glass lobes at the
+        # view is Schlick's where Cycles interpolates its own (about 1% of the albedo).
+        tol = jitter_tolerance(cycles[name]) + slack
+        over = (diff > tol) & inside & ~random_ways
+        assert not over.any(), (
+            f"{name}: {over.sum()} pixels differ from Cycles beyond the tolerance, max "
+            f"{diff[inside & ~random_ways].max():.4g}; first at {np.argwhere(over)[:3].tolist()}")
+    # The world (0.05, 0.05, 0.08) is the background's albedo; the emitting ball's and the
+    # lamp's light add to the albedo of the surfaces behind them.
+    sky = cycles["Depth"][..., 0] >= 1e9
+    assert np.allclose(photon["Denoising Albedo"][sky], (0.05, 0.05, 0.08), atol=1e-6)
+    assert photon["Denoising Albedo"].max() > 10.0
+    ours = photon["Denoising Albedo"][random_ways].mean()
+    theirs = cycles["Denoising Albedo"][random_ways].mean()
+    assert abs(ours - theirs) < 0.2 * theirs, (ours, theirs)

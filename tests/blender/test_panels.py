@@ -21,3 +21,25 @@ def test_object_visibility_shows_the_ray_flags_photon_reads(blender):
     names = {name for name, _l, _p, _o in panels(blender)["object"]}
     assert {"OBJECT_PT_visibility", "PHOTON_PT_object_ray_visibility",
             "PHOTON_PT_object_mask"} <= names
+
+
+def test_view_layer_passes_offer_cryptomatte_and_denoising_data(blender):
+    """Passes Photon writes have their toggles under Photon Passes (Blender's own Passes
+    panel, which lists passes Photon does not write, is hidden)."""
+    data = panels(blender)["view_layer"]
+    children = {name: parent for name, _label, parent, _order in data}
+    assert children.get("PHOTON_PT_passes_cryptomatte") == "PHOTON_PT_passes", data
+    assert children.get("PHOTON_PT_passes_data") == "PHOTON_PT_passes", data
+    assert "VIEWLAYER_PT_layer_passes" not in children
+
+
+def test_simplify_is_photons_own_below_its_render_panels(blender):
+    """Blender's Simplify panel, registered before any add-on, sat above Photon's panels;
+    Photon shows its own copy of it, registered after its render panels (as Cycles does)."""
+    data = panels(blender)["render"]
+    names = [name for name, _label, _parent, _order in data]
+    assert "RENDER_PT_simplify" not in names and "RENDER_PT_simplify_greasepencil" not in names
+    parents = {name: parent for name, _label, parent, _order in data}
+    assert parents.get("PHOTON_PT_simplify_viewport") == "PHOTON_PT_simplify"
+    assert parents.get("PHOTON_PT_simplify_render") == "PHOTON_PT_simplify"
+    assert names.index("PHOTON_PT_render") < names.index("PHOTON_PT_simplify")

@@ -211,6 +211,7 @@ class MaterialTable:
         self._scene = native_scene
         self._reporter = reporter
         self._index = {}
+        self.names = {}  # native index -> the Blender material's name (None: no material)
         self._attributes = {}  # native index -> program_attributes() of its program
         self._missing_reported = set()
         self.textures = TextureTable(native_scene, reporter, pixels_type)
@@ -233,6 +234,7 @@ class MaterialTable:
                 program = None
             self._attributes[found] = program_attributes(program)
             self._index[key] = found
+            self.names[found] = material.name if material is not None else None
         return found
 
     def slot_indices(self, obj):

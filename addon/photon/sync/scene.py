@@ -5,6 +5,7 @@ import time
 import numpy as np
 
 from . import object_info
+from .. import cryptomatte
 from . import camera as sync_camera
 from . import hair as sync_hair
 from . import layers as sync_layers
@@ -30,6 +31,9 @@ class SyncStats:
         # World origin offset (float64) the native scene is built around (sync_origin): world
         # positions of the native scene plus this are Blender's.
         self.origin = np.zeros(3, dtype=np.float64)
+        # The Cryptomatte names of the synced objects, materials and assets (cryptomatte.Names;
+        # only collected for the kinds the view layer's passes enable).
+        self.cryptomatte = None
         self._release = []
 
     def release(self):
@@ -84,6 +88,14 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
     hair_strands = {}      # (object, particle system) -> strands, shared by its instances
     has_hair = {}          # object name -> whether it has hair systems to render
     render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
+    crypto = stats.cryptomatte = cryptomatte.Names.for_view_layer(depsgraph.view_layer)
+
+    def crypto_ids(obj):
+        """(object ID, asset ID) of an instance of `obj`, or None without Cryptomatte passes."""
+        if not crypto.any():
+            return None
+        return (crypto.id("CryptoObject", obj.name),
+                crypto.id("CryptoAsset", cryptomatte.asset_name(obj)))
 
     def place_hair(points):
         """Anchor of hair ribbons with these world points (zero near the origin)."""
@@ -129,7 +141,8 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
                 if override is not None:
                     hair_slots = [materials.index(override)] * len(hair_slots)
                 hair.append((index, hair_slots, visibility,
-                             mattes.of(obj, inst.parent if inst.is_instance else None), anchor))
+                             mattes.of(obj, inst.parent if inst.is_instance else None), anchor,
+                             crypto_ids(obj)))
             if obj_type == 'CURVES':
                 continue
         if obj_type in sync_mesh.UNSUPPORTED_GEOMETRY_TYPES:
@@ -168,14 +181,15 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         owner = None if inst.is_instance else obj.name
         matte = mattes.of(obj, inst.parent if inst.is_instance else None)
         pending.setdefault((index, slots, visibility, matte), []).append(
-            (np.array(inst.matrix_world, dtype=np.float64), owner, _object_info(inst, obj)))
+            (np.array(inst.matrix_world, dtype=np.float64), owner, _object_info(inst, obj),
+             crypto_ids(obj)))
 
     if mesh_cache is not None:
         mesh_cache.end()
         stats.meshes_reused, stats.meshes_exported = mesh_cache.reused, mesh_cache.exported
 
     # The world origin offset, once every world-space quantity is known in double precision.
-    stacked = {key: np.stack([matrix for matrix, _, _ in entries])
+    stacked = {key: np.stack([entry[0] for entry in entries])
                for key, entries in pending.items()}
     for key, matrices in stacked.items():
         bounds.add_instances(*mesh_bounds[key[0]], matrices)
@@ -194,19 +208,26 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         stats.instances += native_scene.add_instances(
             index, sync_origin.rebased_matrices(stacked[key], origin), list(slots), visibility,
             holdout=holdout, shadow_catcher=catcher)
-        _set_object_info(native_scene, first, [info for _, _, info in entries])
+        _set_object_info(native_scene, first, [entry[2] for entry in entries])
+        _set_cryptomatte(native_scene, first, [entry[3] for entry in entries])
         if object_instances is not None:
-            for offset, (_, owner, _) in enumerate(entries):
+            for offset, (_, owner, _, _) in enumerate(entries):
                 if owner is not None:
                     object_instances.setdefault(owner, []).append(first + offset)
 
-    for index, slots, visibility, (holdout, catcher), anchor in hair:
+    for index, slots, visibility, (holdout, catcher), anchor, ids in hair:
         # Ribbons are stored relative to their anchor: placed back at anchor - origin.
         placement = np.identity(4, dtype=np.float64)
         placement[:3, 3] = anchor
+        first = native_scene.instance_count
         stats.instances += native_scene.add_instances(
             index, sync_origin.rebased_matrix(placement, origin)[None], slots, visibility,
             holdout=holdout, shadow_catcher=catcher)
+        _set_cryptomatte(native_scene, first, [ids])
+    if crypto.any():
+        for index, name in materials.names.items():
+            name = cryptomatte.DEFAULT_MATERIAL if name is None else name
+            native_scene.set_material_cryptomatte(index, crypto.id("CryptoMaterial", name))
 
     for obj_type, names in sorted(unsupported.items()):
         shown = ", ".join(sorted(names)[:5]) + (" ..." if len(names) > 5 else "")
@@ -232,6 +253,12 @@ def _object_info(inst, obj):
                  object_info.hash_uint2(object_info.hash_string(obj.name), 0))
     color = tuple(float(c) for c in obj.color[:4])
     return color, float(obj.pass_index), (random_id & 0xFFFFFFFF) / 0xFFFFFFFF
+
+
+def _set_cryptomatte(native_scene, first, ids):
+    """Cryptomatte object and asset IDs of instances first.. (ids: (object, asset) or None)."""
+    if ids and ids[0] is not None:
+        native_scene.set_instance_cryptomatte(first, [i[0] for i in ids], [i[1] for i in ids])
 
 
 def _set_object_info(native_scene, first, infos):

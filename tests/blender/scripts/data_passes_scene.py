@@ -3,12 +3,13 @@ Index), rendered by the engine named after `--` (PHOTON or CYCLES) with one samp
 pixel centre, so both engines see the same first hits. Used by test_data_passes.py.
 
     blender -b --factory-startup --addons photon -o OUT -F OPEN_EXR_MULTILAYER \
-        --python data_passes_scene.py -f 1 -- ENGINE [extra: ortho | all | shaders | veil]
+        --python data_passes_scene.py -f 1 -- ENGINE [extra: ortho | all | shaders | veil | denoise]
 
 `veil` hangs two planes in front of the objects: Alpha 0 (index 12) and Alpha 0.7 (index 13),
 on either side of View Layer > Passes > Alpha Threshold (0.5).
 `shaders` gives the objects materials with every kind of closure (Principled metal and glass,
 Glossy, Glass, Translucent and Emission nodes) and enables the colour passes and Emit.
+`denoise` enables the Denoising Data passes (Denoising Normal, Albedo, Depth).
 """
 
 import math
@@ -88,6 +89,9 @@ if "all" in extra:
     # Passes Photon does not write: they must be reported, not silently zero.
     layer.use_pass_ambient_occlusion = True
     layer.use_pass_environment = True
+if "denoise" in extra:
+    # View Layer > Passes > Data > Denoising Data: Denoising Normal, Albedo and Depth.
+    layer.cycles.denoising_store_passes = True
 if "shaders" in extra:
     for prop in ("use_pass_diffuse_color", "use_pass_glossy_color",
                  "use_pass_transmission_color", "use_pass_emit"):

@@ -2,11 +2,11 @@
 
 Args: RESULT_PATH MODE BLEND_PATH
   make    builds the animated scene (a small Cornell box whose camera, ball and lamp move over
-          100 frames, 16 x 16 pixels, 1 sample) and saves it as BLEND_PATH;
+          60 frames, 16 x 16 pixels, 1 sample) and saves it as BLEND_PATH;
   render  is run before `-a` on that file: a render_post handler prints one
           "Photon soak: frame N rss KB" line per frame (the test parses stdout, since `-a` runs
           after this script has returned);
-  bake    runs photon.bake_lighting 50 times on the loaded file (colour attributes and
+  bake    runs photon.bake_lighting 30 times on the loaded file (colour attributes and
           lightmaps) and returns the RSS after every bake.
 """
 
@@ -15,8 +15,8 @@ import bpy
 import builders
 import harness
 
-FRAMES = 100
-BAKES = 50
+FRAMES = 60
+BAKES = 30
 
 
 def rss_kb():

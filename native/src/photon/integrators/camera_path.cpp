@@ -21,12 +21,7 @@ bool add_escaped_or_lamp(const RenderContext& context, const Ray& ray, bool foun
   if (!found && count_emission) {
     // The ray left the scene (camera rays too, whatever their clip distance): world and suns.
     if (!(camera_primary && context.settings->transparent_background)) {
-      // A world that tells camera rays apart (Light Path) shows them its camera branch.
-      const World& world = context.scene->world;
-      *direct += throughput * (mask == kVisibleCamera && world.reads_ray_type
-                                   ? world_radiance(world, ray.direction, kRayCamera,
-                                                    context.textures)
-                                   : context.emitters->world_radiance(ray.direction));
+      *direct += throughput * world_seen_by(context, ray, mask);
     }
     *direct += throughput * context.lights->distant_radiance(ray.direction, mask);
   }
@@ -135,6 +130,14 @@ class CameraVisitor {
 };
 
 }  // namespace
+
+Vec3 world_seen_by(const RenderContext& context, const Ray& ray, uint32_t mask) {
+  // A world that tells camera rays apart (Light Path) shows them its camera branch.
+  const World& world = context.scene->world;
+  return mask == kVisibleCamera && world.reads_ray_type
+             ? world_radiance(world, ray.direction, kRayCamera, context.textures)
+             : context.emitters->world_radiance(ray.direction);
+}
 
 ShadeRay camera_shade_ray(const PathState& state, float path_length) {
   ShadeRay ray;

@@ -58,6 +58,10 @@ CameraWalk camera_render_walk(const RenderContext& context,
 // any camera sample may gather, not where one random path happened to survive.
 CameraWalk cache_placement_walk(const RenderContext& context);
 
+// Radiance of the world along a ray that left the scene with visibility class `mask` (a world
+// that tells camera rays apart shows them its camera branch); suns are not included.
+Vec3 world_seen_by(const RenderContext& context, const Ray& ray, uint32_t mask);
+
 // Walks the path of one camera ray, calling `at_diffuse` at every vertex with a diffuse lobe.
 // `first`, if given, is the camera ray's already traced first hit.
 void walk_camera_path(const RenderContext& context, const Ray& camera_ray, const CameraHit* first,

@@ -20,7 +20,17 @@ enum DataPassBits : uint32_t {
   kPassGlossyColor = 1u << 8,
   kPassTransmissionColor = 1u << 9,
   kPassEmission = 1u << 10,
-  kPassAllData = (1u << 11) - 1,
+  kPassDenoisingNormal = 1u << 11,
+  kPassDenoisingAlbedo = 1u << 12,
+  kPassDenoisingDepth = 1u << 13,
+  kPassAllData = (1u << 14) - 1,
+};
+
+// The Cryptomatte passes (Object, Material, Asset), after the data passes in a pixel.
+enum CryptomatteBits : uint32_t {
+  kCryptoObject = 1u << 0,
+  kCryptoMaterial = 1u << 1,
+  kCryptoAsset = 1u << 2,
 };
 
 // The data passes a render writes besides the image.
@@ -35,6 +45,11 @@ struct DataPassSettings {
   // Added to Position: the world origin offset the scene was synced around (far from the
   // origin, positions are sent relative to it).
   Vec3 origin{0.0f};
+  uint32_t cryptomatte = 0;   // CryptomatteBits
+  int cryptomatte_depth = 6;  // Blender's Levels: IDs kept per pixel (two per RGBA layer)
+  // The Cryptomatte material ID of surfaces without a material (the add-on hashes the name
+  // Cycles gives its default surface).
+  float cryptomatte_default_material = 0.0f;
 };
 
 }  // namespace photon

@@ -245,11 +245,7 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
     for (std::string& w : blas_cache->take_warnings()) warnings_->push_back(std::move(w));
 
   if (!instances_.empty()) {
-    RTCBounds b;
-    rtcGetSceneBounds(top_, &b);
-    bounds_min_ = Vec3(b.lower_x, b.lower_y, b.lower_z);
-    bounds_max_ = Vec3(b.upper_x, b.upper_y, b.upper_z);
-    length_scale_ = scene_length_scale(bounds_min_, bounds_max_);
+    update_bounds();
     if (warnings_ && scene_beyond_float_precision(bounds_min_, bounds_max_)) {
       const double extent = length(bounds_max_ - bounds_min_);
       const double distance =
@@ -274,6 +270,56 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
       warnings_->push_back(text);
     }
   }
+}
+
+void Accel::update_bounds() {
+  if (instances_.empty()) return;
+  RTCBounds b;
+  rtcGetSceneBounds(top_, &b);
+  bounds_min_ = Vec3(b.lower_x, b.lower_y, b.lower_z);
+  bounds_max_ = Vec3(b.upper_x, b.upper_y, b.upper_z);
+  length_scale_ = scene_length_scale(bounds_min_, bounds_max_);
+}
+
+bool Accel::update_instance_transforms(const std::vector<uint32_t>& scene_indices) {
+  if (cancelled_) return false;
+  // First check every move, so a refused one leaves the Accel as it was.
+  std::vector<std::pair<uint32_t, InstanceData>> moved;
+  moved.reserve(scene_indices.size());
+  for (uint32_t index : scene_indices) {
+    if (index >= scene_.instances.size() || index >= embree_instance_.size()) return false;
+    const Instance& inst = scene_.instances[index];
+    const bool traced_before = embree_instance_[index] != UINT32_MAX;
+    const bool has_blas = inst.mesh < mesh_scenes_.size() && mesh_scenes_[inst.mesh];
+    if (!has_blas) {
+      if (traced_before) return false;
+      continue;  // never traced, whatever its transform
+    }
+    InstanceData data;
+    const bool usable =
+        inst.object_to_world.is_finite() && inst.object_to_world.normal_matrix(data.normal_matrix);
+    if (usable != traced_before) return false;
+    if (usable) moved.emplace_back(embree_instance_[index], data);
+  }
+  for (const auto& [id, data] : moved) {
+    InstanceData& inst = instances_[id];
+    std::memcpy(inst.normal_matrix, data.normal_matrix, sizeof inst.normal_matrix);
+    const Transform& to_world = scene_.instances[inst.scene_index].object_to_world;
+    float xf[12];  // 3x4 column major, as the constructor sets it
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 3; ++r) xf[c * 3 + r] = to_world.m[r][c];
+    RTCGeometry geom = rtcGetGeometry(top_, id);
+    rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xf);
+    rtcCommitGeometry(geom);
+  }
+  // Only the top level is rebuilt (over instance boxes: microseconds for a few thousand). The
+  // build's cancel flag belonged to the render that built the Accel, which may be gone: this
+  // short build is not cancellable.
+  rtcSetSceneProgressMonitorFunction(top_, nullptr, nullptr);
+  cancel_ = nullptr;
+  rtcCommitScene(top_);
+  update_bounds();
+  return true;
 }
 
 Accel::~Accel() {

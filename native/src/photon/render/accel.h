@@ -97,6 +97,16 @@ class Accel {
   float length_scale() const { return length_scale_; }
   RTCScene top_level() const { return top_; }
 
+  // Moves the instances Scene::instances[scene_indices[k]] to the transforms the scene now
+  // holds (the caller changed their object_to_world): their Embree instance transforms and
+  // normal matrices are set and only the top level is rebuilt; no mesh BVH is touched. Bounds
+  // and length scale are recomputed as the constructor computes them, so the Accel then traces
+  // exactly as one built from the moved scene. False, with nothing changed, when the move
+  // changes which instances are traced (a transform that was or becomes non-finite or
+  // singular, an instance without a BVH) or the build was cancelled: build a new Accel then.
+  // No ray may be traced meanwhile.
+  bool update_instance_transforms(const std::vector<uint32_t>& scene_indices);
+
  private:
   // What shading reads per hit, kept compact (one cache line) and free of pointer chains.
   struct InstanceData {
@@ -132,6 +142,8 @@ class Accel {
   bool commit(RTCScene scene);
   // Releases every BVH and leaves an empty, committed top level.
   void clear_after_cancel();
+  // Bounds and length scale of the committed top level (nothing instanced: left as they are).
+  void update_bounds();
 };
 
 // A shadow ray between two surface points (p with normal ng, q with normal nq), both ends

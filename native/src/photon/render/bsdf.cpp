@@ -330,6 +330,10 @@ Vec3 lobe_albedo(const Lobe& l, const Vec3& wo, float eta) {
 
 }  // namespace
 
+Vec3 lobe_reflection_fresnel(const Lobe& lobe, float cos_oh, float eta) {
+  return reflection_fresnel(lobe, cos_oh, eta);
+}
+
 uint8_t Lobe::flags() const {
   const uint8_t rough = is_delta(*this) ? kLobeSpecular : kLobeGlossy;
   switch (type) {

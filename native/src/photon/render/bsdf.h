@@ -89,6 +89,10 @@ struct BsdfSample {
   bool is_delta() const { return (flags & kLobeSpecular) != 0; }
 };
 
+// The Fresnel factor of a kGgxReflection lobe (its FresnelMode) at the microfacet cosine
+// `cos_oh`, with `eta` the relative index of refraction of the side wo is on.
+Vec3 lobe_reflection_fresnel(const Lobe& lobe, float cos_oh, float eta);
+
 class Bsdf {
  public:
   static constexpr int kMaxLobes = 8;

@@ -94,10 +94,12 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
       emissive_(textures_.cancelled() || accel_.cancelled() ? nothing() : scene, accel_,
                 &textures_),
       // A cancelled render skips tabulating an environment (and keeps the constant colour).
-      emitters_(lights_, emissive_,
-                textures_.cancelled() || accel_.cancelled() ? World::uniform(scene.world.color)
-                                                            : lit_world(scene.world, textures_),
-                EmitterSet::kEveryLightMax, cancel) {
+      emitters_(std::make_unique<EmitterSet>(lights_, emissive_,
+                                             textures_.cancelled() || accel_.cancelled()
+                                                 ? World::uniform(scene.world.color)
+                                                 : lit_world(scene.world, textures_),
+                                             EmitterSet::kEveryLightMax, cancel)),
+      scene_(scene) {
   warn_out_of_range(scene, textures_, warnings);
   const int map_width = EnvironmentEmitter::clamped_width(scene.world.sample_map_width);
   if (warnings && scene.world.radiance && map_width != scene.world.sample_map_width)
@@ -109,7 +111,40 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
   context_.settings = &settings;
   context_.emissive = &emissive_;
   context_.textures = &textures_;
-  context_.emitters = &emitters_;
+  context_.emitters = emitters_.get();
+}
+
+namespace {
+
+bool same(const Vec3& a, const Vec3& b) {
+  return a.x == b.x && a.y == b.y && a.z == b.z;
+}
+
+bool same_triangles(const EmissiveMeshes& a, const EmissiveMeshes& b) {
+  if (a.size() != b.size() || a.length_scale() != b.length_scale()) return false;
+  for (size_t i = 0; i < a.size(); ++i) {
+    const EmissiveTriangle &s = a.triangle(i), &t = b.triangle(i);
+    if (!(same(s.p0, t.p0) && same(s.e1, t.e1) && same(s.e2, t.e2) && same(s.normal, t.normal) &&
+          s.area == t.area && same(s.radiance, t.radiance)))
+      return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool SceneResources::update_instance_transforms(const std::vector<uint32_t>& scene_indices) {
+  if (textures_.cancelled() || !accel_.update_instance_transforms(scene_indices)) return false;
+  EmissiveMeshes moved(scene_, accel_, &textures_);
+  if (same_triangles(moved, emissive_)) return true;
+  // The emitters point at the emissive triangles and the lamps: rebuilt on the new triangles
+  // (the world, unchanged, is tabulated again: EmitterSet owns its environment emitter).
+  emitters_.reset();
+  emissive_ = std::move(moved);
+  emitters_ = std::make_unique<EmitterSet>(lights_, emissive_, lit_world(scene_.world, textures_),
+                                           EmitterSet::kEveryLightMax);
+  context_.emitters = emitters_.get();
+  return true;
 }
 
 }  // namespace photon

@@ -41,14 +41,23 @@ class SceneResources {
   const LightSet& lights() const { return lights_; }
   const TextureSet& textures() const { return textures_; }
   const EmissiveMeshes& emissive() const { return emissive_; }
-  const EmitterSet& emitters() const { return emitters_; }
+  const EmitterSet& emitters() const { return *emitters_; }
+
+  // Moved objects: the caller changed Scene::instances[i].object_to_world of these indices.
+  // The BVH's top level is rebuilt around them (Accel::update_instance_transforms), and the
+  // emissive triangles (world space) with the emitters built on them are rebuilt only when
+  // they changed; textures, lamps and mesh BVHs stay. Afterwards everything equals what a
+  // SceneResources built from the moved scene would hold. False when the Accel refused the
+  // move (see there): build new resources then.
+  bool update_instance_transforms(const std::vector<uint32_t>& scene_indices);
 
  private:
   TextureSet textures_;  // first: the BVH is not needed to convert images
   Accel accel_;
   LightSet lights_;
   EmissiveMeshes emissive_;
-  EmitterSet emitters_;
+  std::unique_ptr<EmitterSet> emitters_;  // rebuilt in place when emissive triangles move
+  const Scene& scene_;
   RenderContext context_;
 };
 

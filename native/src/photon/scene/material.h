@@ -132,6 +132,7 @@ struct Material {
   // read (empty when every input is a constant or a plain image lookup).
   ShaderProgram program;
   float pass_index = 0.0f;  // Object Info's Material Index
+  float cryptomatte_material = 0.0f;  // Cryptomatte ID from the name's hash (zero: none)
 
   // Single-closure materials for tests, the CLI and the built-in scenes.
   static Material diffuse(const Vec3& color, const std::string& name = "diffuse");

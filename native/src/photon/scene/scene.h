@@ -76,6 +76,9 @@ struct Instance {
   float alpha = 1.0f;   // the object colour's alpha (Object Info's Alpha)
   float random = 0.0f;  // in [0, 1]
   float pass_index = 0.0f;
+  // Cryptomatte IDs of the object and of its asset (the top of its parent chain), as floats
+  // made from the names' hashes (zero: none).
+  float cryptomatte_object = 0.0f, cryptomatte_asset = 0.0f;
 };
 
 enum class LightType : uint8_t { kPoint, kSpot, kSun, kArea };

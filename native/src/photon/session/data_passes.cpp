@@ -9,12 +9,27 @@
 #include "photon/render/accel.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
+#include "photon/session/denoising_features.h"
 
 namespace photon {
 namespace {
 
 // Cycles' film conversion of a Depth pass nothing was written to (the background).
 constexpr float kBackgroundDepth = 1e10f;
+
+// The random stream of the denoising feature paths' bounces, apart from the image's.
+constexpr uint64_t kDenoisingFeatureStream = 0x64656e6f69736531ull;
+
+// The Cryptomatte kinds in Blender's pass order, with their pass names.
+struct CryptoKind {
+  uint32_t bit;
+  const char* name;
+};
+constexpr CryptoKind kCryptoKinds[] = {
+    {kCryptoObject, "CryptoObject"},
+    {kCryptoMaterial, "CryptoMaterial"},
+    {kCryptoAsset, "CryptoAsset"},
+};
 
 Vec3 camera_position(const Camera& camera) {
   const auto& m = camera.camera_to_world.m;
@@ -145,6 +160,9 @@ const std::vector<DataPassInfo>& data_pass_table() {
       {kPassGlossyColor, "GlossCol", 3, "RGB"},
       {kPassTransmissionColor, "TransCol", 3, "RGB"},
       {kPassEmission, "Emit", 3, "RGB"},
+      {kPassDenoisingNormal, "Denoising Normal", 3, "XYZ"},
+      {kPassDenoisingAlbedo, "Denoising Albedo", 3, "RGB"},
+      {kPassDenoisingDepth, "Denoising Depth", 1, "Z"},
   };
   return table;
 }
@@ -166,6 +184,32 @@ int data_pass_offset(uint32_t mask, uint32_t bit) {
   return -1;
 }
 
+std::vector<DataPassSlot> data_pass_slots(const DataPassSettings& settings) {
+  std::vector<DataPassSlot> slots;
+  int offset = 0;
+  for (const DataPassInfo& p : data_pass_table()) {
+    if (!(settings.mask & p.bit)) continue;
+    slots.push_back({p.name, p.channels, p.channel_ids, offset});
+    offset += p.channels;
+  }
+  const int layers = cryptomatte_layers(std::max(settings.cryptomatte_depth, 0));
+  for (const CryptoKind& kind : kCryptoKinds) {
+    if (!(settings.cryptomatte & kind.bit)) continue;
+    for (int layer = 0; layer < layers; ++layer) {
+      const std::string index = (layer < 10 ? "0" : "") + std::to_string(layer);
+      slots.push_back({kind.name + index, 4, "RGBA", offset});
+      offset += 4;
+    }
+  }
+  return slots;
+}
+
+int data_pass_pixel_floats(const DataPassSettings& settings) {
+  int n = 0;
+  for (const DataPassSlot& slot : data_pass_slots(settings)) n += slot.channels;
+  return n;
+}
+
 DataPassRow::DataPassRow(const RenderContext& context, const DataPassSettings& settings,
                          size_t width)
     : context_(context),
@@ -174,12 +218,56 @@ DataPassRow::DataPassRow(const RenderContext& context, const DataPassSettings& s
       floats_(data_pass_floats(settings.mask)),
       sums_(width * floats_),
       mist_(width),
-      first_hit_(width) {}
+      first_hit_(width),
+      pixel_floats_(data_pass_pixel_floats(settings)) {
+  for (const CryptoKind& kind : kCryptoKinds) {
+    if (!(settings.cryptomatte & kind.bit) || settings.cryptomatte_depth <= 0) continue;
+    crypto_kinds_.push_back(kind.bit);
+    crypto_rows_.emplace_back(width, settings.cryptomatte_depth);
+  }
+}
+
+DataPassRow::~DataPassRow() = default;
 
 void DataPassRow::clear() {
   std::fill(sums_.begin(), sums_.end(), 0.0f);
   std::fill(mist_.begin(), mist_.end(), 0.0f);
   std::fill(first_hit_.begin(), first_hit_.end(), 0);
+  for (CryptomatteRow& row : crypto_rows_) row.clear();
+}
+
+void DataPassRow::add_denoising_features(float* px, int sample, uint64_t pixel_index,
+                                         const Ray& ray, const CameraHit& first) const {
+  const RenderSettings& s = *context_.settings;
+  Sampler sampler(hash_combine(s.seed, kDenoisingFeatureStream), pixel_index,
+                  static_cast<uint32_t>(sample), static_cast<uint32_t>(s.samples));
+  const DenoisingFeatures f = trace_denoising_features(context_, ray, first, sampler);
+  const uint32_t mask = settings_.mask;
+  if (mask & kPassDenoisingNormal)
+    add3(px + data_pass_offset(mask, kPassDenoisingNormal), f.normal);
+  if (mask & kPassDenoisingAlbedo)
+    add3(px + data_pass_offset(mask, kPassDenoisingAlbedo), f.albedo);
+  if (mask & kPassDenoisingDepth) px[data_pass_offset(mask, kPassDenoisingDepth)] += f.depth;
+}
+
+void DataPassRow::add_cryptomatte(size_t i, const SurfaceInteraction& si, float weight) {
+  for (size_t k = 0; k < crypto_kinds_.size(); ++k) {
+    float id = 0.0f;
+    switch (crypto_kinds_[k]) {
+      case kCryptoObject:
+        id = si.object ? si.object->cryptomatte_object : 0.0f;
+        break;
+      case kCryptoMaterial:
+        id = si.mat && si.mat != &Scene::default_material()
+                 ? si.mat->cryptomatte_material
+                 : settings_.cryptomatte_default_material;
+        break;
+      case kCryptoAsset:
+        id = si.object ? si.object->cryptomatte_asset : 0.0f;
+        break;
+    }
+    crypto_rows_[k].add(i, id, weight);
+  }
 }
 
 void DataPassRow::add_lamps(Ray ray, float t_end, const Vec3& throughput, float* px) const {
@@ -198,9 +286,11 @@ void DataPassRow::add_lamps(Ray ray, float t_end, const Vec3& throughput, float*
   }
 }
 
-void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraHit& first) {
+void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& camera_ray,
+                      const CameraHit& first) {
   const uint32_t mask = settings_.mask;
-  if (!mask) return;
+  const bool crypto = !crypto_rows_.empty();
+  if (!mask && !crypto) return;
   // Written once per pixel (first sample) or once per sample, at the first hit opaque enough.
   constexpr uint32_t kFirstSample =
       kPassDepth | kPassPosition | kPassObjectIndex | kPassMaterialIndex;
@@ -211,6 +301,9 @@ void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraH
   const uint32_t single = mask & (sample == 0 ? kSingle : kSingle & ~kFirstSample);
   const Camera& camera = context_.scene->camera;
   float* px = &sums_[i * floats_];
+  if (mask & (kPassDenoisingNormal | kPassDenoisingAlbedo | kPassDenoisingDepth))
+    add_denoising_features(px, sample, pixel_index, camera_ray, first);
+  const bool along_path = (mask & kAlongPath) || crypto;
 
   Ray ray = camera_ray;
   Hit hit = first.hit;
@@ -222,7 +315,7 @@ void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraH
   const int max_hits = std::max(context_.settings->max_depth, 0) + 1;
   for (int n = 0; n < max_hits; ++n) {
     if (mask & kPassEmission) add_lamps(ray, found ? hit.t : ray.tmax, throughput, px);
-    if (!found || (single_done && !(mask & kAlongPath))) break;
+    if (!found || (single_done && !along_path)) break;
     const SurfaceInteraction si = context_.accel->interaction(hit);
     const Vec3 to_point = si.p - camera_position(camera);
     path_length += hit.t;
@@ -282,6 +375,7 @@ void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraH
     }
     if (mask & kPassEmission)
       add3(px + data_pass_offset(mask, kPassEmission), throughput * shading.emission);
+    if (crypto) add_cryptomatte(i, si, average(throughput) * (1.0f - average(transparency)));
 
     // On through the Transparent closures (Cycles samples them as a straight-on bounce; their
     // expected contribution is the throughput times their weight).
@@ -297,19 +391,27 @@ void DataPassRow::add(size_t i, int sample, const Ray& camera_ray, const CameraH
 void DataPassRow::finish(int samples, float* out) const {
   const uint32_t mask = settings_.mask;
   const float inv = 1.0f / std::max(samples, 1);
+  const int crypto_floats = 4 * cryptomatte_layers(settings_.cryptomatte_depth);
   for (size_t i = 0; i < width_; ++i) {
     const float* src = &sums_[i * floats_];
-    float* dst = out + i * floats_;
+    float* dst = out + i * pixel_floats_;
     std::copy(src, src + floats_, dst);
     if (mask & kPassDepth && !first_hit_[i])
       dst[data_pass_offset(mask, kPassDepth)] = kBackgroundDepth;
-    for (uint32_t bit : {kPassNormal, kPassUv, kPassDiffuseColor, kPassGlossyColor,
-                         kPassTransmissionColor, kPassEmission}) {
+    for (uint32_t bit :
+         {kPassNormal, kPassUv, kPassDiffuseColor, kPassGlossyColor, kPassTransmissionColor,
+          kPassEmission, kPassDenoisingNormal, kPassDenoisingAlbedo}) {
       if (!(mask & bit)) continue;
+      // Emit is light: the film's exposure scales it as it scales Combined (Cycles' passes
+      // with use_exposure); colours, albedos and geometry are not light.
+      const float scale = bit == kPassEmission ? inv * context_.settings->exposure : inv;
       float* p = dst + data_pass_offset(mask, bit);
-      for (int c = 0; c < 3; ++c) p[c] *= inv;
+      for (int c = 0; c < 3; ++c) p[c] *= scale;
     }
     if (mask & kPassMist) dst[data_pass_offset(mask, kPassMist)] = 1.0f - mist_[i] * inv;
+    if (mask & kPassDenoisingDepth) dst[data_pass_offset(mask, kPassDenoisingDepth)] *= inv;
+    for (size_t k = 0; k < crypto_rows_.size(); ++k)
+      crypto_rows_[k].write(i, samples, dst + floats_ + k * crypto_floats);
   }
 }
 

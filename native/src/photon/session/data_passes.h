@@ -8,14 +8,23 @@
 //  - Diffuse / Glossy / Transmission Color are the summed weights of the hit's closures of that
 //    kind (surface_shader_diffuse etc.), Emit its emitted radiance and that of the lamps the
 //    camera sees, averaged over all samples.
-// Values are taken at the camera ray's first hit, so they depend on (seed, pixel, sample) only.
+//  - Denoising Normal / Albedo / Depth follow Cycles' denoising features
+//    (session/denoising_features.h), averaged over all samples.
+//  - Cryptomatte Object / Material / Asset rank the IDs of the surfaces each sample meets,
+//    straight through Transparent closures, weighted by the share of the sample they take
+//    (Cycles: the path throughput's average times one minus the transparency's), as
+//    session/cryptomatte.h lays them out.
+// Values depend on (seed, pixel, sample) only.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
+#include <string>
 #include <vector>
 
 #include "photon/integrators/integrator.h"
+#include "photon/session/cryptomatte.h"
 
 namespace photon {
 
@@ -34,20 +43,42 @@ int data_pass_floats(uint32_t mask);
 // Offset of `bit`'s first float within a pixel of `mask` (-1 when `bit` is not in `mask`).
 int data_pass_offset(uint32_t mask, uint32_t bit);
 
+// A pass within a pixel's floats (data passes, then Cryptomatte layers), named and laid out
+// as Blender registers it ("CryptoObject00", 4 channels "RGBA").
+struct DataPassSlot {
+  std::string name;
+  int channels = 0;
+  std::string channel_ids;
+  int offset = 0;
+};
+
+// Every pass `settings` asks for, in pixel order.
+std::vector<DataPassSlot> data_pass_slots(const DataPassSettings& settings);
+// Floats per pixel of every pass `settings` asks for.
+int data_pass_pixel_floats(const DataPassSettings& settings);
+
 // Accumulates the data passes of one row of pixels over its samples.
 class DataPassRow {
  public:
   DataPassRow(const RenderContext& context, const DataPassSettings& settings, size_t width);
+  ~DataPassRow();
 
   void clear();
-  // Sample `sample` of pixel `i`: the camera ray and its first hit.
-  void add(size_t i, int sample, const Ray& ray, const CameraHit& first);
-  // Writes width * data_pass_floats(mask) floats: the row's passes after `samples` samples.
+  // Sample `sample` of pixel `i` (`pixel_index` in the full frame): the camera ray and its
+  // first hit.
+  void add(size_t i, int sample, uint64_t pixel_index, const Ray& ray, const CameraHit& first);
+  // Writes width * data_pass_pixel_floats(settings) floats: the row's passes after `samples`
+  // samples.
   void finish(int samples, float* out) const;
 
  private:
   // Adds the lamps that the segment of `ray` up to `t_end` meets to the Emit pass of `px`.
   void add_lamps(Ray ray, float t_end, const Vec3& throughput, float* px) const;
+  // Adds the sample's denoising features to the pixel's sums.
+  void add_denoising_features(float* px, int sample, uint64_t pixel_index, const Ray& ray,
+                              const CameraHit& first) const;
+  // Counts a surface met with `weight` into the enabled Cryptomatte rows.
+  void add_cryptomatte(size_t i, const SurfaceInteraction& si, float weight);
 
   const RenderContext& context_;
   DataPassSettings settings_;
@@ -56,6 +87,10 @@ class DataPassRow {
   std::vector<float> sums_;         // width * floats_
   std::vector<float> mist_;         // per pixel: sum of (1 - m) * alpha
   std::vector<uint8_t> first_hit_;  // the first sample saw a surface
+  int pixel_floats_;
+  // The enabled Cryptomatte kinds in pass order (Object, Material, Asset) and their rows.
+  std::vector<uint32_t> crypto_kinds_;
+  std::vector<CryptomatteRow> crypto_rows_;
 };
 
 }  // namespace photon

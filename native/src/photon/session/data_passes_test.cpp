@@ -68,7 +68,7 @@ Frame render(std::shared_ptr<const Scene> scene, const RenderSettings& s) {
   session.start();
   Frame f;
   f.width = s.full_width;
-  f.floats = data_pass_floats(s.data_passes.mask);
+  f.floats = data_pass_pixel_floats(s.data_passes);
   f.data.assign(static_cast<size_t>(s.full_width) * s.full_height * f.floats, -1.0f);
   while (true) {
     const bool done = session.finished();
@@ -89,7 +89,7 @@ Frame render(std::shared_ptr<const Scene> scene, const RenderSettings& s) {
 }
 
 TEST(DataPasses, LayoutFollowsTheTable) {
-  EXPECT_EQ(data_pass_floats(kPassAllData), 1 + 1 + 3 + 3 + 3 + 1 + 1 + 4 * 3);
+  EXPECT_EQ(data_pass_floats(kPassAllData), 1 + 1 + 3 + 3 + 3 + 1 + 1 + 4 * 3 + 3 + 3 + 1);
   EXPECT_EQ(data_pass_floats(0), 0);
   const uint32_t mask = kPassMist | kPassUv | kPassMaterialIndex;
   EXPECT_EQ(data_pass_offset(mask, kPassMist), 0);
@@ -256,6 +256,47 @@ TEST(DataPasses, AlphaThresholdSeesThroughTransparentSurfaces) {
     EXPECT_NEAR(*f->pass(c, c, kPassAllData, kPassMist), expected_mist(distance), 1e-5f);
     EXPECT_NEAR(f->pass(c, c, kPassAllData, kPassDiffuseColor)[0], 0.5f, 1e-6f);
   }
+}
+
+// The veiled quad with Cryptomatte IDs: the fully transparent veil takes no share of a sample
+// (one minus its transparency is zero), the quad behind it all of it; the layers come after the
+// data passes, ranked, and do not depend on tiles or threads.
+TEST(DataPasses, CryptomatteCountsWhatTheSamplesSeeThroughTransparency) {
+  auto scene = std::make_shared<Scene>(*veiled_quad_scene());
+  const float quad_id = 3.5f, veil_id = 7.25f, asset_id = -2.0f, material_id = 1.5f;
+  scene->instances[0].cryptomatte_object = quad_id;
+  scene->instances[0].cryptomatte_asset = asset_id;
+  scene->instances[1].cryptomatte_object = veil_id;
+  scene->materials[0].cryptomatte_material = material_id;
+  RenderSettings a = settings(24, 4, kPassDepth);
+  a.data_passes.cryptomatte = kCryptoObject | kCryptoMaterial | kCryptoAsset;
+  a.data_passes.cryptomatte_depth = 4;
+  const std::vector<DataPassSlot> slots = data_pass_slots(a.data_passes);
+  ASSERT_EQ(slots.size(), 1u + 3 * 2);
+  EXPECT_EQ(slots[1].name, "CryptoObject00");
+  EXPECT_EQ(slots[2].name, "CryptoObject01");
+  EXPECT_EQ(slots[6].name, "CryptoAsset01");
+  EXPECT_EQ(slots[3].offset, 1 + 2 * 4);
+  RenderSettings b = a;
+  a.tile_size = 8;
+  a.threads = 1;
+  b.tile_size = 32;
+  b.threads = 3;
+  const Frame fa = render(scene, a), fb = render(scene, b);
+  EXPECT_EQ(fa.data, fb.data);
+  const int c = 12;  // the middle pixel sees the quad through the veil
+  const float* px = &fa.data[(static_cast<size_t>(c) * fa.width + c) * fa.floats];
+  for (int kind = 0; kind < 3; ++kind) {
+    const float* layer = px + slots[1 + 2 * kind].offset;
+    const float expected_id = kind == 0 ? quad_id : kind == 1 ? material_id : asset_id;
+    EXPECT_EQ(layer[0], expected_id) << slots[1 + 2 * kind].name;
+    EXPECT_FLOAT_EQ(layer[1], 1.0f);
+    EXPECT_EQ(layer[2], 0.0f);  // no second ID: the veil took no share
+    EXPECT_EQ(layer[3], 0.0f);
+  }
+  // A corner pixel sees the background: no IDs at all.
+  const float* corner = &fa.data[0];
+  for (int f = 1; f < fa.floats; ++f) EXPECT_EQ(corner[f], 0.0f) << f;
 }
 
 }  // namespace

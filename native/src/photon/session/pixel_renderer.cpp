@@ -69,7 +69,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
         CameraHit first;
         first.found = found[i];
         if (first.found) first.hit = hits[i];
-        if (data_row) data_row->add(i, k, rays[i], first);
+        if (data_row)
+          data_row->add(i, k, static_cast<uint64_t>(py) * s.full_width + x + i, rays[i], first);
         const RadianceSample r = integrator.radiance_from_hit(context, rays[i], first, samplers[i]);
         const Vec3 radiance = r.radiance();
         if (!is_finite(radiance) || !is_finite(r.photon_map)) {
@@ -107,7 +108,7 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
     }
     if (data_row)
       data_row->finish(s.samples,
-                       data + static_cast<size_t>(row) * n * data_pass_floats(s.data_passes.mask));
+                       data + static_cast<size_t>(row) * n * data_pass_pixel_floats(s.data_passes));
     if (rows_done) *rows_done = row + 1;
   }
   return true;

@@ -20,7 +20,7 @@ namespace photon {
 // dropped and counted in `non_finite`.
 // `passes` (optional, width * height * kPassFloats floats) receives the light passes per pixel:
 // Direct RGB, Indirect RGB, Caustics RGB, Photon Map RGB; Combined RGB is their light sum.
-// `data` (optional, width * height * data_pass_floats(settings->data_passes.mask) floats)
+// `data` (optional, width * height * data_pass_pixel_floats(settings->data_passes) floats)
 // receives the data passes (data_passes.h) from the same camera rays.
 constexpr int kPassCount = 4;
 // A pixel's value from its sample sum: samples are finite, but their sum can still overflow (a

@@ -20,6 +20,14 @@ using Clock = std::chrono::steady_clock;
 // A pass aims at this long, so the viewport shows a new image a few times a second and a
 // restart (the camera moved) waits for at most one row of it.
 constexpr double kPassSeconds = 0.25;
+// The first image after a (re)start is a coarse pass whose longer side has about this many
+// pixels (every step-th pixel, upscaled), so it shows in a few ms even for a 4K viewport.
+constexpr int kCoarseSide = 200;
+
+int coarse_step(const ProgressiveView& view) {
+  const int side = std::max(view.x1 - view.x0, view.y1 - view.y0);
+  return std::max(1, (side + kCoarseSide - 1) / kCoarseSide);
+}
 
 ProgressiveView view_of(const Scene& scene, const RenderSettings& s) {
   ProgressiveView v;
@@ -48,14 +56,18 @@ ProgressiveView sanitized(ProgressiveView v) {
 ProgressiveSession::ProgressiveSession(std::shared_ptr<const Scene> scene,
                                        const RenderSettings& settings,
                                        std::shared_ptr<BlasCache> blas_cache, bool quick_first_pass)
+    : ProgressiveSession(std::make_shared<ViewportScene>(std::move(scene), std::move(blas_cache)),
+                         settings, quick_first_pass) {}
+
+ProgressiveSession::ProgressiveSession(std::shared_ptr<ViewportScene> viewport_scene,
+                                       const RenderSettings& settings, bool quick_first_pass)
     : Job("Viewport render"),
-      scene_(std::move(scene)),
-      blas_cache_(std::move(blas_cache)),
+      viewport_scene_(std::move(viewport_scene)),
       quick_first_pass_(quick_first_pass) {
   std::vector<std::string> warnings;
   settings_ = sanitized_settings(settings, &warnings);
   add_warnings(warnings);
-  view_ = view_of(*scene_, settings_);
+  view_ = view_of(viewport_scene_->scene(), settings_);
   set_work_total(static_cast<size_t>(settings_.samples));
 }
 
@@ -94,6 +106,14 @@ int ProgressiveSession::wait_for_samples(int samples, double timeout_seconds) co
     return (current && image_.samples >= samples) || converged_ || finished();
   });
   return image_.view_serial == serial_ && !image_.quick ? image_.samples : 0;
+}
+
+bool ProgressiveSession::wait_for_image(double timeout_seconds) const {
+  std::unique_lock<std::mutex> lock(mutex_);
+  changed_.wait_for(lock, std::chrono::duration<double>(std::max(timeout_seconds, 0.0)), [&] {
+    return (!image_.rgba.empty() && image_.view_serial == serial_) || finished();
+  });
+  return !image_.rgba.empty() && image_.view_serial == serial_;
 }
 
 double ProgressiveSession::first_image_seconds() const {
@@ -171,6 +191,66 @@ bool ProgressiveSession::render_pass(const RenderContext& context, const Integra
   return !stopped.load() && !interrupted(serial);
 }
 
+bool ProgressiveSession::render_coarse_pass(const RenderContext& context,
+                                            const Integrator& integrator,
+                                            const ProgressiveView& view, int step,
+                                            uint64_t serial) {
+  const RenderSettings& s = settings_;
+  const int width = view.x1 - view.x0, height = view.y1 - view.y0;
+  const int coarse_w = (width + step - 1) / step, coarse_h = (height + step - 1) / step;
+  const PixelFilter filter(s.filter_type, s.filter_width);
+  ProgressiveImage image;
+  image.width = coarse_w;
+  image.height = coarse_h;
+  image.samples = 1;
+  image.quick = true;
+  image.view_serial = serial;
+  image.step = step;
+  image.rgba.assign(static_cast<size_t>(coarse_w) * coarse_h * 4, 0.0f);
+  std::atomic<bool> stopped{false};
+  tbb::parallel_for(tbb::blocked_range<int>(0, coarse_h, 1), [&](const tbb::blocked_range<int>& r) {
+    const size_t n = static_cast<size_t>(coarse_w);
+    std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
+    std::vector<Ray> rays(n);
+    std::vector<Hit> hits(n);
+    std::unique_ptr<bool[]> found(new bool[n]);
+    for (int cy = r.begin(); cy < r.end(); ++cy) {
+      if (stopped.load(std::memory_order_relaxed) || interrupted(serial)) {
+        stopped = true;
+        return;
+      }
+      const int row = cy * step, py = view.y0 + row;
+      for (size_t i = 0; i < n; ++i) {
+        const int px = view.x0 + static_cast<int>(i) * step;
+        const uint64_t pixel_index = static_cast<uint64_t>(py) * view.full_width + px;
+        samplers[i] = Sampler(s.seed, pixel_index, 0, static_cast<uint32_t>(s.samples));
+        rays[i] = camera_sample_ray(filter, view.camera, view.full_width, view.full_height, px, py,
+                                    samplers[i]);
+      }
+      context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
+      for (size_t i = 0; i < n; ++i) {
+        CameraHit hit;
+        hit.found = found[i];
+        if (hit.found) hit.hit = hits[i];
+        const RadianceSample rs = integrator.radiance_from_hit(context, rays[i], hit, samplers[i]);
+        const Vec3 radiance = rs.radiance();
+        if (!is_finite(radiance) || !is_finite(rs.photon_map)) continue;
+        const float coverage = s.transparent_background ? rs.alpha : 1.0f;
+        float* pixel = &image.rgba[(static_cast<size_t>(cy) * n + i) * 4];
+        pixel[0] = finite_average(radiance.x, s.exposure);
+        pixel[1] = finite_average(radiance.y, s.exposure);
+        pixel[2] = finite_average(radiance.z, s.exposure);
+        pixel[3] = rs.holdout > 0.0f ? std::max(coverage - rs.holdout, 0.0f) : coverage;
+      }
+    }
+  });
+  if (stopped.load() || interrupted(serial)) return false;
+  std::lock_guard<std::mutex> lock(mutex_);
+  image_ = std::move(image);
+  changed_.notify_all();
+  return true;
+}
+
 void ProgressiveSession::publish(const ProgressiveView& view, int samples, bool quick,
                                  uint64_t serial) {
   ProgressiveImage image;
@@ -210,27 +290,37 @@ void ProgressiveSession::run() {
   };
 
   run_in_arena(settings_.threads, [&] {
-    std::vector<std::string> warnings;
-    set_status("Building BVH and lights");
-    SceneResources resources(*scene_, settings_, &warnings, &cancel, blas_cache_.get());
-    add_warnings(warnings);
+    // Held until the session ends: the scene's instances and resources do not change under it.
+    std::lock_guard<std::mutex> scene_lock(viewport_scene_->mutex());
     if (cancel) return;
-    const RenderContext& context = resources.context();
+    std::vector<std::string> warnings;
+    if (!viewport_scene_->built()) set_status("Building BVH and lights");
+    const SceneResources* resources = viewport_scene_->resources(settings_, &cancel, &warnings);
+    add_warnings(warnings);
+    if (cancel || !resources) return;
+    // The shared resources' context, rendering with this session's settings.
+    RenderContext context = resources->context();
+    context.settings = &settings_;
     PrepareControl control = prepare_control();
 
     const IntegratorCapabilities caps = integrator_capabilities(settings_.integrator);
-    if (quick_first_pass_ && settings_.integrator != IntegratorType::kRayTrace) {
-      // A first look while photons are traced or radiosity solved: one ray-traced sample of
-      // direct light, replaced by the integrator's own passes once it is prepared.
+    if (quick_first_pass_) {
+      // A first look while photons are traced or radiosity solved: ray-traced direct light,
+      // first at a coarse resolution (milliseconds), then one sample of every pixel; the
+      // integrator's own passes replace it once it is prepared.
       set_status("Quick preview");
       std::unique_ptr<Integrator> quick = make_integrator(IntegratorType::kRayTrace);
       quick->prepare(context, control);
       uint64_t serial = 0;
       const ProgressiveView view = current_view(&serial);
-      accum_.assign(static_cast<size_t>(view.x1 - view.x0) * (view.y1 - view.y0) * 4, 0.0f);
-      if (render_pass(context, *quick, view, 0, 1, serial)) {
-        publish(view, 1, true, serial);
-        mark_first_image();
+      const int step = coarse_step(view);
+      if (step > 1 && render_coarse_pass(context, *quick, view, step, serial)) mark_first_image();
+      if (settings_.integrator != IntegratorType::kRayTrace) {
+        accum_.assign(static_cast<size_t>(view.x1 - view.x0) * (view.y1 - view.y0) * 4, 0.0f);
+        if (render_pass(context, *quick, view, 0, 1, serial)) {
+          publish(view, 1, true, serial);
+          mark_first_image();
+        }
       }
       if (cancel) return;
     }

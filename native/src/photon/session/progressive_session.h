@@ -2,6 +2,8 @@
 // and its integrator prepared once, then the whole frame is rendered in passes of a few
 // samples each, accumulated, and shown between passes. A new view (the viewport camera moved,
 // the region resized) restarts the accumulation without rebuilding or re-preparing anything.
+// Sessions on one ViewportScene share its resources: the next session (new settings, moved
+// objects) only prepares its integrator again.
 #pragma once
 
 #include <condition_variable>
@@ -14,6 +16,7 @@
 #include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 #include "photon/session/job.h"
+#include "photon/session/viewport_scene.h"
 
 namespace photon {
 
@@ -34,6 +37,9 @@ struct ProgressiveImage {
   // before the integrator's preparation (photon maps, a radiosity solve) has finished.
   bool quick = false;
   uint64_t view_serial = 0;  // the set_view() call this image belongs to (0: the initial view)
+  // A coarse quick image has one pixel per step x step block of the view's rectangle (width
+  // and height are then the coarse image's, rounded up), to be shown scaled up.
+  int step = 1;
 };
 
 class ProgressiveSession : public Job {
@@ -44,6 +50,10 @@ class ProgressiveSession : public Job {
   // ray-traced sample so an image shows within the time of a BVH build.
   ProgressiveSession(std::shared_ptr<const Scene> scene, const RenderSettings& settings,
                      std::shared_ptr<BlasCache> blas_cache = nullptr, bool quick_first_pass = true);
+  // Renders `viewport_scene`, building its resources only if no earlier session did. At most
+  // one session renders a ViewportScene at a time (a second one waits for the first to end).
+  ProgressiveSession(std::shared_ptr<ViewportScene> viewport_scene, const RenderSettings& settings,
+                     bool quick_first_pass = true);
   ~ProgressiveSession() override;  // cancels and joins the worker
 
   // Restarts accumulation from the new view at the next row; returns its serial.
@@ -57,20 +67,27 @@ class ProgressiveSession : public Job {
   // Blocks until the current view has at least `samples` samples (or is converged, or the
   // session ended) or `timeout_seconds` passed; returns samples_done().
   int wait_for_samples(int samples, double timeout_seconds) const;
+  // Blocks until an image (quick ones included) of the current view exists, the session
+  // ended, or `timeout_seconds` passed; true when there is one.
+  bool wait_for_image(double timeout_seconds) const;
   // Seconds from start() to the first image of any kind (quick or not); negative before.
   double first_image_seconds() const;
 
  private:
   void run() override;
   void on_finished() override;
+  // Cycles' viewport "start resolution": sample 0 of every step-th pixel of every step-th
+  // row, standing for its step x step block, published as a coarse quick image (accum_
+  // untouched); false when interrupted.
+  bool render_coarse_pass(const RenderContext& context, const Integrator& integrator,
+                          const ProgressiveView& view, int step, uint64_t serial);
   // Renders samples [first, end) of `view` into accum_ (sums); false when interrupted.
   bool render_pass(const RenderContext& context, const Integrator& integrator,
                    const ProgressiveView& view, int first, int end, uint64_t serial);
   void publish(const ProgressiveView& view, int samples, bool quick, uint64_t serial);
   bool interrupted(uint64_t serial) const;
 
-  std::shared_ptr<const Scene> scene_;
-  std::shared_ptr<BlasCache> blas_cache_;
+  std::shared_ptr<ViewportScene> viewport_scene_;
   RenderSettings settings_;
   bool quick_first_pass_;
 

@@ -80,6 +80,19 @@ TEST(ProgressiveSession, PassesEqualFinalRenderPhotonMap) {
   expect_matches_final(IntegratorType::kPhotonMap);
 }
 
+// A frame wide enough for the coarse first pass (every 3rd pixel): it is only shown, never
+// accumulated, so the passes still add up to the final render.
+TEST(ProgressiveSession, CoarseFirstPassLeavesPassesEqualFinalRender) {
+  auto scene = std::make_shared<Scene>(make_cornell_box());
+  RenderSettings s = settings(IntegratorType::kPhotonMap, 410, 3);
+  s.full_height = s.y1 = 30;
+  const std::vector<float> reference = final_render(scene, s);
+  const ProgressiveImage image = progressive(scene, s);
+  ASSERT_EQ(image.rgba.size(), reference.size());
+  for (size_t i = 0; i < reference.size(); ++i)
+    ASSERT_NEAR(image.rgba[i], reference[i], 1e-6f * std::max(1.0f, std::fabs(reference[i])));
+}
+
 // A view change restarts from sample 0 with the new camera and frame; the result is the final
 // render of that view, not a blend of both.
 TEST(ProgressiveSession, NewViewRestartsAccumulation) {

@@ -247,7 +247,7 @@ void RenderSession::run() {
               tile.passes.resize(static_cast<size_t>(rows) * tile.width * kPassFloats);
             if (!tile.data.empty())
               tile.data.resize(static_cast<size_t>(rows) * tile.width *
-                               data_pass_floats(settings_.data_passes.mask));
+                               data_pass_pixel_floats(settings_.data_passes));
             deliver_tile(std::move(tile));
           }
           return;
@@ -284,7 +284,7 @@ int RenderSession::render_tile(const RenderContext& context, const Integrator& i
   tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
   if (settings_.light_passes)
     tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
-  const int data_floats = data_pass_floats(settings_.data_passes.mask);
+  const int data_floats = data_pass_pixel_floats(settings_.data_passes);
   if (data_floats)
     tile->data.assign(static_cast<size_t>(tile->width) * tile->height * data_floats, 0.0f);
   uint64_t bad = 0;

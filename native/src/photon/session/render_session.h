@@ -28,7 +28,7 @@ struct Tile {
   std::vector<float> rgba;
   // With RenderSettings::light_passes: kPassFloats floats per pixel (see pixel_renderer.h).
   std::vector<float> passes;
-  // With RenderSettings::data_passes: data_pass_floats(mask) floats per pixel (data_passes.h).
+  // With RenderSettings::data_passes: data_pass_pixel_floats() floats per pixel (data_passes.h).
   std::vector<float> data;
 };
 
