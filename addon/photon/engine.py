@@ -69,6 +69,14 @@ def integrator_capabilities(native, scene):
     return native.integrator_capabilities(getattr(native.Integrator, scene.photon.integrator))
 
 
+def sppm_report(sppm):
+    """The report line of an SPPM render (RenderStats.sppm)."""
+    return (f"sppm: {sppm.iterations} iterations, {sppm.photons_emitted:,} photons emitted "
+            f"in {sppm.photon_seconds:.3f} s, camera passes {sppm.camera_seconds:.3f} s; "
+            f"{sppm.bytes_per_pixel} bytes per pixel, photons of one iteration "
+            f"{sppm.peak_photon_bytes / 1e6:.1f} MB at most")
+
+
 def prepare_report(prepared):
     """Report lines for a PrepareStats (photon maps, irradiance cache, radiosity): one per
     stage that ran."""
@@ -280,11 +288,14 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         # A user watching the render sees the whole frame (direct light) before the slow
         # stages; in background mode nobody does and it would only cost time.
         session.set_quick_preview(not bpy.app.background)
-        prepares = integrator_capabilities(native, scene)["prepares"]
+        capabilities = integrator_capabilities(native, scene)
+        prepares = capabilities["prepares"]
         bar = render_progress.RenderProgress(prepares)
         session.start()
         tiles_total = ((region_w + settings.tile_size - 1) // settings.tile_size) * (
             (region_h + settings.tile_size - 1) // settings.tile_size)
+        if capabilities.get("iterative"):
+            tiles_total = 1  # SPPM: the whole region, written again after each iteration
         tiles_done = 0
         cancelled_during = None  # the stage Esc cancelled, or None
         RENDER_STATUS.clear()
@@ -313,7 +324,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                 RENDER_STATUS.update(status=snapshot["status"], tiles_done=tiles_done,
                                      tiles_total=tiles_total, progress=fraction)
                 self.update_stats("", self._stats_line(snapshot["status"], sync_stats,
-                                                       tiles_done, tiles_total, t_start,
+                                                       min(tiles_done, tiles_total),
+                                                       tiles_total, t_start,
                                                        time_left))
                 if session.finished:
                     for x, y, w, h, rgba, passes, data in session.take_tiles(0.0):
@@ -344,7 +356,7 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         state = "cancelled" if cancelled else "rendered"
         reporter.info(
             f"{state} frame {scene.frame_current} {region_w}x{region_h} "
-            f"({settings.samples} spp, {stats.threads} threads): sync {sync_stats.seconds:.3f} s "
+            f"({self._samples_label(settings, stats)}, {stats.threads} threads): sync {sync_stats.seconds:.3f} s "
             f"({sync_stats.triangles} triangles, {sync_stats.instances} instances, "
             f"{sync_stats.lights} lights), {self._texture_stats(stats)}"
             f"BVH {stats.build_seconds:.3f} s, "
@@ -352,6 +364,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             f"{self._layer_view_label(scene, view)}")
         for line in prepare_report(stats.integrator):
             reporter.info(line)
+        if stats.sppm.iterations:
+            reporter.info(sppm_report(stats.sppm))
         if sync_stats.meshes_reused is not None:
             meshes = sync_stats.meshes_reused + sync_stats.meshes_exported
             reporter.info(f"persistent data: reused {sync_stats.meshes_reused} of {meshes} "
@@ -410,6 +424,13 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                     parts.append(np.zeros(w * h * render_pass.channels, dtype=np.float32))
             passes.foreach_set("rect", np.concatenate(parts))
         self.end_result(result)
+
+    @staticmethod
+    def _samples_label(settings, stats):
+        """'64 spp', or 'N iterations' for SPPM."""
+        if stats.sppm.iterations:
+            return f"{stats.sppm.iterations} SPPM iterations"
+        return f"{settings.samples} spp"
 
     @staticmethod
     def _stats_line(status, sync_stats, tiles_done, tiles_total, t_start, time_left=""):

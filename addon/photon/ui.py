@@ -260,6 +260,23 @@ class PHOTON_PT_layer_override(PhotonViewLayerPanel, bpy.types.Panel):
         layout.prop(context.view_layer, "material_override")
 
 
+class PHOTON_PT_sppm(PhotonPanel, bpy.types.Panel):
+    bl_label = "Progressive Photon Mapping"
+    bl_parent_id = "PHOTON_PT_render"
+
+    @classmethod
+    def poll(cls, context):
+        group = schema.group("sppm")
+        return super().poll(context) and group is not None and \
+            context.scene.photon.integrator == group["integrator"]
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        schema.draw(layout, context.scene.photon, "sppm")
+
+
 class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
     bl_label = "Performance"
     bl_parent_id = "PHOTON_PT_render"
@@ -375,7 +392,7 @@ class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
         self.layout.label(text="Renders only the shadows cast on it")
 
 
-classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity,
+classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_sppm,
            PHOTON_PT_simplify, PHOTON_PT_simplify_viewport, PHOTON_PT_simplify_render,
            PHOTON_PT_performance, PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data,
            PHOTON_PT_passes_cryptomatte, PHOTON_PT_layer_override,

@@ -18,6 +18,7 @@
 #include "photon/scene/scene.h"
 #include "photon/render/texture_convert.h"
 #include "data_pass_bindings.h"
+#include "sppm_bindings.h"
 #include "stats_bindings.h"
 
 namespace py = pybind11;
@@ -480,7 +481,8 @@ PYBIND11_MODULE(_photon, m) {
   py::enum_<IntegratorType>(m, "Integrator")
       .value("RAY_TRACE", IntegratorType::kRayTrace)
       .value("PHOTON_MAP", IntegratorType::kPhotonMap)
-      .value("RADIOSITY", IntegratorType::kRadiosity);
+      .value("RADIOSITY", IntegratorType::kRadiosity)
+      .value("SPPM", IntegratorType::kSppm);
 
   m.def(
       "integrator_capabilities",
@@ -494,6 +496,7 @@ PYBIND11_MODULE(_photon, m) {
         d["stop_early_status"] = c.stop_early_status;
         d["prepares"] = c.prepares;
         d["stop_early_effect"] = c.stop_early_effect;
+        d["iterative"] = c.iterative;
         return d;
       },
       py::arg("integrator"),
@@ -603,6 +606,7 @@ PYBIND11_MODULE(_photon, m) {
   photon_python::register_material_functions(m);
   photon_python::register_program_functions(m);
   photon_python::register_stats_classes(m);
+  photon_python::register_sppm_classes(m);
 
   // Largest lamp power (W, a sun's W/m^2) and world radiance rendered; larger ones are clamped.
   m.attr("MAX_EMISSION") = emitter_range().hi;

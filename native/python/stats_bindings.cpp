@@ -82,7 +82,8 @@ void register_stats_classes(py::module_& m) {
       .def_readonly("bvh_reused", &RenderStats::bvh_reused)
       .def_readonly("lights", &RenderStats::lights)
       .def_readonly("threads", &RenderStats::threads)
-      .def_readonly("integrator", &RenderStats::integrator);
+      .def_readonly("integrator", &RenderStats::integrator)
+      .def_readonly("sppm", &RenderStats::sppm);
   py::class_<BakeStats>(m, "BakeStats", "A bake's statistics (the result's 'stats').")
       .def_readonly("build_seconds", &BakeStats::build_seconds)
       .def_readonly("prepare_seconds", &BakeStats::prepare_seconds)

@@ -28,6 +28,14 @@ bool add_escaped_or_lamp(const RenderContext& context, const Ray& ray, bool foun
   return false;
 }
 
+// `bsdf` with its delta lobes only (the same frame and normals).
+Bsdf delta_lobes(const Bsdf& bsdf) {
+  Bsdf out(bsdf.frame().n, bsdf.ng(), bsdf.front_facing());
+  for (int i = 0; i < bsdf.lobe_count(); ++i)
+    if (bsdf.lobe(i).flags() & kLobeSpecular) out.add(bsdf.lobe(i));
+  return out;
+}
+
 // The camera's part of a walk (path_walker.h): emission met on the way (counted after delta
 // lobes only: light sampling counted the rest), alpha, mattes, light sampling, and the
 // integrator's diffuse shading.
@@ -89,7 +97,17 @@ class CameraVisitor {
     if (walk_.radiance && (bsdf.flags() & walk_.light_sampled))
       result_->direct +=
           state.throughput * direct_radiance(context_, si, bsdf, wo, sampler_, walk_.light_sampled);
-    if (bsdf.flags() & kLobeDiffuse) {
+    if (walk_.visible_point) {
+      if (walk_.visible_point(bsdf)) {
+        // The first such vertex is the visible point; there and at later ones the photons
+        // stand for every non-delta lobe, and the path goes on through the delta lobes only.
+        if (!diffuse_seen_) at_diffuse_(v, result_);
+        diffuse_seen_ = true;
+        delta_ = delta_lobes(bsdf);
+        if (delta_.empty()) return VertexStep::stop();
+        return VertexStep::scatter(delta_);
+      }
+    } else if (bsdf.flags() & kLobeDiffuse) {
       at_diffuse_(v, result_);
       diffuse_seen_ = true;
     }
@@ -105,6 +123,7 @@ class CameraVisitor {
   const DiffuseShader& at_diffuse_;
   RadianceSample* result_;
   ShadingPoint sp_;  // the current vertex's shading, alive while its BSDF is sampled
+  Bsdf delta_;       // after a visible point: its delta lobes, which the path samples
   bool primary_ = true;
   bool diffuse_seen_ = false;  // a vertex with a diffuse lobe was shaded
   float path_length_ = 0.0f;

@@ -39,6 +39,12 @@ struct CameraWalk {
   // The lobes lit by light sampling at every vertex (radiosity leaves out the diffuse lobes:
   // its solution already holds their direct light).
   uint8_t light_sampled = kLobeDiffuse | kLobeGlossy;
+  // Stochastic progressive photon mapping: when set, the first vertex whose BSDF it accepts is
+  // the path's visible point (Hachisuka & Jensen 2009): `at_diffuse` is called there, and only
+  // there. Photons estimate the non-delta lobes of that BSDF, so from there (and from every
+  // later vertex it accepts) the path goes on through delta lobes only: mirror and glass
+  // layers keep their reflections, while indirect light at later rough vertices is left out.
+  bool (*visible_point)(const Bsdf& bsdf) = nullptr;
 };
 
 // The render's camera walk: glossy and specular lobes ray traced up to max_depth bounces,

@@ -14,6 +14,11 @@ std::unique_ptr<Integrator> make_integrator(IntegratorType type) {
       return std::make_unique<PhotonMapIntegrator>();
     case IntegratorType::kRadiosity:
       return std::make_unique<RadiosityIntegrator>();
+    case IntegratorType::kSppm:
+      // SPPM iterates over the whole frame (integrator_capabilities: iterative); sessions that
+      // render per camera sample (the viewport, previews) show its scene with photon mapping,
+      // the estimator it refines.
+      return std::make_unique<PhotonMapIntegrator>();
   }
   return std::make_unique<PhotonMapIntegrator>();
 }
@@ -44,6 +49,13 @@ IntegratorCapabilities integrator_capabilities(IntegratorType type) {
       // The solver (radiosity_solver.cpp, radiosity_refine.cpp) keeps the solution so far.
       c.stop_early = true;
       c.stop_early_effect = "radiosity solve stopped, rendering the solution so far";
+      break;
+    case IntegratorType::kSppm:
+      c.name = "SPPM";
+      c.iterative = true;
+      c.no_bake_reason =
+          "the SPPM integrator converges per pixel of a view and has no view-independent "
+          "lighting solution to bake; bake from the photon maps or the radiosity solution";
       break;
   }
   return c;

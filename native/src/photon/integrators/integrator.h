@@ -16,6 +16,7 @@
 #include "photon/integrators/prepare_stats.h"
 #include "photon/integrators/radiosity/radiosity_params.h"
 #include "photon/integrators/sampling_params.h"
+#include "photon/integrators/sppm/sppm_params.h"
 #include "photon/lights/lights.h"
 #include "photon/render/accel.h"
 #include "photon/scene/scene.h"
@@ -34,7 +35,8 @@ struct RenderSettings : SamplingParams,
                         FilmParams,
                         PerformanceParams,
                         PhotonMapParams,
-                        RadiosityParams {
+                        RadiosityParams,
+                        SppmParams {
   int full_width = 64, full_height = 64;  // whole frame in pixels
   // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
@@ -153,6 +155,10 @@ struct IntegratorCapabilities {
   bool stop_early = false;
   const char* stop_early_status = "";
   const char* stop_early_effect = "";  // for the user: what the render goes on with
+  // Renders whole frames in iterations (SPPM) instead of answering radiance queries: the render
+  // session runs it through session/iterative_render.cpp, refining the image after each
+  // iteration. Per-sample sessions (viewport, previews) use make_integrator's stand-in.
+  bool iterative = false;
 };
 
 IntegratorCapabilities integrator_capabilities(IntegratorType type);

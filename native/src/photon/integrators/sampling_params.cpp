@@ -18,7 +18,7 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                  .label = "Integrator",
                  .description = "Rendering algorithm",
                  .min = 0,
-                 .max = 2,
+                 .max = 3,
                  .items = {{"PHOTON_MAP", "Photon Mapping",
                             "Global illumination and caustics from global and caustic photon "
                             "maps, with final gathering",
@@ -30,7 +30,12 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                             "Diffuse global illumination solved once on a mesh of patches "
                             "(stochastic Jacobi radiosity) and viewed from anywhere; mirrors and "
                             "glass are ray traced",
-                            static_cast<int>(IntegratorType::kRadiosity)}}}),
+                            static_cast<int>(IntegratorType::kRadiosity)},
+                           {"SPPM", "Progressive Photon Mapping",
+                            "Stochastic progressive photon mapping (Hachisuka & Jensen 2009): "
+                            "camera and photon passes repeated with a shrinking radius, so the "
+                            "image converges, caustics included; refines as it renders",
+                            static_cast<int>(IntegratorType::kSppm)}}}),
           param(&S::samples, {.name = "samples",
                               .label = "Samples",
                               .description = "Camera samples per pixel",

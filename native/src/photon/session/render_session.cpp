@@ -194,7 +194,8 @@ void RenderSession::run() {
   // Kept in order after the scene's warnings; added to the session's once prepared.
   control.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
   set_preparing(true);
-  arena.execute([&] { integrator->prepare(context, control); });
+  const bool iterative = integrator_capabilities(settings_.integrator).iterative;
+  if (!iterative) arena.execute([&] { integrator->prepare(context, control); });
   set_preparing(false);
   const double prepare_seconds = seconds_since(t0);
   if (cancel) return;
@@ -216,6 +217,10 @@ void RenderSession::run() {
     stats_.integrator = integrator->prepare_stats();
   }
   set_status("Rendering");
+  if (iterative) {
+    run_iterative(context, arena);
+    return;
+  }
 
   const int ts = settings_.tile_size;
   const int tiles_x = (region_width() + ts - 1) / ts;

@@ -2,6 +2,8 @@
 // in parallel with TBB and hands finished tiles to whoever polls (the Blender add-on, the CLI).
 #pragma once
 
+#include <tbb/task_arena.h>
+
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -11,6 +13,7 @@
 #include <vector>
 
 #include "photon/integrators/integrator.h"
+#include "photon/integrators/sppm/sppm_renderer.h"
 #include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 #include "photon/session/job.h"
@@ -55,6 +58,7 @@ struct RenderStats {
   size_t lights = 0;
   int threads = 0;
   PrepareStats integrator;  // the integrator's prepare_stats()
+  SppmStats sppm;           // an iterative (SPPM) render's; iterations = 0 otherwise
 };
 
 class RenderSession : public Job {
@@ -90,6 +94,9 @@ class RenderSession : public Job {
   // Renders the tile; returns the number of finished rows (fewer than its height if cancelled).
   int render_tile(const RenderContext& context, const Integrator& integrator, Tile* tile);
   void deliver_tile(Tile tile);
+  // The render of an iterative integrator (SPPM), in iterative_render.cpp: whole-frame
+  // iterations, each complete one handed over as one tile of the region.
+  void run_iterative(const RenderContext& context, tbb::task_arena& arena);
 
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<BlasCache> blas_cache_;  // may be null

@@ -1,0 +1,99 @@
+// Stochastic progressive photon mapping (Hachisuka & Jensen 2009, "Stochastic Progressive
+// Photon Mapping"): each iteration traces a photon pass (sppm_photons.h), hashes its photons in
+// a kd-tree (photon_kdtree.h), then traces one camera path per pixel to its visible point
+// (sppm_camera.h), which gathers the photons within the pixel's radius R. The pixel's statistics
+// then follow eqs. 6-8 of the paper (Hachisuka et al. 2008, eqs. 7-9, with Phi and M of this
+// iteration's visible point):
+//   N' = N + alpha M,   R' = R sqrt(N' / (N + M)),   tau' = (tau + Phi) R'^2 / R^2,
+// and the pixel's radiance after k iterations of P photons each is
+//   L = (direct light summed over iterations) / k + tau / (k P pi R^2),
+// which converges as R shrinks (alpha in (0, 1)).
+//
+// Memory: kBytesPerPixel of pixel state, plus the current iteration's photons (36 bytes per
+// recorded bounce) and their kd-tree's split axes (1 byte per photon), freed before the next
+// iteration's photons are traced.
+//
+// Determinism: camera samples draw from (seed, pixel, iteration) streams and photons from
+// (seed, iteration, photon index); each pixel is updated by one thread from its own visible
+// point, which sums photons in the kd-tree's fixed order. The image after k iterations is the
+// same bits for any thread count, and tiles play no part.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "photon/integrators/integrator.h"
+#include "photon/integrators/photon_map/photon_sources.h"
+#include "photon/integrators/sppm/sppm_photons.h"
+
+namespace photon {
+
+struct SppmStats {
+  int iterations = 0;
+  uint64_t photons_emitted = 0;
+  size_t photons_recorded = 0;   // in the last iteration
+  size_t peak_photon_bytes = 0;  // largest kd-tree (photons and axes) of an iteration
+  uint64_t rays = 0;             // photon rays
+  uint64_t non_finite = 0;       // camera samples dropped for a NaN / inf value
+  double photon_seconds = 0.0, camera_seconds = 0.0;
+};
+
+// Peak bytes per photon recorded in an iteration: the chunks' records and their concatenation
+// (2 x 36 bytes) exist together for a moment; the kd-tree then takes the array and adds 1 byte.
+constexpr double kSppmPeakBytesPerRecord = 2.0 * sizeof(SppmPhoton) + 1.0;
+// Share of the memory available at the start that one iteration's photons may use.
+constexpr double kSppmMemoryFraction = 0.5;
+
+// Photons per iteration that fit `budget_bytes` when each emitted photon records
+// `records_per_photon` photons on average: `requested`, or fewer (at least 1). A budget of 0
+// (unknown) keeps `requested`.
+uint64_t sppm_photons_that_fit(uint64_t requested, double records_per_photon, double budget_bytes);
+
+// The per-pixel state (Hachisuka & Jensen 2009, sec. 4).
+struct SppmPixel {
+  Vec3 direct{0.0f};  // direct light summed over iterations
+  Vec3 tau{0.0f};     // accumulated flux, eq. 8 (camera throughput included)
+  float n = 0.0f;     // accumulated photon count N, eq. 6
+  float radius = 0.0f;
+  float alpha = 0.0f;  // coverage summed over iterations
+};
+
+class SppmRenderer {
+ public:
+  static constexpr size_t kBytesPerPixel = sizeof(SppmPixel);
+
+  // Renders the region of context.settings (x0, y0, x1, y1 of the full frame). A pilot trace
+  // of a few thousand photons measures how many each records; when sppm_photons_per_iteration
+  // would not fit kSppmMemoryFraction of the available memory, fewer are traced per iteration
+  // and a warning says so.
+  explicit SppmRenderer(const RenderContext& context, std::vector<std::string>* warnings = nullptr);
+  uint64_t photons_per_iteration() const { return photons_per_iteration_; }
+
+  // Runs the next iteration. False when cancelled during it: its pixels are then partly
+  // updated, and the renderer is not to be iterated or read again.
+  bool iterate(const std::atomic<bool>& cancel);
+  int iterations() const { return stats_.iterations; }
+  const SppmStats& stats() const { return stats_; }
+  // The image after iterations(): RGBA of the region's rows, top first; with `passes` (width *
+  // height * kPassFloats floats, pixel_renderer.h) the light passes: Direct, Indirect (the
+  // photon estimate, caustics included), Caustics and Photon Map left black.
+  void write_image(float* rgba, float* passes = nullptr) const;
+  const std::vector<SppmPixel>& pixels() const { return pixels_; }
+
+ private:
+  // R for every pixel before the first iteration: the setting, or kAutoRadiusPixels pixel
+  // footprints at the surface the pixel's centre sees.
+  void initial_radii(const std::atomic<bool>& cancel);
+
+  const RenderContext& context_;
+  PhotonSources sources_;
+  int width_, height_;
+  std::vector<SppmPixel> pixels_;
+  bool radii_set_ = false;
+  uint64_t photons_per_iteration_ = 0;
+  SppmStats stats_;
+};
+
+}  // namespace photon
