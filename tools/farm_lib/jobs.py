@@ -117,7 +117,8 @@ def _wrap(manifest, command):
 def submit(manifest, partition=None, name="photon"):
     """Queues the render array (and the stitch job for split frames); returns their ids."""
     job_dir = manifest["job_dir"]
-    common = ["--requeue", "--chdir", job_dir,
+    # Append: a re-queued task's log keeps every attempt.
+    common = ["--requeue", "--open-mode=append", "--chdir", job_dir,
               f"--export=ALL,BLENDER_USER_SCRIPTS={manifest['addon_dir']}"]
     if partition:
         common += ["-p", partition]
