@@ -161,8 +161,10 @@ def start(root=None, timeout=60.0):
                            f"(apt-get install slurm-wlm munge)")
     existing = current()
     if existing is not None:
-        raise ClusterError(f"a local cluster already runs in {existing}: "
-                           f"'tools/farm.py local-cluster stop' first")
+        if _alive(_read_pid(existing / "slurmctld.pid")):
+            raise ClusterError(f"a local cluster already runs in {existing}: "
+                               f"'tools/farm.py local-cluster stop' first")
+        stop(existing)  # left behind by a crashed run: clear it
     root = Path(root) if root else Path(tempfile.mkdtemp(prefix="photon-slurm-"))
     root.mkdir(parents=True, exist_ok=True)
     os.chmod(root, 0o755)
