@@ -36,7 +36,8 @@ def cmd_submit(args):
     out_dir = Path(args.out).absolute()
     addon_dir = Path(args.addon_dir)
     try:
-        jobs.check_arguments(blend, out_dir, args.split, addon_dir, args.blender)
+        jobs.check_arguments(blend, out_dir, args.split, addon_dir, args.blender,
+                            args.retries)
         first, last = jobs.parse_frames(args.frames) if args.frames else (None, None)
         reason = slurm.available()
         if reason:
@@ -56,7 +57,12 @@ def cmd_submit(args):
     print(f"logs: {manifest['job_dir']}/logs")
     if not args.wait:
         return 0
-    missing = jobs.wait(manifest)
+    try:
+        missing = jobs.wait(manifest)
+    except KeyboardInterrupt:
+        print(f"\nfarm: stopped waiting; the jobs keep running (tools/farm.py cancel {render_id})",
+              file=sys.stderr)
+        return 130
     if missing:
         print(f"farm: error: frame(s) {missing} not rendered; see {manifest['job_dir']}/logs",
               file=sys.stderr)

@@ -247,3 +247,24 @@ def test_bad_input_is_refused_before_queuing(farm, scene, case):
     if case != "unwritable_out":
         assert not (out / ".farm").exists()
     shutil.rmtree(out, ignore_errors=True)
+
+
+def test_band_borders_select_exact_rows():
+    """Blender stores the border as float32 and truncates border * height to rows; every band's
+    border must land on its rows for any frame height, in float32 and double arithmetic."""
+    from farm_lib import blend_info
+    for height in range(1, 2200):
+        for split in (2, 3, 4, 7, 16):
+            if split > height:
+                continue
+            rows = blend_info.band_rows(height, split)
+            assert rows[0][0] == 0 and rows[-1][1] == height
+            for (y0, y1), (n0, _) in zip(rows, rows[1:] + [(height, None)]):
+                assert y1 == n0 and y1 > y0
+                lo, hi = blend_info.band_border(height, y0, y1)
+                lo32, hi32 = np.float32(lo), np.float32(hi)
+                for product_lo, product_hi in ((lo32 * np.float32(height),
+                                                hi32 * np.float32(height)),
+                                               (float(lo32) * height, float(hi32) * height)):
+                    assert (int(product_lo), int(product_hi)) == (height - y1, height - y0), \
+                        (height, split, y0, y1)

@@ -4,7 +4,6 @@ background Blender run (no add-on needed)."""
 
 import json
 import subprocess
-from pathlib import Path
 
 MARKER = "PHOTON_FARM_INFO "
 

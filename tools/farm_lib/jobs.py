@@ -49,10 +49,12 @@ def _check_out_dir(out_dir):
             from None
 
 
-def check_arguments(blend, out_dir, split, addon_dir, blender):
+def check_arguments(blend, out_dir, split, addon_dir, blender, retries=0):
     """The checks that need no Blender run or Slurm: raise SubmitError with a clear message."""
     if split < 1:
         raise SubmitError(f"--split must be 1 or more, not {split}")
+    if retries < 0:
+        raise SubmitError(f"--retries must be 0 or more, not {retries}")
     if not blend.is_file():
         raise SubmitError(f"no such .blend file: {blend}")
     if not (addon_dir / "addons" / "photon" / "__init__.py").is_file():
