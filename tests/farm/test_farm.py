@@ -220,7 +220,8 @@ def test_requeued_and_killed_bands_render_again(farm, scene):
     assert_same_image(ref / "farm_0002.exr", out / "farm_0002.exr")
 
 
-@pytest.mark.parametrize("case", ["missing_blend", "unwritable_out", "split_zero"])
+@pytest.mark.parametrize("case", ["missing_blend", "unwritable_out", "split_zero",
+                                  "split_with_border"])
 def test_bad_input_is_refused_before_queuing(farm, scene, case):
     blend, _ = scene
     out = farm.out / f"bad_{case}"
@@ -234,9 +235,18 @@ def test_bad_input_is_refused_before_queuing(farm, scene, case):
         blocker.write_text("not a folder")
         args[3] = out = blocker / "frames"
         expected = "is not writable"
-    else:
+    elif case == "split_zero":
         args += ["--split", "0"]
         expected = "--split must be 1 or more"
+    else:
+        bordered = farm.out / "bordered.blend"
+        subprocess.run([farm.blender, "-b", "--factory-startup", str(blend), "--python-expr",
+                        "import bpy; bpy.context.scene.render.use_border = True; "
+                        f"bpy.ops.wm.save_as_mainfile(filepath={str(bordered)!r})"],
+                       check=True, capture_output=True, timeout=120, stdin=subprocess.DEVNULL)
+        args[1] = bordered
+        args += ["--split", "2"]
+        expected = "the file has a render border"
     before = farm.slurm("scontrol", "show", "config").returncode
     proc = farm.run(*args)
     assert proc.returncode == 2, proc.log
@@ -268,3 +278,31 @@ def test_band_borders_select_exact_rows():
                                                (float(lo32) * height, float(hi32) * height)):
                     assert (int(product_lo), int(product_hi)) == (height - y1, height - y0), \
                         (height, split, y0, y1)
+
+
+@pytest.mark.parametrize("split", [1, 2])
+def test_failed_render_makes_wait_fail(farm, split):
+    """A frame Photon refuses (a camera with a NaN location: Blender exits 1 and writes
+    nothing) fails its task; with no retries left `submit --wait` exits 1, the stitch job is
+    dropped, and no frame file appears."""
+    blend = farm.out / "nan_camera.blend"
+    if not blend.exists():
+        env = dict(os.environ, BLENDER_USER_SCRIPTS=str(farm.stage),
+                   PYTHONPATH=os.pathsep.join([str(REPO / "test_scenes"),
+                                               str(REPO / "tests" / "blender" / "scripts")]))
+        subprocess.run([farm.blender, "-b", "--factory-startup", "--addons", "photon",
+                        "--python", str(REPO / "tests" / "blender" / "scripts" /
+                                        "make_bad_scene.py"),
+                        "--", str(farm.out / "nan_camera.json"), "nan_camera", str(blend)],
+                       env=env, check=True, capture_output=True, timeout=120,
+                       stdin=subprocess.DEVNULL)
+    out = farm.out / f"failing_{split}"
+    proc = farm.run("submit", blend, "--out", out, "--split", split, "--retries", "0",
+                    "--wait")
+    assert proc.returncode == 1, proc.log
+    assert "not rendered" in proc.stderr, proc.log
+    assert not farm.queue()
+    assert [p.name for p in out.iterdir()] == [".farm"]
+    logs = next((out / ".farm").iterdir()) / "logs"
+    task_log = (logs / f"render_{job_id(proc)}_0.log").read_text()
+    assert "non-finite transform" in task_log and "farm: error" in task_log, task_log

@@ -34,6 +34,7 @@ info = {
     "quality": fmt.quality,
     "is_movie": bool(r.is_movie_format),
     "use_multiview": bool(r.use_multiview),
+    "use_border": bool(r.use_border),
     "scene_frames": [scene.frame_start, scene.frame_end],
 }
 print("PHOTON_FARM_INFO " + json.dumps(info), flush=True)

@@ -75,6 +75,9 @@ def check_settings(info, split):
         if info["file_format"] not in stitch.OIIO_FORMATS:
             raise SubmitError(f"--split cannot stitch {info['file_format']} output; use "
                               f"{', '.join(sorted(stitch.OIIO_FORMATS))}")
+        if info["use_border"]:
+            raise SubmitError("--split renders bands of the whole frame, but the file has a "
+                              "render border (Output > Format > Render Region): turn it off")
         if info["use_multiview"]:
             raise SubmitError("--split does not support multi-view (stereo) output")
         if split > info["height"]:
