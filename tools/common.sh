@@ -11,6 +11,7 @@ PACKAGES=(
   pybind11-dev python3-dev python3-numpy python3-pytest
   libgtest-dev libbenchmark-dev libnanoflann-dev
   xvfb xauth xdotool libgl1-mesa-dri  # the GUI tests (tests/blender/test_*_gui.py)
+  slurm-wlm munge  # the render farm and its test cluster (tools/farm.py, tests/farm)
 )
 
 install_packages() {
