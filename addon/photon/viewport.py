@@ -48,9 +48,10 @@ last_edit_to_image_seconds = None
 last_draw = {}
 # Preview thumbnails rendered to the end (tests).
 previews_rendered = 0
-# How the viewport took edits in (tests, benchmarks): "full" syncs of the whole scene and
-# "transform" updates that only moved instances; "last" is the latest one's kind.
-sync_counts = {"full": 0, "transform": 0, "last": None}
+# How the viewport took edits in (tests, benchmarks): "full" syncs of the whole scene,
+# "transform" updates that only moved instances and "material" updates that only converted
+# edited materials again; "last" is the latest one's kind.
+sync_counts = {"full": 0, "transform": 0, "material": 0, "last": None}
 
 
 def tag_rendered_viewports():
@@ -211,6 +212,7 @@ class ViewportRender:
         self.movable = set()      # objects whose moves only re-place their instances
         self.object_names = None  # the depsgraph's objects at the last sync (shown/hidden)
         self.pending_moves = set()  # objects moved since the session started
+        self.pending_materials = set()  # name_full of materials edited since then
 
     # -- view_update --
     def update(self, depsgraph):
@@ -221,9 +223,15 @@ class ViewportRender:
         if self.native_scene is None:
             self.needs_sync = True
             return True
-        moved = set()
+        moved, materials, trees = set(), set(), 0
         for update in depsgraph.updates:
             data = update.id
+            if isinstance(data, bpy.types.Material):
+                materials.add(data.name_full)
+                continue
+            if isinstance(data, bpy.types.ShaderNodeTree) and data.is_embedded_data:
+                trees += 1  # a material's or the world's own tree: its owner is updated too
+                continue
             if isinstance(data, bpy.types.Object) and data.type == 'CAMERA':
                 continue  # view_draw reads the camera
             if isinstance(data, bpy.types.Camera):
@@ -238,8 +246,11 @@ class ViewportRender:
                 moved.add(data.name)
                 continue
             return self._mark_sync()
-        if moved:
+        if trees and not materials and not moved:
+            return self._mark_sync()  # a node tree edit whose owner is not known
+        if moved or materials:
             self.pending_moves |= moved
+            self.pending_materials |= materials
             self.edit_time = time.perf_counter()  # for the edit-to-image benchmark
             return True
         return _settings_key(depsgraph.scene) != self.settings_key
@@ -247,6 +258,7 @@ class ViewportRender:
     def _mark_sync(self):
         self.needs_sync = True
         self.pending_moves.clear()
+        self.pending_materials.clear()
         self.edit_time = time.perf_counter()  # for the edit-to-image benchmark
         return True
 
@@ -275,6 +287,7 @@ class ViewportRender:
         self._stop()
         self.viewport_scene = None  # its BVH points into the meshes
         self.pending_moves.clear()
+        self.pending_materials.clear()
         if self.native_scene is not None:
             self.mesh_cache.reclaim(self.native_scene)
             self.native_scene = None
@@ -296,6 +309,7 @@ class ViewportRender:
         self.object_names = frozenset(o.name for o in depsgraph.objects)
         self.needs_sync = False
         self.pending_moves.clear()
+        self.pending_materials.clear()
         sync_counts["full"] += 1
         sync_counts["last"] = "full"
 
@@ -330,6 +344,35 @@ class ViewportRender:
         sync_counts["last"] = "transform"
         return True
 
+    def _edit_materials(self, depsgraph):
+        """Converts the materials edited since the session started again and replaces them in
+        the synced scene, whose BVH, lamps and textures stay (emissive triangles are refreshed).
+        False when an edit needs a full sync (the caller syncs then)."""
+        names, self.pending_materials = self.pending_materials, set()
+        table = self.sync_stats.material_table
+        crypto = self.sync_stats.cryptomatte
+        edits = []
+        for name in sorted(names):
+            material = next((m for m in bpy.data.materials if m.name_full == name), None)
+            if material is None or table is None:
+                return False
+            converted = table.reconvert(material.evaluated_get(depsgraph))
+            if converted is None:
+                return False
+            edits.append(converted)
+        self._stop()
+        for index, name, closures, program, pass_index in edits:
+            crypto_id = (crypto.id("CryptoMaterial", name)
+                         if crypto is not None and crypto.any() else 0.0)
+            try:
+                self.viewport_scene.replace_material(index, name, closures, program, pass_index,
+                                                     crypto_id)
+            except ValueError:  # its nodes do not compile: a full sync reports and falls back
+                return False
+        sync_counts["material"] += 1
+        sync_counts["last"] = "material"
+        return True
+
     def _start(self, scene, view):
         (args, width, height, border) = view
         settings = _settings(self.native, scene, width, height, border)
@@ -348,7 +391,8 @@ class ViewportRender:
         try:
             if self.needs_sync or self.native_scene is None:
                 self._sync(depsgraph)
-            elif self.pending_moves and not self._move(depsgraph):
+            elif ((self.pending_moves and not self._move(depsgraph))
+                  or (self.pending_materials and not self._edit_materials(depsgraph))):
                 self._sync(depsgraph)
             key, view = viewport_view(context, depsgraph, self.sync_stats.origin)
             if self.session is None or _settings_key(scene) != self.settings_key:

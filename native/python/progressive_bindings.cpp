@@ -7,6 +7,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "material_binding.h"
 #include "photon/render/blas_cache.h"
 #include "photon/session/progressive_session.h"
 #include "photon/session/viewport_scene.h"
@@ -41,6 +42,26 @@ void bind_progressive(py::module_& m) {
           "resources built they are updated in place (top-level BVH only): True. False when "
           "they had to be dropped (the next session rebuilds them from the moved scene). No "
           "session may be running (RuntimeError).")
+      .def(
+          "replace_material",
+          [](ViewportScene& vs, uint32_t index, const std::string& name, const py::list& closures,
+             const py::object& program, float pass_index, float cryptomatte_id) {
+            std::string warning;
+            Material material = photon_python::parse_material(
+                name, closures, static_cast<int64_t>(vs.scene().textures.size()), program,
+                &warning);
+            if (!warning.empty()) throw py::value_error(warning);
+            material.pass_index = pass_index;
+            material.cryptomatte_material = cryptomatte_id;
+            py::gil_scoped_release release;
+            return vs.replace_material(index, std::move(material));
+          },
+          py::arg("index"), py::arg("name"), py::arg("closures"), py::arg("program") = py::none(),
+          py::arg("pass_index") = 0.0f, py::arg("cryptomatte_id") = 0.0f,
+          "Replaces Scene.materials[index] with an edited material (closure dicts as "
+          "Scene.add_material takes them; its textures must already be in the scene). True "
+          "when the built resources were kept (BVH, lamps, textures; emissive triangles "
+          "refreshed), False when the next session rebuilds them. No session may be running.")
       .def_property_readonly(
           "bounds",
           [](ViewportScene& vs) -> py::object {

@@ -1,7 +1,8 @@
 """Incremental viewport updates in Blender's real GUI, under Xvfb: a moved object takes the
-transform-only path (its instance re-placed in the BVH's top level, no sync) and the viewport
-converges to the same image a full re-sync of the moved scene gives; edits that must sync
-the whole scene (an object hidden, a lamp moved) do. Skipped when no X server can be started.
+transform-only path (its instance re-placed in the BVH's top level, no sync), a recoloured
+material the material path (converted again, the BVH kept), and the viewport converges to
+the same image a full re-sync of the edited scene gives; edits that must sync the whole
+scene (an object hidden, a lamp moved) do. Skipped when no X server can be started.
 """
 
 import json
@@ -47,7 +48,7 @@ def changed_fraction(a, b):
     return float((np.abs(a - b).max(axis=2) > 0.1).mean())
 
 
-def test_move_takes_the_transform_path_and_matches_a_full_sync(gui_run):
+def test_move_and_recolour_take_their_paths_and_match_a_full_sync(gui_run):
     assert gui_run["moved_sync"] == "transform"
     assert gui_run["moved_transform_syncs"] >= 1
     assert gui_run["moved_full_syncs"] == 0
@@ -57,10 +58,16 @@ def test_move_takes_the_transform_path_and_matches_a_full_sync(gui_run):
     # The Empty changes the scene's objects: a full sync of the same moved scene, which
     # converges to the very same image.
     assert gui_run["resynced_sync"] == "full" and gui_run["resynced_full_syncs"] == 1
+    # A recoloured wall: the material alone is converted again, the BVH stays.
+    assert gui_run["recolored_sync"] == "material"
+    assert gui_run["recolored_material_syncs"] == 1 and gui_run["recolored_full_syncs"] == 0
+    recolored = read_image(gui_run["recolored"])[:, :, :3]
+    assert changed_fraction(moved, recolored) > 0.05  # the red wall turned blue
     resynced = read_image(gui_run["resynced"])[:, :, :3]
-    diff = float(np.abs(moved - resynced).max())
-    print(f"transform path vs full sync: max difference {diff:.6f}; edit to first image "
-          f"{gui_run['moved_seconds']:.3f} s (transform) vs {gui_run['resynced_seconds']:.3f} s "
+    diff = float(np.abs(recolored - resynced).max())
+    print(f"transform and material paths vs full sync: max difference {diff:.6f}; edit to "
+          f"first image {gui_run['moved_seconds']:.3f} s (transform), "
+          f"{gui_run['recolored_seconds']:.3f} s (material), {gui_run['resynced_seconds']:.3f} s "
           f"(full)")
     assert diff == 0.0
 

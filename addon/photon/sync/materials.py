@@ -237,6 +237,22 @@ class MaterialTable:
             self.names[found] = material.name if material is not None else None
         return found
 
+    def reconvert(self, material):
+        """(index, name, closures, program, pass_index) of an edited material that this table
+        converted before, converted again with the same images; None when it was not in the
+        table or the edit needs what only a full sync adds (an image the scene does not hold,
+        a named attribute its meshes were not exported with)."""
+        index = self._index.get(material.name_full)
+        if index is None:
+            return None
+        textures_before = self._scene.texture_count
+        name, closures, program = convert_material(material, self._reporter, self.textures)
+        if self._scene.texture_count != textures_before:
+            return None
+        if not set(program_attributes(program)) <= set(self._attributes.get(index, {})):
+            return None
+        return index, name, closures, program, float(getattr(material, "pass_index", 0))
+
     def slot_indices(self, obj):
         slots = [self.index(slot.material) for slot in obj.material_slots]
         return slots or [self.index(None)]

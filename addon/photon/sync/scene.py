@@ -34,6 +34,9 @@ class SyncStats:
         # The Cryptomatte names of the synced objects, materials and assets (cryptomatte.Names;
         # only collected for the kinds the view layer's passes enable).
         self.cryptomatte = None
+        # The MaterialTable that converted the scene's materials (the viewport converts an
+        # edited material again with it).
+        self.material_table = None
         self._release = []
 
     def release(self):
@@ -72,6 +75,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
     materials = sync_materials.MaterialTable(native_scene, reporter,
                                              getattr(native, "TexturePixels", None))
     stats._release.append(materials.release)
+    stats.material_table = materials
 
     mesh_index = {}        # data identity -> native mesh index (None: no triangles)
     mesh_bounds = {}       # native mesh index -> object-space (lo, hi), float64

@@ -85,6 +85,7 @@ def steps():
         result[f"{name}_sync"] = vp.sync_counts["last"]
         result[f"{name}_full_syncs"] = vp.sync_counts["full"] - before["full"]
         result[f"{name}_transform_syncs"] = vp.sync_counts["transform"] - before["transform"]
+        result[f"{name}_material_syncs"] = vp.sync_counts["material"] - before["material"]
         result[name] = screenshot(name)
 
     yield from wait_converged()
@@ -96,6 +97,13 @@ def steps():
         box.location.y -= 0.2
         box.rotation_euler.z += 0.3
     yield from edit("moved", move)
+
+    def recolor():
+        # The red wall's Diffuse BSDF colour, as an artist drags it.
+        material = scene.objects["Left"].material_slots[0].material
+        bsdf = next(n for n in material.node_tree.nodes if n.type == 'BSDF_DIFFUSE')
+        bsdf.inputs["Color"].default_value = (0.1, 0.3, 0.9, 1.0)
+    yield from edit("recolored", recolor)
 
     def add_empty():
         empty = bpy.data.objects.new("Marker", None)

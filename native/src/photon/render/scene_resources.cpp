@@ -135,16 +135,26 @@ bool same_triangles(const EmissiveMeshes& a, const EmissiveMeshes& b) {
 
 bool SceneResources::update_instance_transforms(const std::vector<uint32_t>& scene_indices) {
   if (textures_.cancelled() || !accel_.update_instance_transforms(scene_indices)) return false;
-  EmissiveMeshes moved(scene_, accel_, &textures_);
-  if (same_triangles(moved, emissive_)) return true;
+  refresh_emissive();
+  return true;
+}
+
+bool SceneResources::update_materials() {
+  if (textures_.cancelled() || accel_.cancelled()) return false;
+  refresh_emissive();
+  return true;
+}
+
+void SceneResources::refresh_emissive() {
+  EmissiveMeshes now(scene_, accel_, &textures_);
+  if (same_triangles(now, emissive_)) return;
   // The emitters point at the emissive triangles and the lamps: rebuilt on the new triangles
   // (the world, unchanged, is tabulated again: EmitterSet owns its environment emitter).
   emitters_.reset();
-  emissive_ = std::move(moved);
+  emissive_ = std::move(now);
   emitters_ = std::make_unique<EmitterSet>(lights_, emissive_, lit_world(scene_.world, textures_),
                                            EmitterSet::kEveryLightMax);
   context_.emitters = emitters_.get();
-  return true;
 }
 
 }  // namespace photon

@@ -50,12 +50,20 @@ class SceneResources {
   // SceneResources built from the moved scene would hold. False when the Accel refused the
   // move (see there): build new resources then.
   bool update_instance_transforms(const std::vector<uint32_t>& scene_indices);
+  // Edited materials: the caller replaced entries of Scene::materials (same textures). Shading
+  // reads materials from the scene, so only the emissive triangles (their radiance and which
+  // triangles emit) and the emitters on them are rebuilt, and only when they changed. False
+  // when the resources were cancelled while being built (build new ones then).
+  bool update_materials();
 
  private:
   TextureSet textures_;  // first: the BVH is not needed to convert images
   Accel accel_;
   LightSet lights_;
   EmissiveMeshes emissive_;
+  // Rebuilds the emissive triangles from the scene, and the emitters when they changed.
+  void refresh_emissive();
+
   std::unique_ptr<EmitterSet> emitters_;  // rebuilt in place when emissive triangles move
   const Scene& scene_;
   RenderContext context_;

@@ -38,6 +38,28 @@ bool ViewportScene::move_instances(const std::vector<uint32_t>& indices,
   return false;
 }
 
+bool ViewportScene::replace_material(uint32_t index, Material material) {
+  if (!mutable_scene_) throw std::runtime_error("ViewportScene: the scene is read-only");
+  std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
+  if (!lock.owns_lock())
+    throw std::runtime_error("ViewportScene: a session is rendering the scene; cancel it first");
+  if (index >= mutable_scene_->materials.size())
+    throw std::out_of_range("ViewportScene: material index " + std::to_string(index));
+  const int64_t textures = static_cast<int64_t>(mutable_scene_->textures.size());
+  for (const Closure& c : material.closures)
+    for (const Input& in : c.params)
+      if (in.texture >= textures)
+        throw std::invalid_argument("ViewportScene: material '" + material.name +
+                                    "' reads a texture the scene does not have");
+  // Shading reads the scene's materials through the BVH's slots: replaced in place.
+  mutable_scene_->materials[index] = std::move(material);
+  if (!resources_) return false;
+  if (resources_->update_materials()) return true;
+  resources_.reset();
+  built_ = false;
+  return false;
+}
+
 bool ViewportScene::bounds(Vec3* lo, Vec3* hi) {
   std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
   if (!lock.owns_lock() || !resources_ || resources_->accel().instance_count() == 0) return false;

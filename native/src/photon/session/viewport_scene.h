@@ -38,6 +38,13 @@ class ViewportScene {
   // std::runtime_error while a session renders the scene, std::out_of_range for a bad index.
   bool move_instances(const std::vector<uint32_t>& indices, const std::vector<Transform>& to_world);
 
+  // Replaces Scene::materials[index] (an edited material, whose textures are among the
+  // scene's). Built resources keep their BVH, lamps and textures (SceneResources::
+  // update_materials): true; false when they had to be dropped. The next session renders
+  // exactly the edited scene. Throws like move_instances, and std::invalid_argument for a
+  // material reading a texture the scene does not have.
+  bool replace_material(uint32_t index, Material material);
+
   // How many times the resources were built, and moves applied in place (statistics, tests).
   int builds() const { return builds_.load(); }
   int moves_in_place() const { return moves_in_place_.load(); }

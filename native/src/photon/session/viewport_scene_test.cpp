@@ -141,5 +141,39 @@ TEST(ViewportScene, RefusesMovesWhileRendering) {
   EXPECT_TRUE(viewport->move_instances({5}, {Transform::translation(Vec3(0.1f, 0.0f, 0.0f))}));
 }
 
+// Edited materials on the shared resources: a recoloured wall and a panel whose emission is
+// turned up (its light triangles and the emitters change) render as a scene built with the
+// edits, without building the BVH again.
+TEST(ViewportScene, EditedMaterialsRenderAsSceneBuiltWithThem) {
+  Scene scene = make_cornell_box(20.0f);
+  scene.materials.push_back(Material::emission(Vec3(1.0f, 1.0f, 1.0f), "panel"));
+  const uint32_t panel = static_cast<uint32_t>(scene.materials.size() - 1);
+  add_mesh_instance(&scene, make_quad({-0.3f, 0.9f, 0.8f}, {0.6f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.4f}),
+                    static_cast<int32_t>(panel));
+  const RenderSettings s = settings(IntegratorType::kPhotonMap);
+  auto viewport = std::make_shared<ViewportScene>(std::make_shared<Scene>(scene),
+                                                  std::make_shared<BlasCache>());
+  std::vector<float> before;
+  {
+    ProgressiveSession session(viewport, s);
+    before = render(session, s.samples);
+  }
+  Material wall = Material::diffuse(Vec3(0.2f, 0.7f, 0.3f), scene.materials[0].name);
+  Material brighter = Material::emission(Vec3(6.0f, 4.0f, 2.0f), "panel");
+  EXPECT_TRUE(viewport->replace_material(0, wall));
+  EXPECT_TRUE(viewport->replace_material(panel, brighter));
+  ProgressiveSession session(viewport, s);
+  const std::vector<float> edited = render(session, s.samples);
+  EXPECT_EQ(viewport->builds(), 1);
+  EXPECT_NE(edited, before);
+  scene.materials[0] = wall;
+  scene.materials[panel] = brighter;
+  expect_same_pixels(edited, render_fresh(scene, s));
+  Material bad = wall;
+  bad.closures[0].params[0].texture = 3;  // the scene has no textures
+  EXPECT_THROW(viewport->replace_material(0, bad), std::invalid_argument);
+  EXPECT_THROW(viewport->replace_material(1000, wall), std::out_of_range);
+}
+
 }  // namespace
 }  // namespace photon
