@@ -71,6 +71,34 @@ def test_sppm_light_passes_sum_to_combined(blender, tmp_path):
     assert 0.3 < indirect / direct < 2.0
 
 
+def test_sppm_data_passes_equal_the_tiled_renders(blender, tmp_path):
+    # The data passes come from the camera rays every integrator shares, so SPPM's Depth,
+    # Normal and Cryptomatte are photon mapping's, float for float.
+    passes = ("v = s.view_layers[0]; v.use_pass_z = v.use_pass_normal = True; "
+              "v.use_pass_cryptomatte_object = True; ")
+    procs = {}
+    for integrator in ("SPPM", "PHOTON_MAP"):
+        procs[integrator] = render(
+            blender, tmp_path / f"{integrator}_",
+            SMALL + passes + f"s.photon.integrator = '{integrator}'; "
+            "s.photon.sppm_iterations = 2; s.photon.sppm_photons_per_iteration = 20000",
+            fmt="OPEN_EXR_MULTILAYER")
+    assert "data passes" not in procs["SPPM"].stdout, procs["SPPM"].log
+    import OpenImageIO as oiio
+    layers = {}
+    for integrator in procs:
+        buf = oiio.ImageBuf(str(tmp_path / f"{integrator}_0001.exr"))
+        names = list(buf.spec().channelnames)
+        pixels = buf.get_pixels(oiio.FLOAT)
+        layers[integrator] = {name: pixels[..., i] for i, name in enumerate(names)
+                              if name.split(".")[1] in ("Depth", "Normal", "CryptoObject00")}
+    assert len(layers["SPPM"]) == 1 + 3 + 4, sorted(layers["SPPM"])
+    for name, values in layers["PHOTON_MAP"].items():
+        np.testing.assert_array_equal(layers["SPPM"][name], values, err_msg=name)
+    depth = layers["SPPM"]["ViewLayer.Depth.Z"]
+    assert 1.0 < depth.min() and np.median(depth) < 20.0, "Depth is not written"
+
+
 def test_sppm_time_limit_ends_the_render_with_the_iterations_done(blender, tmp_path):
     proc = render(blender, tmp_path / "t_",
                   SMALL + "s.photon.integrator = 'SPPM'; s.photon.sppm_iterations = 100000; "

@@ -299,5 +299,28 @@ TEST(DataPasses, CryptomatteCountsWhatTheSamplesSeeThroughTransparency) {
   for (int f = 1; f < fa.floats; ++f) EXPECT_EQ(corner[f], 0.0f) << f;
 }
 
+// SPPM traces its own camera paths per iteration; its data passes come from the camera rays of
+// the Sampling panel's samples, so they are the same floats as a tiled render's, for any
+// thread count, and every published iteration carries them.
+TEST(DataPasses, SppmWritesTheTiledIntegratorsDataPasses) {
+  auto scene = std::make_shared<Scene>(*veiled_quad_scene());
+  scene->instances[0].cryptomatte_object = 3.5f;
+  scene->instances[1].cryptomatte_object = 7.25f;
+  RenderSettings tiled = settings(24, 4, kPassAllData);
+  tiled.data_passes.cryptomatte = kCryptoObject;
+  tiled.data_passes.cryptomatte_depth = 2;
+  RenderSettings sppm = tiled;
+  sppm.integrator = IntegratorType::kSppm;
+  sppm.sppm_iterations = 2;
+  sppm.sppm_photons_per_iteration = 2000;
+  sppm.threads = 1;
+  RenderSettings sppm_threads = sppm;
+  sppm_threads.threads = 3;
+  const Frame expected = render(scene, tiled);
+  const Frame one = render(scene, sppm), three = render(scene, sppm_threads);
+  EXPECT_EQ(one.data, expected.data);
+  EXPECT_EQ(three.data, expected.data);
+}
+
 }  // namespace
 }  // namespace photon

@@ -3,9 +3,15 @@
 // (integrators/sppm/sppm_renderer.h), and the image after a complete iteration is handed over as
 // one tile of the whole region, which the add-on writes over the last one: the render refines in
 // place. Iterations stop at sppm_iterations, after the iteration that passes sppm_time, or on
-// cancel; the tile of the last complete iteration is always handed over.
+// cancel; the tile of the last complete iteration is always handed over. The data passes are
+// rendered once, before the first iteration, and every tile carries them.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <atomic>
 #include <chrono>
 #include <string>
+#include <vector>
 
 #include "photon/session/data_passes.h"
 #include "photon/session/pixel_renderer.h"
@@ -28,13 +34,26 @@ void RenderSession::run_iterative(const RenderContext& context, tbb::task_arena&
   const double time_limit = settings_.sppm_time;
   const int w = region_width(), h = region_height();
   const size_t pixels = static_cast<size_t>(w) * h;
-  const int data_floats = data_pass_floats(settings_.data_passes.mask);
-  if (data_floats)
-    add_warning(
-        "data passes (Depth, Normal, ...) are not rendered by the SPPM integrator yet: "
-        "they are left at zero");
+  const int data_floats = data_pass_pixel_floats(settings_.data_passes);
   set_work_total(kProgressSteps);
   const auto t0 = Clock::now();
+
+  // The data passes do not change from iteration to iteration: they are rendered once, from the
+  // camera rays of the Sampling panel's samples, as the tiled integrators render them.
+  std::vector<float> data(pixels * data_floats);
+  if (data_floats) {
+    set_status("Data passes");
+    std::atomic<bool> complete{true};
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, h, 4), [&](const tbb::blocked_range<int>& rows) {
+        float* out = data.data() + static_cast<size_t>(rows.begin()) * w * data_floats;
+        if (!render_data_passes(context, settings_.x0, settings_.y0 + rows.begin(), w,
+                                static_cast<int>(rows.size()), out, cancel))
+          complete = false;
+      });
+    });
+    if (!complete) return;  // cancelled before any image: Blender keeps the preview
+  }
 
   std::unique_ptr<SppmRenderer> sppm;
   std::vector<std::string> warnings;
@@ -66,7 +85,7 @@ void RenderSession::run_iterative(const RenderContext& context, tbb::task_arena&
     latest = Tile{0, 0, w, h, {}, {}, {}};
     latest.rgba.resize(pixels * 4);
     if (settings_.light_passes) latest.passes.resize(pixels * kPassFloats);
-    if (data_floats) latest.data.assign(pixels * data_floats, 0.0f);
+    latest.data = data;
     sppm->write_image(latest.rgba.data(), settings_.light_passes ? latest.passes.data() : nullptr);
     latest_published = false;
 

@@ -26,11 +26,61 @@ Ray camera_sample_ray(const PixelFilter& filter, const Camera& camera, int full_
   return generate_camera_ray(camera, (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
 }
 
+namespace {
+
+// Sample k of the pixels [x, x + n) of row py: each pixel's sampler (its stream depends on the
+// pixel's place in the full frame only), its camera ray, traced with the row's others as one
+// coherent Embree stream, and the first hit.
+void trace_camera_row(const RenderContext& context, const PixelFilter& filter, int x, int py, int k,
+                      size_t n, Sampler* samplers, Ray* rays, Hit* hits, bool* found) {
+  const RenderSettings& s = *context.settings;
+  for (size_t i = 0; i < n; ++i) {
+    const int px = x + static_cast<int>(i);
+    const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
+    samplers[i] =
+        Sampler(s.seed, pixel_index, static_cast<uint32_t>(k), static_cast<uint32_t>(s.samples));
+    rays[i] = camera_sample_ray(filter, context.scene->camera, s.full_width, s.full_height, px, py,
+                                samplers[i]);
+  }
+  context.accel->intersect_coherent(rays, n, kVisibleCamera, hits, found);
+}
+
+}  // namespace
+
+bool render_data_passes(const RenderContext& context, int x, int y, int width, int height,
+                        float* data, const std::atomic<bool>& cancel) {
+  const RenderSettings& s = *context.settings;
+  const PixelFilter filter(s.filter_type, s.filter_width);
+  const size_t n = static_cast<size_t>(width);
+  const size_t row_floats = n * data_pass_pixel_floats(s.data_passes);
+  std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
+  std::vector<Ray> rays(n);
+  std::vector<Hit> hits(n);
+  std::unique_ptr<bool[]> found(new bool[n]);
+  DataPassRow data_row(context, s.data_passes, n);
+  for (int row = 0; row < height; ++row) {
+    const int py = y + row;
+    data_row.clear();
+    for (int k = 0; k < s.samples; ++k) {
+      if (cancel.load(std::memory_order_relaxed)) return false;
+      trace_camera_row(context, filter, x, py, k, n, samplers.data(), rays.data(), hits.data(),
+                       found.get());
+      for (size_t i = 0; i < n; ++i) {
+        CameraHit first;
+        first.found = found[i];
+        if (first.found) first.hit = hits[i];
+        data_row.add(i, k, static_cast<uint64_t>(py) * s.full_width + x + i, rays[i], first);
+      }
+    }
+    data_row.finish(s.samples, data + static_cast<size_t>(row) * row_floats);
+  }
+  return true;
+}
+
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
                    uint64_t* non_finite, float* passes, float* data, int* rows_done) {
   const RenderSettings& s = *context.settings;
-  const Camera& camera = context.scene->camera;
   const float inv_spp = 1.0f / s.samples;
   const PixelFilter filter(s.filter_type, s.filter_width);
   const float colour_scale = inv_spp * s.exposure;  // the film's exposure scales colour only
@@ -55,16 +105,8 @@ bool render_pixels(const RenderContext& context, const Integrator& integrator, i
     if (data_row) data_row->clear();
     for (int k = 0; k < s.samples; ++k) {
       if (cancel.load(std::memory_order_relaxed)) return false;
-      for (size_t i = 0; i < n; ++i) {
-        const int px = x + static_cast<int>(i);
-        // The stream depends on the pixel's place in the full frame only.
-        const uint64_t pixel_index = static_cast<uint64_t>(py) * s.full_width + px;
-        samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
-                              static_cast<uint32_t>(s.samples));
-        rays[i] =
-            camera_sample_ray(filter, camera, s.full_width, s.full_height, px, py, samplers[i]);
-      }
-      context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
+      trace_camera_row(context, filter, x, py, k, n, samplers.data(), rays.data(), hits.data(),
+                       found.get());
       for (size_t i = 0; i < n; ++i) {
         CameraHit first;
         first.found = found[i];

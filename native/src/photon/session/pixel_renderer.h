@@ -35,6 +35,11 @@ Ray camera_sample_ray(const PixelFilter& filter, const Camera& camera, int full_
                       int full_height, int px, int py, Sampler& sampler);
 
 constexpr int kPassFloats = 3 * kPassCount;
+// Only the data passes of the pixels [x, x + width) x [y, y + height), from the camera rays and
+// first hits render_pixels() would trace: the same floats as its `data`, for renderers whose
+// integrator does not answer per camera sample (SPPM). False when cancelled (rows unfinished).
+bool render_data_passes(const RenderContext& context, int x, int y, int width, int height,
+                        float* data, const std::atomic<bool>& cancel);
 bool render_pixels(const RenderContext& context, const Integrator& integrator, int x, int y,
                    int width, int height, float* rgba, const std::atomic<bool>& cancel,
                    uint64_t* non_finite, float* passes = nullptr, float* data = nullptr,
