@@ -23,6 +23,7 @@ struct SigmoidPolynomial {
     return 0.5f + x / (2.0f * std::sqrt(1.0f + x * x));
   }
   float operator()(float lambda) const {
+    if (std::isnan(lambda)) return 0.0f;
     const float t = (lambda - kLambdaMin) * (1.0f / (kLambdaMax - kLambdaMin));
     if (c0 == 0.0f && c1 == 0.0f) return sigmoid(c2);  // constant (the grey axis: c2 may be inf)
     return sigmoid((c0 * t + c1) * t + c2);
