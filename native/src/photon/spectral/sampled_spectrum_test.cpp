@@ -106,7 +106,9 @@ TEST(SpectralSampling, MonteCarloXyzConvergesToTheTableIntegral) {
       std::printf("illuminant %d%s: per-path RGB std dev uniform %.4f, visible %.4f\n",
                   static_cast<int>(which), terminate ? " (hero only)" : "", eu.stddev, ev.stddev);
       // Importance sampling by the eye's response must help on smooth spectra.
-      if (which != Illuminant::kF11) EXPECT_LT(ev.stddev, eu.stddev);
+      if (which != Illuminant::kF11) {
+        EXPECT_LT(ev.stddev, eu.stddev);
+      }
     }
   }
 }

@@ -153,5 +153,15 @@ TEST(SpectralUplift, OptimiserReachesSaturatedPrimaries) {
   }
 }
 
+TEST(SpectralUplift, TableFitDoesNotDependOnThreadCount) {
+  const UpliftTableData one = build_uplift_table(6, 1);
+  const UpliftTableData three = build_uplift_table(6, 3);
+  ASSERT_EQ(one.coeffs.size(), three.coeffs.size());
+  EXPECT_EQ(one.coeffs, three.coeffs);
+  EXPECT_EQ(one.z_nodes, three.z_nodes);
+  EXPECT_EQ(one.z_nodes.front(), 0.0f);
+  EXPECT_EQ(one.z_nodes.back(), 1.0f);
+}
+
 }  // namespace
 }  // namespace photon::spectral
