@@ -124,10 +124,30 @@ SigmoidPolynomial RgbToSpectrumTable::coefficients(const Vec3& rgb) const {
   return r;
 }
 
-SampledSpectrum RgbAlbedoSpectrum::sample(const SampledWavelengths& wl) const {
+SampledSpectrum BlendedSigmoids::sample(const SampledWavelengths& wl) const {
+  // The grey axis: one constant term whose c2 may be infinite.
+  if (count == 1 && term[0].c0 == 0.0f && term[0].c1 == 0.0f)
+    return SampledSpectrum(weight[0] * SigmoidPolynomial::sigmoid(term[0].c2));
+  float t[kSpectrumSamples], v[kSpectrumSamples] = {};
+  for (int i = 0; i < kSpectrumSamples; ++i) {
+    const float lambda = wl.lambda(i);
+    t[i] = (lambda - kLambdaMin) * (1.0f / (kLambdaMax - kLambdaMin));
+  }
+  // Table terms are finite (|c| <= the fitter's cap), so no infinity test in the loop.
+  for (int k = 0; k < count; ++k) {
+    const SigmoidPolynomial& p = term[k];
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+      const float x = (p.c0 * t[i] + p.c1) * t[i] + p.c2;
+      v[i] += weight[k] * (0.5f + 0.5f * x / std::sqrt(1.0f + x * x));
+    }
+  }
   SampledSpectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = blend_(wl.lambda(i));
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = std::isnan(t[i]) ? 0.0f : v[i];
   return s;
+}
+
+SampledSpectrum RgbAlbedoSpectrum::sample(const SampledWavelengths& wl) const {
+  return blend_.sample(wl);
 }
 
 RgbUnboundedSpectrum::RgbUnboundedSpectrum(const RgbToSpectrumTable& table, const Vec3& rgb) {
@@ -140,9 +160,7 @@ RgbUnboundedSpectrum::RgbUnboundedSpectrum(const RgbToSpectrumTable& table, cons
 }
 
 SampledSpectrum RgbUnboundedSpectrum::sample(const SampledWavelengths& wl) const {
-  SampledSpectrum s;
-  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = scale_ * blend_(wl.lambda(i));
-  return s;
+  return blend_.sample(wl) * scale_;
 }
 
 RgbIlluminantSpectrum::RgbIlluminantSpectrum(const RgbToSpectrumTable& table, const Vec3& rgb)

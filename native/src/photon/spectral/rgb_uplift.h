@@ -48,6 +48,9 @@ struct BlendedSigmoids {
     for (int k = 0; k < count; ++k) v += weight[k] * term[k](lambda);
     return v;
   }
+  // All N wavelengths at once: terms outside, wavelengths inside, so the compiler can keep the
+  // N lanes in one vector register.
+  SampledSpectrum sample(const SampledWavelengths& wl) const;
 };
 
 // The fitted coefficients over the RGB cube: for the largest component z and the other two
