@@ -107,23 +107,6 @@ BlendedSigmoids RgbToSpectrumTable::operator()(const Vec3& rgb) const {
   return b;
 }
 
-SigmoidPolynomial RgbToSpectrumTable::coefficients(const Vec3& rgb) const {
-  Cell cell;
-  SigmoidPolynomial grey;
-  if (!locate(rgb, &cell, &grey)) return grey;
-  SigmoidPolynomial r;
-  for (int k = 0; k < 8; ++k) {
-    const int ox = k & 1, oy = (k >> 1) & 1, oz = k >> 2;
-    const float w = (ox ? cell.dx : 1.0f - cell.dx) * (oy ? cell.dy : 1.0f - cell.dy) *
-                    (oz ? cell.dz : 1.0f - cell.dz);
-    const SigmoidPolynomial n = node(cell.sheet, cell.zi + oz, cell.yi + oy, cell.xi + ox);
-    r.c0 += w * n.c0;
-    r.c1 += w * n.c1;
-    r.c2 += w * n.c2;
-  }
-  return r;
-}
-
 SampledSpectrum BlendedSigmoids::sample(const SampledWavelengths& wl) const {
   // The grey axis: one constant term whose c2 may be infinite.
   if (count == 1 && term[0].c0 == 0.0f && term[0].c1 == 0.0f)
