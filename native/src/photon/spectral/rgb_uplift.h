@@ -37,8 +37,8 @@ struct SigmoidPolynomial {
 // instead of coefficients keeps the round trip exact: colour is linear in the spectrum, and
 // trilinear interpolation reproduces the nodes' colours (z, x z, y z) exactly, so the blend's
 // colour is the input up to the fit residual; each node spectrum is in [0, 1], so is the blend.
-// (Interpolating the coefficients, as the paper and pbrt-v4 do, measured up to 1.0e-2 RGB error
-// between nodes at 32^3 and 6e-3 at 64^3, near white and for dark saturated colours.) Node
+// (Interpolating the coefficients, as the paper and pbrt-v4 do, measured up to 2e-2 RGB error
+// between nodes at 32^3 and 9e-3 at 64^3, near white and for dark saturated colours.) Node
 // layer 0 (black) is the zero spectrum and adds no term. Evaluating costs up to 8 sigmoids.
 struct BlendedSigmoids {
   static constexpr int kMaxTerms = 8;
