@@ -35,9 +35,9 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:suppressions=$SUPP/ubsa
 # the normal build checks them unscaled.
 export PHOTON_TIMING_SLACK="${PHOTON_TIMING_SLACK:-5}"
 export PHOTON_FUZZ_SECONDS="${PHOTON_FUZZ_SECONDS:-30}"
-# The Cycles-reference node tests run every case's node code at every 4th pixel (the plain
+# The Cycles-reference node tests run every case's node code at every 16th pixel (the plain
 # build checks every pixel).
-export PHOTON_NODE_REF_STRIDE="${PHOTON_NODE_REF_STRIDE:-4}"
+export PHOTON_NODE_REF_STRIDE="${PHOTON_NODE_REF_STRIDE:-16}"
 status=0
 "$BUILD/photon_tests" "$@" || status=$?
 echo "== sanitizer tests: build $((built - start)) s, run $(($(date +%s) - built)) s, exit $status"
