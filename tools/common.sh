@@ -8,7 +8,7 @@ PACKAGES=(
   cmake g++ make pkg-config
   blender
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools python3-openimageio
-  pybind11-dev python3-dev python3-numpy python3-pytest
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-pytest-xdist
   libgtest-dev libbenchmark-dev libnanoflann-dev
   xvfb xauth xdotool libgl1-mesa-dri  # the GUI tests (tests/blender/test_*_gui.py)
   slurm-wlm munge  # the render farm and its test cluster (tools/farm.py, tests/farm)

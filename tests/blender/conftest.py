@@ -14,6 +14,12 @@ REPO = Path(__file__).resolve().parents[2]
 SCRIPTS = Path(__file__).resolve().parent / "scripts"
 
 
+def pytest_configure(config):
+    config.addinivalue_line(
+        "markers", "serial: measures wall time or drives an X display, so it runs alone "
+        "(ctest's blender_serial_tests); the others run two at a time (blender_tests)")
+
+
 def pytest_addoption(parser):
     parser.addoption("--photon-stage", default=str(REPO / "build" / "stage"),
                      help="folder holding addons/photon (BLENDER_USER_SCRIPTS)")

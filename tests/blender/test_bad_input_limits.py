@@ -51,6 +51,7 @@ def test_huge_thread_counts_bake_twice_with_a_warning(blender, tmp_path, threads
         proc.log
 
 
+@pytest.mark.serial  # a wall-time bound
 def test_sigint_during_radiance_precompute_ends_blender_promptly(blender, tmp_path):
     # 500k photons: ~230k radiance estimates, several seconds of precompute (minutes before
     # the fix, which waited for it, the irradiance cache and the pixels).

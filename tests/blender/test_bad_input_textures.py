@@ -9,6 +9,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
 from harness import read_image  # noqa: E402
@@ -60,6 +61,7 @@ class Render:
         self.peak_rss, self.wall = peak_rss, wall
 
 
+@pytest.mark.serial  # a wall-time bound
 def test_8k_generated_image_renders_in_bounded_memory_and_time(blender, tmp_path):
     blend, _ = make_scene(blender, tmp_path, "grid", 8192)
     r = render(blender, tmp_path, blend)

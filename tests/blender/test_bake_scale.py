@@ -74,6 +74,7 @@ def run_until(blender, pattern, bake_samples):
 
 
 @pytest.mark.parametrize("stage", ["Irradiance cache", "Baking "])
+@pytest.mark.serial  # a wall-time bound
 def test_sigint_cancels_a_background_bake_within_a_second(blender, stage):
     latency, out, result = run_until(blender, r"Photon: bake: " + stage, bake_samples=64)
     print(f"SIGINT during '{stage.strip()}': Blender exited {latency:.2f} s later")

@@ -41,6 +41,7 @@ def render(native, scene, settings):
     return session.image()
 
 
+@pytest.mark.serial  # a wall-time bound
 def test_cancel_stops_within_half_a_second(native):
     scene, settings = cornell_like_scene(native, 1024, 1024)
     settings.samples = 4096  # minutes of work if not cancelled

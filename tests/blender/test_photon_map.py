@@ -60,6 +60,7 @@ def test_light_passes_sum_to_combined(blender, tmp_path):
     assert channel("Photon Map", "R").max() > 0.5
 
 
+@pytest.mark.serial  # a wall-time bound
 def test_photon_time_budget_traces_for_its_time(blender, tmp_path):
     proc = render(blender, CORNELL, tmp_path / "t_",
                   "import bpy; s = bpy.context.scene; s.render.resolution_percentage = 25; "

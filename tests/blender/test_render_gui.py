@@ -22,9 +22,10 @@ ENGINE_LATENCY = 0.5 * SLACK
 # keeps busy.
 KEY_LATENCY = 2.0 * SLACK
 
-pytestmark = pytest.mark.skipif(
+# Drives an X display and measures times: never beside other tests (serial).
+pytestmark = [pytest.mark.serial, pytest.mark.skipif(
     not (shutil.which("xvfb-run") and shutil.which("xdotool")),
-    reason="needs xvfb-run and xdotool (Debian packages xvfb, xauth, xdotool)")
+    reason="needs xvfb-run and xdotool (Debian packages xvfb, xauth, xdotool)")]
 
 
 def run_gui(blender, tmp_path, **script_args):

@@ -9,6 +9,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
 from harness import read_image  # noqa: E402
@@ -99,6 +100,7 @@ def test_sppm_data_passes_equal_the_tiled_renders(blender, tmp_path):
     assert 1.0 < depth.min() and np.median(depth) < 20.0, "Depth is not written"
 
 
+@pytest.mark.serial  # a wall-time bound
 def test_sppm_time_limit_ends_the_render_with_the_iterations_done(blender, tmp_path):
     proc = render(blender, tmp_path / "t_",
                   SMALL + "s.photon.integrator = 'SPPM'; s.photon.sppm_iterations = 100000; "

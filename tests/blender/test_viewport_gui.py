@@ -19,6 +19,9 @@ import pytest
 sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
 from harness import read_image  # noqa: E402
 
+# Drives an X display and measures times: never beside other tests.
+pytestmark = pytest.mark.serial
+
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "tests" / "blender" / "scripts" / "viewport_gui.py"
 CORNELL = REPO / "test_scenes" / "cornell_box.blend"

@@ -17,6 +17,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
 from harness import read_image  # noqa: E402
 from test_viewport_gui import SCREEN, xvfb_available  # noqa: E402
 
+# Drives an X display and measures times: never beside other tests.
+pytestmark = pytest.mark.serial
+
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "tests" / "blender" / "scripts" / "viewport_incremental.py"
 CORNELL = REPO / "test_scenes" / "cornell_box.blend"
