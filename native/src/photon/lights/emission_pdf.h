@@ -52,6 +52,7 @@ struct EmitterHit {
   float distance = INFINITY;
   float direct_pdf = 0.0f;  // illuminate_vcm()'s density: area measure, or solid angle at infinity
   float emission_pdf = 0.0f;  // emit_vcm()'s pdf_pos * pdf_dir for the reverse ray
+  float cos_light = 1.0f;     // |cos| of the ray to the emitting surface (1: at infinity)
 };
 
 }  // namespace photon

@@ -74,6 +74,7 @@ bool triangle_hit(const EmissiveTriangle& t, float pick, float cos_light, Emitte
   if (!(c > 0.0f) || !(pick > 0.0f)) return false;
   out->direct_pdf = pick / t.area;
   out->emission_pdf = pick / t.area * 0.5f * c * kInvPi;
+  out->cos_light = c;
   return std::isfinite(out->direct_pdf);
 }
 

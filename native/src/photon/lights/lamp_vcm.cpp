@@ -183,6 +183,7 @@ bool LightSet::hit_vcm(size_t index, float scene_radius, const Ray& ray, float t
   out->distance = t;
   out->direct_pdf = 1.0f / l.area;
   out->emission_pdf = -denom * kInvPi / l.area;
+  out->cos_light = -denom;
   return true;
 }
 

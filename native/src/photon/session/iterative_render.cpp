@@ -1,12 +1,14 @@
-// RenderSession's render of an iterative integrator (integrator_capabilities: iterative), SPPM:
-// instead of tiles rendered once, the whole region is refined by iterations
-// (integrators/sppm/sppm_renderer.h), and the image after a complete iteration is handed over as
-// one tile of the whole region, which the add-on writes over the last one: the render refines in
-// place. Iterations stop at sppm_iterations, after the iteration that passes sppm_time, or on
-// cancel; the tile of the last complete iteration is always handed over.
+// RenderSession's render of an iterative integrator (integrator_capabilities: iterative), SPPM
+// or VCM: instead of tiles rendered once, the whole region is refined by iterations
+// (integrators/sppm/sppm_renderer.h, integrators/vcm/vcm_renderer.h), and the image after a
+// complete iteration is handed over as one tile of the whole region, which the add-on writes over
+// the last one: the render refines in place. Iterations stop at sppm_iterations, after the
+// iteration that passes sppm_time, or on cancel; the tile of the last complete iteration is always
+// handed over.
 #include <chrono>
 #include <string>
 
+#include "photon/integrators/vcm/vcm_renderer.h"
 #include "photon/session/data_passes.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
@@ -29,16 +31,30 @@ void RenderSession::run_iterative(const RenderContext& context, tbb::task_arena&
   const int w = region_width(), h = region_height();
   const size_t pixels = static_cast<size_t>(w) * h;
   const int data_floats = data_pass_floats(settings_.data_passes.mask);
+  const bool vcm = settings_.integrator == IntegratorType::kVcm;
+  const char* name = vcm ? "VCM" : "SPPM";
   if (data_floats)
-    add_warning(
-        "data passes (Depth, Normal, ...) are not rendered by the SPPM integrator yet: "
-        "they are left at zero");
+    add_warning(std::string("data passes (Depth, Normal, ...) are not rendered by the ") + name +
+                " integrator yet: they are left at zero");
+  if (vcm && settings_.light_passes)
+    add_warning("light passes are not rendered by the VCM integrator yet: they are left at zero");
   set_work_total(kProgressSteps);
   const auto t0 = Clock::now();
 
-  std::unique_ptr<SppmRenderer> sppm;
+  std::unique_ptr<IterativeRenderer> sppm;
   std::vector<std::string> warnings;
-  arena.execute([&] { sppm = std::make_unique<SppmRenderer>(context, &warnings); });
+  if (vcm && !VcmRenderer::supports_camera(context)) {
+    add_warning(
+        "the VCM integrator renders pinhole perspective cameras only (no orthographic camera, "
+        "no depth of field): rendering with SPPM instead");
+    warnings.clear();
+  }
+  arena.execute([&] {
+    if (vcm && VcmRenderer::supports_camera(context))
+      sppm = std::make_unique<VcmRenderer>(context, &warnings);
+    else
+      sppm = std::make_unique<SppmRenderer>(context, &warnings);
+  });
   add_warnings(warnings);
   Tile latest;  // the image of the last complete iteration
   bool latest_published = true;
