@@ -119,6 +119,36 @@ TEST(Vcm, CornellBoxMeanAgreesWithSppmAndPhotonMapping) {
   }
 }
 
+// Glass and mirror (delta lobes: no connections or merging there, pdfs as discrete
+// probabilities) and the caustic they cast.
+TEST(Vcm, CausticBoxMeanAgreesWithSppm) {
+  const Scene scene = make_caustic_box();
+  RenderSettings reference = vcm_settings(32, 32, 20000, VcmMode::kVcm);
+  reference.integrator = IntegratorType::kSppm;
+  const Rendered sppm = render(scene, reference);
+  for (VcmMode mode : {VcmMode::kVcm, VcmMode::kBpt, VcmMode::kPpm}) {
+    const Rendered r = render(scene, vcm_settings(32, 16, 20000, mode));
+    for (int c = 0; c < 3; ++c) {
+      const double ref = mean_channel(sppm.rgba, c);
+      EXPECT_NEAR(mean_channel(r.rgba, c), ref, 0.04 * ref) << name(mode) << " channel " << c;
+    }
+  }
+}
+
+// A camera VCM cannot connect to renders with SPPM, and says so.
+TEST(Vcm, OrthographicCameraFallsBackToSppmWithAWarning) {
+  Scene scene = make_cornell_box();
+  scene.camera.projection = Projection::kOrthographic;
+  RenderSession session(std::make_shared<Scene>(scene), vcm_settings(16, 2, 1000, VcmMode::kVcm));
+  session.start();
+  session.wait();
+  bool warned = false;
+  for (const std::string& w : session.warnings())
+    warned = warned || w.find("rendering with SPPM instead") != std::string::npos;
+  EXPECT_TRUE(warned);
+  EXPECT_EQ(session.stats().sppm.iterations, 2);
+}
+
 TEST(Vcm, ImageIsTheSameForAnyThreadCount) {
   const Scene scene = make_caustic_box();
   RenderSettings s = vcm_settings(32, 3, 5000, VcmMode::kVcm);
