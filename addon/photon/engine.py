@@ -427,9 +427,9 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
 
     @staticmethod
     def _samples_label(settings, stats):
-        """'64 spp', or 'N iterations' for SPPM."""
+        """'64 spp', or 'N SPPM iterations' / 'N VCM iterations' for the iterative ones."""
         if stats.sppm.iterations:
-            return f"{stats.sppm.iterations} SPPM iterations"
+            return f"{stats.sppm.iterations} {settings.integrator} iterations"
         return f"{settings.samples} spp"
 
     @staticmethod

@@ -267,8 +267,9 @@ class PHOTON_PT_sppm(PhotonPanel, bpy.types.Panel):
     @classmethod
     def poll(cls, context):
         group = schema.group("sppm")
+        # VCM runs on the same iteration settings, so SPPM and VCM compare at one budget.
         return super().poll(context) and group is not None and \
-            context.scene.photon.integrator == group["integrator"]
+            context.scene.photon.integrator in (group["integrator"], "VCM")
 
     def draw(self, context):
         layout = self.layout

@@ -482,7 +482,8 @@ PYBIND11_MODULE(_photon, m) {
       .value("RAY_TRACE", IntegratorType::kRayTrace)
       .value("PHOTON_MAP", IntegratorType::kPhotonMap)
       .value("RADIOSITY", IntegratorType::kRadiosity)
-      .value("SPPM", IntegratorType::kSppm);
+      .value("SPPM", IntegratorType::kSppm)
+      .value("VCM", IntegratorType::kVcm);
 
   m.def(
       "integrator_capabilities",

@@ -39,7 +39,7 @@ def check_generated(result):
     assert result["load_error"] is None
     rna = result["rna"]
     assert rna["integrator"]["default"] == "PHOTON_MAP"
-    assert rna["integrator"]["items"] == ["PHOTON_MAP", "RAY_TRACE", "RADIOSITY", "SPPM"]
+    assert rna["integrator"]["items"] == ["PHOTON_MAP", "RAY_TRACE", "RADIOSITY", "SPPM", "VCM"]
     assert rna["irradiance_cache"] == {"type": "BOOLEAN", "default": True}
     for name, (default, lo, hi) in HAND_WRITTEN.items():
         assert close(rna[name]["default"], default), (name, rna[name])

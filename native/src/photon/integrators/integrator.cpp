@@ -15,8 +15,9 @@ std::unique_ptr<Integrator> make_integrator(IntegratorType type) {
     case IntegratorType::kRadiosity:
       return std::make_unique<RadiosityIntegrator>();
     case IntegratorType::kSppm:
-      // SPPM iterates over the whole frame (integrator_capabilities: iterative); sessions that
-      // render per camera sample (the viewport, previews) show its scene with photon mapping,
+    case IntegratorType::kVcm:
+      // SPPM and VCM iterate over the whole frame (integrator_capabilities: iterative); sessions
+      // that render per camera sample (the viewport, previews) show its scene with photon mapping,
       // the estimator it refines.
       return std::make_unique<PhotonMapIntegrator>();
   }
@@ -55,6 +56,13 @@ IntegratorCapabilities integrator_capabilities(IntegratorType type) {
       c.iterative = true;
       c.no_bake_reason =
           "the SPPM integrator converges per pixel of a view and has no view-independent "
+          "lighting solution to bake; bake from the photon maps or the radiosity solution";
+      break;
+    case IntegratorType::kVcm:
+      c.name = "VCM";
+      c.iterative = true;
+      c.no_bake_reason =
+          "the VCM integrator converges per pixel of a view and has no view-independent "
           "lighting solution to bake; bake from the photon maps or the radiosity solution";
       break;
   }

@@ -54,7 +54,7 @@ TEST(RenderParams, NamesAreUniqueAndDefaultsInRange) {
       EXPECT_EQ(find_render_param(spec.name), &p);
     }
   // RenderSettings holds the parameters plus the frame (size, border, film, passes) only.
-  EXPECT_EQ(names.size(), 28u);
+  EXPECT_EQ(names.size(), 29u);
 }
 
 // Every numeric entry: a value just beyond each end of its hard range comes back at that end

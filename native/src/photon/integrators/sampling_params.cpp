@@ -18,7 +18,7 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                  .label = "Integrator",
                  .description = "Rendering algorithm",
                  .min = 0,
-                 .max = 3,
+                 .max = 4,
                  .items = {{"PHOTON_MAP", "Photon Mapping",
                             "Global illumination and caustics from global and caustic photon "
                             "maps, with final gathering",
@@ -35,7 +35,12 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                             "Stochastic progressive photon mapping (Hachisuka & Jensen 2009): "
                             "camera and photon passes repeated with a shrinking radius, so the "
                             "image converges, caustics included; refines as it renders",
-                            static_cast<int>(IntegratorType::kSppm)}}}),
+                            static_cast<int>(IntegratorType::kSppm)},
+                           {"VCM", "Vertex Connection and Merging",
+                            "Bidirectional path tracing and photon merging under one multiple "
+                            "importance sampling (Georgiev et al. 2012); refines as it renders "
+                            "with the progressive photon mapping settings",
+                            static_cast<int>(IntegratorType::kVcm)}}}),
           param(&S::samples, {.name = "samples",
                               .label = "Samples",
                               .description = "Camera samples per pixel",

@@ -9,7 +9,7 @@
 
 namespace photon {
 
-enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity, kSppm };
+enum class IntegratorType : uint8_t { kRayTrace, kPhotonMap, kRadiosity, kSppm, kVcm };
 
 struct SamplingParams {
   IntegratorType integrator = IntegratorType::kPhotonMap;

@@ -45,6 +45,8 @@ class EmissiveMeshes {
   // A point chosen by power (and the side chosen by `u_side`), for emission towards a target.
   size_t pick_point(float u_pick, Vec2 u_point, Vec3* point, Vec3* normal) const;
   float pick_probability(size_t i) const { return distribution_.probability(i); }
+  // A triangle by power; `remapped` gets u rescaled inside its interval (Distribution1D).
+  size_t pick(float u, float* remapped) const { return distribution_.sample(u, remapped); }
   // The triangle an Embree hit (instance, primitive) is on, or -1 if it does not emit.
   long find(uint32_t instance, uint32_t primitive) const {
     auto it = index_.find((static_cast<uint64_t>(instance) << 32) | primitive);

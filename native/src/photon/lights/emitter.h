@@ -76,6 +76,31 @@ class Emitter {
 
   // For the light tree.
   virtual LightBounds bounds() const = 0;
+
+  // Bidirectional estimators (see EmissionSample). The defaults support nothing; no existing
+  // estimator calls these, so adding them changes no image.
+  virtual uint8_t vcm_flags() const { return 0; }
+  virtual bool emit_vcm(const PhotonFrame& /*frame*/, float /*u_rest*/, Vec2 /*u_pos*/,
+                        Vec2 /*u_dir*/, EmissionSample* /*out*/) const {
+    return false;
+  }
+  virtual bool illuminate_vcm(const PhotonFrame& /*frame*/, const Vec3& /*p*/, float /*u_rest*/,
+                              Vec2 /*u*/, Illumination* /*out*/) const {
+    return false;
+  }
+  // kLamp: the emitter's surface met by `ray` before `tmax`; kWorld and lamps at infinity: the
+  // radiance along a ray that left the scene (tmax INFINITY).
+  virtual bool hit_vcm(const PhotonFrame& /*frame*/, const Ray& /*ray*/, float /*tmax*/,
+                       EmitterHit* /*out*/) const {
+    return false;
+  }
+  // kSurface: densities for the triangle (Embree instance / primitive) hit with cosine
+  // `cos_light` to its normal; false if that triangle is not this emitter's. The radiance is
+  // the caller's (the shaded emission).
+  virtual bool surface_hit_vcm(uint32_t /*instance*/, uint32_t /*primitive*/, float /*cos_light*/,
+                               EmitterHit* /*out*/) const {
+    return false;
+  }
 };
 
 }  // namespace photon

@@ -41,6 +41,20 @@ class LampEmitter final : public Emitter {
   }
   LightBounds bounds() const override;
 
+  uint8_t vcm_flags() const override { return lamps_.vcm_flags(index_); }
+  bool emit_vcm(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir,
+                EmissionSample* out) const override {
+    return lamps_.emit_vcm(index_, frame.center, frame.radius, u_pos, u_dir, out);
+  }
+  bool illuminate_vcm(const PhotonFrame& frame, const Vec3& p, float, Vec2 u,
+                      Illumination* out) const override {
+    return lamps_.illuminate_vcm(index_, frame.radius, p, u, out);
+  }
+  bool hit_vcm(const PhotonFrame& frame, const Ray& ray, float tmax,
+               EmitterHit* out) const override {
+    return lamps_.hit_vcm(index_, frame.radius, ray, tmax, out);
+  }
+
  private:
   const LightSet& lamps_;
   size_t index_;
@@ -76,6 +90,15 @@ class EmissiveGroupEmitter final : public Emitter {
   }
   LightBounds bounds() const override;
 
+  // Two-sided: a point by power and area, a side with probability 1/2, a cosine direction.
+  uint8_t vcm_flags() const override { return kVcmSupported; }
+  bool emit_vcm(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
+                EmissionSample* out) const override;
+  bool illuminate_vcm(const PhotonFrame& frame, const Vec3& p, float u_rest, Vec2 u,
+                      Illumination* out) const override;
+  bool surface_hit_vcm(uint32_t instance, uint32_t primitive, float cos_light,
+                       EmitterHit* out) const override;
+
  private:
   const EmissiveMeshes& meshes_;
 };
@@ -93,6 +116,15 @@ class TriangleEmitter final : public Emitter {
   void emit(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
             EmittedPhoton* out) const override;
   LightBounds bounds() const override;
+
+  // Two-sided: a point by power and area, a side with probability 1/2, a cosine direction.
+  uint8_t vcm_flags() const override { return kVcmSupported; }
+  bool emit_vcm(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
+                EmissionSample* out) const override;
+  bool illuminate_vcm(const PhotonFrame& frame, const Vec3& p, float u_rest, Vec2 u,
+                      Illumination* out) const override;
+  bool surface_hit_vcm(uint32_t instance, uint32_t primitive, float cos_light,
+                       EmitterHit* out) const override;
 
  private:
   const EmissiveMeshes& meshes_;
@@ -115,6 +147,15 @@ class WorldEmitter final : public Emitter {
   void emit(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
             EmittedPhoton* out) const override;
   LightBounds bounds() const override;
+
+  // Uniform directions (1 / (4 pi)) for light samples and emitted rays.
+  uint8_t vcm_flags() const override { return kVcmSupported | kVcmInfinite; }
+  bool emit_vcm(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
+                EmissionSample* out) const override;
+  bool illuminate_vcm(const PhotonFrame& frame, const Vec3& p, float u_rest, Vec2 u,
+                      Illumination* out) const override;
+  bool hit_vcm(const PhotonFrame& frame, const Ray& ray, float tmax,
+               EmitterHit* out) const override;
 
  private:
   Vec3 color_;

@@ -69,6 +69,15 @@ class EnvironmentEmitter final : public Emitter {
   float coverage(const std::vector<BoundingSphere>& targets, float scene_radius) const override;
   LightBounds bounds() const override;
 
+  // Directions from the table for light samples and emitted rays (emission_pdf.h).
+  uint8_t vcm_flags() const override { return kVcmSupported | kVcmInfinite; }
+  bool emit_vcm(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
+                EmissionSample* out) const override;
+  bool illuminate_vcm(const PhotonFrame& frame, const Vec3& p, float u_rest, Vec2 u,
+                      Illumination* out) const override;
+  bool hit_vcm(const PhotonFrame& frame, const Ray& ray, float tmax,
+               EmitterHit* out) const override;
+
   // The map width a requested one is rendered with: in [4, 16384] and even.
   static int clamped_width(int width) { return std::clamp(width, 4, 16384) & ~1; }
 

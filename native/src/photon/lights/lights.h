@@ -11,6 +11,7 @@
 
 #include "photon/base/math.h"
 #include "photon/base/spherical_caps.h"
+#include "photon/lights/emission_pdf.h"
 #include "photon/lights/light_bounds.h"
 #include "photon/scene/scene.h"
 
@@ -82,6 +83,16 @@ class LightSet {
                     Vec2 u_dir, EmittedPhoton* out) const;
   float coverage(size_t index, const std::vector<BoundingSphere>& targets,
                  float scene_radius) const;
+
+  // Bidirectional estimators (emitter.h, EmissionSample; lamp_vcm.cpp). Lamps with a radius
+  // are points there (their discs are sampled towards each receiver, a density the emitted
+  // rays cannot match); a sun of angle 0 is a parallel beam.
+  uint8_t vcm_flags(size_t index) const;
+  bool emit_vcm(size_t index, const Vec3& scene_center, float scene_radius, Vec2 u_pos, Vec2 u_dir,
+                EmissionSample* out) const;
+  bool illuminate_vcm(size_t index, float scene_radius, const Vec3& p, Vec2 u,
+                      Illumination* out) const;
+  bool hit_vcm(size_t index, float scene_radius, const Ray& ray, float tmax, EmitterHit* out) const;
 
   // Where light `index` is and which way it shines, for the light tree (emitters.cpp); power is
   // left for the caller to fill in. Suns are `infinite`.

@@ -1,10 +1,11 @@
-// RenderSession's render of an iterative integrator (integrator_capabilities: iterative), SPPM:
-// instead of tiles rendered once, the whole region is refined by iterations
-// (integrators/sppm/sppm_renderer.h), and the image after a complete iteration is handed over as
-// one tile of the whole region, which the add-on writes over the last one: the render refines in
-// place. Iterations stop at sppm_iterations, after the iteration that passes sppm_time, or on
-// cancel; the tile of the last complete iteration is always handed over. The data passes are
-// rendered once, before the first iteration, and every tile carries them.
+// RenderSession's render of an iterative integrator (integrator_capabilities: iterative), SPPM
+// or VCM: instead of tiles rendered once, the whole region is refined by iterations
+// (integrators/sppm/sppm_renderer.h, integrators/vcm/vcm_renderer.h), and the image after a
+// complete iteration is handed over as one tile of the whole region, which the add-on writes over
+// the last one: the render refines in place. Iterations stop at sppm_iterations, after the
+// iteration that passes sppm_time, or on cancel; the tile of the last complete iteration is always
+// handed over. The data passes are rendered once, before the first iteration, and every tile
+// carries them.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -13,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "photon/integrators/vcm/vcm_renderer.h"
 #include "photon/session/data_passes.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
@@ -35,6 +37,9 @@ void RenderSession::run_iterative(const RenderContext& context, tbb::task_arena&
   const int w = region_width(), h = region_height();
   const size_t pixels = static_cast<size_t>(w) * h;
   const int data_floats = data_pass_pixel_floats(settings_.data_passes);
+  const bool vcm = settings_.integrator == IntegratorType::kVcm;
+  if (vcm && settings_.light_passes)
+    add_warning("light passes are not rendered by the VCM integrator yet: they are left at zero");
   set_work_total(kProgressSteps);
   const auto t0 = Clock::now();
 
@@ -55,9 +60,20 @@ void RenderSession::run_iterative(const RenderContext& context, tbb::task_arena&
     if (!complete) return;  // cancelled before any image: Blender keeps the preview
   }
 
-  std::unique_ptr<SppmRenderer> sppm;
+  std::unique_ptr<IterativeRenderer> sppm;
   std::vector<std::string> warnings;
-  arena.execute([&] { sppm = std::make_unique<SppmRenderer>(context, &warnings); });
+  if (vcm && !VcmRenderer::supports_camera(context)) {
+    add_warning(
+        "the VCM integrator renders pinhole perspective cameras only (no orthographic camera, "
+        "no depth of field): rendering with SPPM instead");
+    warnings.clear();
+  }
+  arena.execute([&] {
+    if (vcm && VcmRenderer::supports_camera(context))
+      sppm = std::make_unique<VcmRenderer>(context, &warnings);
+    else
+      sppm = std::make_unique<SppmRenderer>(context, &warnings);
+  });
   add_warnings(warnings);
   Tile latest;  // the image of the last complete iteration
   bool latest_published = true;

@@ -25,20 +25,11 @@
 #include <vector>
 
 #include "photon/integrators/integrator.h"
+#include "photon/integrators/iterative_renderer.h"
 #include "photon/integrators/photon_map/photon_sources.h"
 #include "photon/integrators/sppm/sppm_photons.h"
 
 namespace photon {
-
-struct SppmStats {
-  int iterations = 0;
-  uint64_t photons_emitted = 0;
-  size_t photons_recorded = 0;   // in the last iteration
-  size_t peak_photon_bytes = 0;  // largest kd-tree (photons and axes) of an iteration
-  uint64_t rays = 0;             // photon rays
-  uint64_t non_finite = 0;       // camera samples dropped for a NaN / inf value
-  double photon_seconds = 0.0, camera_seconds = 0.0;
-};
 
 // Peak bytes per photon recorded in an iteration: the chunks' records and their concatenation
 // (2 x 36 bytes) exist together for a moment; the kd-tree then takes the array and adds 1 byte.
@@ -60,7 +51,7 @@ struct SppmPixel {
   float alpha = 0.0f;  // coverage summed over iterations
 };
 
-class SppmRenderer {
+class SppmRenderer final : public IterativeRenderer {
  public:
   static constexpr size_t kBytesPerPixel = sizeof(SppmPixel);
 
@@ -73,13 +64,13 @@ class SppmRenderer {
 
   // Runs the next iteration. False when cancelled during it: its pixels are then partly
   // updated, and the renderer is not to be iterated or read again.
-  bool iterate(const std::atomic<bool>& cancel);
-  int iterations() const { return stats_.iterations; }
-  const SppmStats& stats() const { return stats_; }
+  bool iterate(const std::atomic<bool>& cancel) override;
+  int iterations() const override { return stats_.iterations; }
+  const SppmStats& stats() const override { return stats_; }
   // The image after iterations(): RGBA of the region's rows, top first; with `passes` (width *
   // height * kPassFloats floats, pixel_renderer.h) the light passes: Direct, Indirect (the
   // photon estimate, caustics included), Caustics and Photon Map left black.
-  void write_image(float* rgba, float* passes = nullptr) const;
+  void write_image(float* rgba, float* passes = nullptr) const override;
   const std::vector<SppmPixel>& pixels() const { return pixels_; }
 
  private:

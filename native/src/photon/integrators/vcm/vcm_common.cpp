@@ -1,0 +1,80 @@
+#include "photon/integrators/vcm/vcm_common.h"
+
+#include <cmath>
+
+#include "photon/base/ray_offset.h"
+#include "photon/lights/emitter_set.h"
+
+namespace photon {
+
+VcmMis VcmMis::make(VcmMode mode, float radius, uint64_t light_paths, int max_path_length) {
+  VcmMis m;
+  m.mode = mode;
+  m.use_vc = mode != VcmMode::kPpm;
+  m.use_vm = mode != VcmMode::kBpt;
+  m.radius = radius;
+  m.light_paths = std::max<uint64_t>(light_paths, 1);
+  m.max_path_length = max_path_length;
+  const double eta =
+      kPi * static_cast<double>(radius) * radius * static_cast<double>(m.light_paths);
+  m.vm_factor = m.use_vm ? static_cast<float>(eta) : 0.0f;
+  m.vc_factor = m.use_vc && eta > 0.0 ? static_cast<float>(1.0 / eta) : 0.0f;
+  m.vm_normalization = eta > 0.0 ? static_cast<float>(1.0 / eta) : 0.0f;
+  return m;
+}
+
+VcmLights::VcmLights(const RenderContext& context, const PhotonFrame& frame,
+                     std::vector<std::string>* warnings)
+    : frame_(frame) {
+  std::vector<double> weights;
+  if (context.emitters) {
+    for (const Emitter* e : context.emitters->every_light()) {
+      const uint8_t f = e->vcm_flags();
+      if (!(f & kVcmSupported)) {
+        if (warnings) warnings->push_back("an emitter VCM cannot sample was left out");
+        continue;
+      }
+      const Vec3 power = e->power(frame.radius);
+      const double w = (static_cast<double>(power.x) + power.y + power.z) / 3.0;
+      if (!(w > 0.0) || !std::isfinite(w)) continue;
+      const size_t i = emitters_.size();
+      emitters_.push_back(e);
+      flags_.push_back(f);
+      weights.push_back(w);
+      if (f & kVcmInfinite)
+        infinite_.push_back(i);
+      else if (e->kind() == EmitterKind::kSurface)
+        surface_ = static_cast<long>(i);
+      else if (!(f & kVcmDeltaPosition))
+        lamps_.push_back(i);
+    }
+  }
+  pick_ = Distribution1D(weights);
+}
+
+bool vcm_visible(const Accel& accel, const Vec3& p, const Vec3& ng, const Vec3& q, const Vec3& nq) {
+  const float scale = accel.length_scale();
+  const Vec3 d = q - p;
+  const Vec3 a = offset_ray_origin(p, ng, d, scale);
+  const Vec3 b = is_black(nq * nq) ? q : offset_ray_origin(q, nq, -d, scale);
+  const Vec3 ab = b - a;
+  const float len = length(ab);
+  if (!(len > 0.0f)) return true;
+  Ray ray;
+  ray.origin = a;
+  ray.direction = ab / len;
+  ray.tmin = 0.0f;
+  ray.tmax = len * (1.0f - 1e-4f);
+  return !accel.occluded(ray, kVisibleShadow);
+}
+
+bool vcm_visible_at_infinity(const Accel& accel, const Vec3& p, const Vec3& ng, const Vec3& w) {
+  Ray ray;
+  ray.origin = offset_ray_origin(p, ng, w, accel.length_scale());
+  ray.direction = w;
+  ray.tmin = 0.0f;
+  ray.tmax = INFINITY;
+  return !accel.occluded(ray, kVisibleShadow);
+}
+
+}  // namespace photon

@@ -1,0 +1,207 @@
+#include "photon/integrators/vcm/vcm_light_paths.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "photon/integrators/camera_path.h"
+#include "photon/integrators/path_walker.h"
+
+namespace photon {
+namespace {
+
+constexpr uint64_t kChunk = 1024;                      // subpaths per parallel work item
+constexpr uint64_t kLightStream = 0x56434D4C49474854;  // "VCMLIGHT"
+
+struct ChunkOutput {
+  std::vector<VcmLightVertex> vertices;
+  std::vector<uint64_t> path_size;
+  std::vector<VcmSplat> splats;
+  uint64_t rays = 0;
+};
+
+// Light tracing (Georgiev et al. 2012 strategy t = 1; SmallVCM's ConnectToCamera): the vertex
+// seen by the pinhole, with the camera's density relative to this strategy (tech. report eq.
+// 44 with the pixel filter's density left to the splat).
+void connect_to_camera(const RenderContext& context, const VcmCamera& camera, const VcmMis& mis,
+                       const VcmLightVertex& v, const Bsdf& bsdf, float continuation,
+                       ChunkOutput* out) {
+  Vec2 raster;
+  float cos_axis, distance;
+  if (!camera.project(v.p, &raster, &cos_axis, &distance)) return;
+  const Vec3 to_camera = (camera.position() - v.p) / distance;
+  const Vec3 f = bsdf.eval(v.wo, to_camera);
+  if (is_black(f)) return;
+  const float cos_surface = std::fabs(dot(v.ng, to_camera));
+  // The adjoint BSDF with the shading normal (Veach eq. 5.17): the geometric cosine towards
+  // the camera is in image_to_surface.
+  const float ns_wo = std::fabs(dot(bsdf.frame().n, v.wo)), ng_wo = std::fabs(dot(v.ng, v.wo));
+  if (!(ng_wo > 1e-9f)) return;
+  const float image_to_surface =
+      camera.raster_to_solid_angle(cos_axis) * cos_surface / (distance * distance);
+  const float rev_pdf = bsdf.pdf(to_camera, v.wo) * continuation;
+  const float n = static_cast<float>(mis.light_paths);
+  VcmSplat s;
+  s.x = raster.x;
+  s.y = raster.y;
+  s.value = v.throughput * f * (ns_wo / ng_wo * image_to_surface / n);
+  s.a = image_to_surface / n * (mis.vm_factor + v.dvcm + v.dvc * rev_pdf);
+  if (!is_finite(s.value) || !std::isfinite(s.a)) return;
+  if (!vcm_visible(*context.accel, v.p, v.ng, camera.position(), Vec3(0.0f))) return;
+  out->splats.push_back(s);
+}
+
+void trace_one(const RenderContext& context, const VcmLights& lights, const VcmCamera& camera,
+               const VcmMis& mis, Sampler& sampler, ChunkOutput* out) {
+  float u_rest;
+  const size_t k = lights.pick(sampler.get_1d(), &u_rest);
+  const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
+  EmissionSample e;
+  if (!lights.emitter(k).emit_vcm(lights.frame(), u_rest, u_pos, u_dir, &e)) return;
+  const float pick = lights.pick_probability(k);
+  const uint8_t flags = lights.flags(k);
+  const float emission_pdf = e.pdf_pos * e.pdf_dir * pick;
+  if (!(emission_pdf > 0.0f)) return;
+  // Tech. report eqs. 31-33: the subpath's first vertex.
+  Vec3 throughput = e.radiance * (e.cos_light / emission_pdf);
+  float dvcm = e.direct_pdf * pick / emission_pdf;
+  float dvc = (flags & (kVcmDeltaPosition | kVcmDeltaDirection))
+                  ? 0.0f
+                  : ((flags & kVcmInfinite) ? 1.0f : e.cos_light) / emission_pdf;
+  float dvm = dvc * mis.vc_factor;
+  const bool infinite = (flags & kVcmInfinite) != 0;
+  Ray ray = e.ray;
+  uint32_t mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
+  const float length_scale = context.accel->length_scale();
+  for (int path_length = 1;; ++path_length) {
+    Hit hit;
+    ++out->rays;
+    if (!context.accel->intersect(ray, mask, &hit)) return;
+    const SurfaceInteraction si = context.accel->interaction(hit);
+    const Vec3 wo = -ray.direction;
+    const ShadingPoint sp = shade(context, si, wo);
+    const Bsdf& bsdf = sp.bsdf;
+    if (bsdf.empty()) return;
+    const Vec3 ng = dot(si.ng, wo) >= 0.0f ? si.ng : -si.ng;
+    const float cos_in = std::fabs(dot(ng, wo));
+    if (!(cos_in > 1e-7f)) return;
+    // Eqs. 34-36: the segment's distance and the cosine at this end.
+    if (path_length > 1 || !infinite) dvcm *= hit.t * hit.t;
+    dvcm /= cos_in;
+    dvc /= cos_in;
+    dvm /= cos_in;
+    const float continuation = vcm_continuation(bsdf, wo);
+    if (vcm_connectible(bsdf)) {
+      VcmLightVertex v;
+      v.hit = hit;
+      v.p = si.p;
+      v.ng = ng;
+      v.wo = wo;
+      v.throughput = throughput;
+      v.dvcm = dvcm;
+      v.dvc = dvc;
+      v.dvm = dvm;
+      v.path_length = path_length;
+      if (!is_finite(throughput) || !is_finite(si.p)) return;
+      out->vertices.push_back(v);
+      if (mis.use_vc && path_length + 1 <= mis.max_path_length)
+        connect_to_camera(context, camera, mis, v, bsdf, continuation, out);
+    }
+    if (path_length + 2 > mis.max_path_length) return;
+    // Scattering with Russian roulette by the BSDF's albedo (both densities carry it).
+    const float u_lobe = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    const float u_survive = sampler.get_1d();
+    BsdfSample s;
+    if (!bsdf.sample(wo, u_lobe, u, kLobeAll, &s) || is_black(s.weight) || !(s.pdf > 0.0f)) return;
+    if (!(u_survive < continuation)) return;
+    const float cos_out = std::fabs(dot(ng, s.wi));
+    const float dir_pdf = s.pdf * continuation;
+    if (s.is_delta()) {
+      dvcm = 0.0f;
+      dvc *= cos_out;
+      dvm *= cos_out;
+    } else {
+      const float rev_pdf = bsdf.pdf(s.wi, wo) * continuation;
+      dvc = cos_out / dir_pdf * (dvc * rev_pdf + dvcm + mis.vm_factor);
+      dvm = cos_out / dir_pdf * (dvm * rev_pdf + dvcm * mis.vc_factor + 1.0f);
+      dvcm = 1.0f / dir_pdf;
+    }
+    throughput =
+        throughput * s.weight * (adjoint_correction(bsdf.frame().n, ng, wo, s.wi) / continuation);
+    if (is_black(throughput)) return;
+    mask = visibility_after(s.flags);
+    spawn_ray(si, s.wi, length_scale, &ray);
+  }
+}
+
+}  // namespace
+
+VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights& lights,
+                                   const VcmCamera& camera, const VcmMis& mis, uint32_t iteration,
+                                   const std::atomic<bool>& cancel) {
+  VcmLightPass pass;
+  const uint64_t count = mis.light_paths;
+  pass.path_end.assign(count, 0);
+  if (lights.empty()) return pass;
+  const uint64_t chunks = (count + kChunk - 1) / kChunk;
+  std::vector<ChunkOutput> outputs(chunks);
+  const uint64_t stream = hash_combine(kLightStream, iteration);
+  const uint64_t seed = context.settings->seed;
+  const auto stratify = static_cast<uint32_t>(std::min<uint64_t>(count, UINT32_MAX));
+  tbb::parallel_for(tbb::blocked_range<uint64_t>(0, chunks, 1), [&](const auto& r) {
+    for (uint64_t c = r.begin(); c != r.end(); ++c) {
+      if (cancel.load(std::memory_order_relaxed)) return;
+      ChunkOutput& out = outputs[c];
+      const uint64_t lo = c * kChunk, hi = std::min(count, lo + kChunk);
+      for (uint64_t i = lo; i < hi; ++i) {
+        Sampler sampler(seed, stream, static_cast<uint32_t>(i), stratify);
+        const size_t before = out.vertices.size();
+        trace_one(context, lights, camera, mis, sampler, &out);
+        out.path_size.push_back(out.vertices.size() - before);
+      }
+    }
+  });
+  if (cancel.load(std::memory_order_relaxed)) {
+    pass.cancelled = true;
+    return pass;
+  }
+  size_t vertices = 0, splats = 0;
+  for (const ChunkOutput& out : outputs) {
+    vertices += out.vertices.size();
+    splats += out.splats.size();
+  }
+  pass.vertices.reserve(vertices);
+  pass.splats.reserve(splats);
+  uint64_t path = 0, end = 0;
+  for (const ChunkOutput& out : outputs) {
+    pass.vertices.insert(pass.vertices.end(), out.vertices.begin(), out.vertices.end());
+    pass.splats.insert(pass.splats.end(), out.splats.begin(), out.splats.end());
+    for (uint64_t size : out.path_size) pass.path_end[path++] = (end += size);
+    pass.rays += out.rays;
+  }
+  return pass;
+}
+
+void apply_vcm_splats(const std::vector<VcmSplat>& splats, const VcmCamera& camera,
+                      const RenderSettings& s, std::vector<Vec3>* image) {
+  const int width = s.x1 - s.x0;
+  const float h = camera.filter_half_support();
+  for (const VcmSplat& sp : splats) {
+    // Pixels whose centre (px + 0.5, py + 0.5) is within the filter's support of the point.
+    const int x_lo = std::max(s.x0, static_cast<int>(std::ceil(sp.x - h - 0.5f)));
+    const int x_hi = std::min(s.x1 - 1, static_cast<int>(std::floor(sp.x + h - 0.5f)));
+    const int y_lo = std::max(s.y0, static_cast<int>(std::ceil(sp.y - h - 0.5f)));
+    const int y_hi = std::min(s.y1 - 1, static_cast<int>(std::floor(sp.y + h - 0.5f)));
+    for (int py = y_lo; py <= y_hi; ++py)
+      for (int px = x_lo; px <= x_hi; ++px) {
+        const float f = camera.filter_pdf(sp.x - (px + 0.5f), sp.y - (py + 0.5f));
+        if (!(f > 0.0f)) continue;
+        (*image)[static_cast<size_t>(py - s.y0) * width + (px - s.x0)] +=
+            sp.value * (f / (1.0f + f * sp.a));
+      }
+  }
+}
+
+}  // namespace photon

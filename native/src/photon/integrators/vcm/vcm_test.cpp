@@ -1,0 +1,169 @@
+#include <gtest/gtest.h>
+#include <tbb/global_control.h>
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "photon/session/render_session.h"
+#include "photon/testing/test_scenes.h"
+
+namespace photon {
+namespace {
+
+RenderSettings vcm_settings(int size, int iterations, uint64_t paths, VcmMode mode) {
+  RenderSettings s;
+  s.full_width = s.full_height = size;
+  s.x1 = s.y1 = size;
+  s.seed = 7;
+  s.integrator = IntegratorType::kVcm;
+  s.vcm_mode = mode;
+  s.sppm_iterations = iterations;
+  s.sppm_photons_per_iteration = paths;
+  return s;
+}
+
+struct Rendered {
+  std::vector<float> rgba;
+  RenderStats stats;
+};
+
+Rendered render(const Scene& scene, const RenderSettings& s) {
+  RenderSession session(std::make_shared<Scene>(scene), s);
+  session.start();
+  session.wait();
+  return {session.image(), session.stats()};
+}
+
+double mean_channel(const std::vector<float>& rgba, int c) {
+  double sum = 0.0;
+  for (size_t i = c; i < rgba.size(); i += 4) sum += rgba[i];
+  return sum / (rgba.size() / 4);
+}
+
+const char* name(VcmMode m) {
+  return m == VcmMode::kVcm ? "VCM" : m == VcmMode::kBpt ? "BPT" : "PPM";
+}
+
+// A closed box whose walls emit Le and reflect albedo rho: L = Le / (1 - rho) everywhere.
+Scene emissive_furnace(float rho, float le) {
+  Scene scene;
+  scene.materials.push_back(Material::diffuse(Vec3(rho)).with_emission(Vec3(le)));
+  add_mesh_instance(&scene, make_box({-1, -1, -1}, {1, 1, 1}), 0);
+  scene.camera = make_look_at_camera({0, -0.5f, 0}, {0, 1, 0.2f}, 1.2f, 1.0f);
+  return scene;
+}
+
+TEST(Vcm, EmissiveFurnaceConvergesToLeOverOneMinusAlbedoInEveryMode) {
+  for (VcmMode mode : {VcmMode::kVcm, VcmMode::kBpt, VcmMode::kPpm}) {
+    const Rendered r = render(emissive_furnace(0.6f, 1.0f), vcm_settings(24, 8, 2000, mode));
+    EXPECT_EQ(r.stats.sppm.iterations, 8) << name(mode);
+    EXPECT_NEAR(mean_channel(r.rgba, 0), 1.0 / (1.0 - 0.6), 0.02 * 2.5) << name(mode);
+    EXPECT_NEAR(mean_channel(r.rgba, 3), 1.0, 1e-6) << name(mode);
+  }
+}
+
+// A diffuse plane under a point light of intensity I at height h, seen from above by a pinhole:
+// L = rho / pi I cos(theta) / d^2 and no indirect light.
+TEST(Vcm, PlaneUnderPointLightMatchesInverseSquareLawInEveryMode) {
+  Scene scene;
+  scene.materials.push_back(Material::diffuse(Vec3(0.5f)));
+  add_mesh_instance(&scene, make_quad({-10, -10, 0}, {20, 0, 0}, {0, 20, 0}), 0);
+  Light light;
+  light.type = LightType::kPoint;
+  light.power = 100.0f;
+  const float h = 1.0f;
+  light.light_to_world = Transform::translation(Vec3(0, 0, h));
+  scene.lights.push_back(light);
+  // Looking straight down from z = 3 with a window of +-0.11 at distance 1: +-0.33 on the plane.
+  scene.camera.set_camera_to_world(Transform::translation(Vec3(0, 0, 3)));
+  scene.camera.window_min_x = scene.camera.window_min_y = -0.11f;
+  scene.camera.window_max_x = scene.camera.window_max_y = 0.11f;
+  const double intensity = 100.0 / (4.0 * kPi);
+  for (VcmMode mode : {VcmMode::kVcm, VcmMode::kBpt, VcmMode::kPpm}) {
+    const Rendered r = render(scene, vcm_settings(33, 16, 20000, mode));
+    // Mean of a 5 x 5 block around a pixel (the merging radius blurs a little in PPM/VCM).
+    auto block = [&](int x, int y) {
+      double sum = 0.0;
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dx = -2; dx <= 2; ++dx)
+          sum += r.rgba[(static_cast<size_t>(y + dy) * 33 + x + dx) * 4];
+      return sum / 25.0;
+    };
+    const double centre = 0.5 / kPi * intensity / (h * h);
+    EXPECT_NEAR(block(16, 16), centre, 0.03 * centre) << name(mode);
+    // 13 pixels off centre: 13 / 16.5 * 0.33 = 0.26 on the plane.
+    const double rr = 13.0 / 16.5 * 0.33, d2 = h * h + rr * rr;
+    const double expected = 0.5 / kPi * intensity * (h / std::sqrt(d2)) / d2;
+    for (auto [x, y] : {std::pair{3, 16}, std::pair{29, 16}, std::pair{16, 3}, std::pair{16, 29}})
+      EXPECT_NEAR(block(x, y), expected, 0.04 * expected) << name(mode) << " " << x << "," << y;
+  }
+}
+
+TEST(Vcm, CornellBoxMeanAgreesWithSppmAndPhotonMapping) {
+  const Scene scene = make_cornell_box();
+  RenderSettings reference = vcm_settings(32, 32, 20000, VcmMode::kVcm);
+  reference.integrator = IntegratorType::kSppm;
+  const Rendered sppm = render(scene, reference);
+  RenderSettings pm = reference;
+  pm.integrator = IntegratorType::kPhotonMap;
+  pm.samples = 16;
+  const Rendered photon_map = render(scene, pm);
+  for (int c = 0; c < 3; ++c) {
+    const double ref = mean_channel(sppm.rgba, c);
+    EXPECT_NEAR(mean_channel(photon_map.rgba, c), ref, 0.05 * ref) << "PHOTON_MAP channel " << c;
+    for (VcmMode mode : {VcmMode::kVcm, VcmMode::kBpt, VcmMode::kPpm}) {
+      const Rendered r = render(scene, vcm_settings(32, 16, 20000, mode));
+      EXPECT_NEAR(mean_channel(r.rgba, c), ref, 0.04 * ref) << name(mode) << " channel " << c;
+    }
+  }
+}
+
+// Glass and mirror (delta lobes: no connections or merging there, pdfs as discrete
+// probabilities) and the caustic they cast.
+TEST(Vcm, CausticBoxMeanAgreesWithSppm) {
+  const Scene scene = make_caustic_box();
+  RenderSettings reference = vcm_settings(32, 32, 20000, VcmMode::kVcm);
+  reference.integrator = IntegratorType::kSppm;
+  const Rendered sppm = render(scene, reference);
+  for (VcmMode mode : {VcmMode::kVcm, VcmMode::kBpt, VcmMode::kPpm}) {
+    const Rendered r = render(scene, vcm_settings(32, 16, 20000, mode));
+    for (int c = 0; c < 3; ++c) {
+      const double ref = mean_channel(sppm.rgba, c);
+      EXPECT_NEAR(mean_channel(r.rgba, c), ref, 0.04 * ref) << name(mode) << " channel " << c;
+    }
+  }
+}
+
+// A camera VCM cannot connect to renders with SPPM, and says so.
+TEST(Vcm, OrthographicCameraFallsBackToSppmWithAWarning) {
+  Scene scene = make_cornell_box();
+  scene.camera.projection = Projection::kOrthographic;
+  RenderSession session(std::make_shared<Scene>(scene), vcm_settings(16, 2, 1000, VcmMode::kVcm));
+  session.start();
+  session.wait();
+  bool warned = false;
+  for (const std::string& w : session.warnings())
+    warned = warned || w.find("rendering with SPPM instead") != std::string::npos;
+  EXPECT_TRUE(warned);
+  EXPECT_EQ(session.stats().sppm.iterations, 2);
+}
+
+TEST(Vcm, ImageIsTheSameForAnyThreadCount) {
+  const Scene scene = make_caustic_box();
+  RenderSettings s = vcm_settings(32, 3, 5000, VcmMode::kVcm);
+  std::vector<float> reference;
+  for (int threads : {1, 2, 3}) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    s.threads = threads;
+    const Rendered r = render(scene, s);
+    EXPECT_GT(mean_channel(r.rgba, 0), 0.01);
+    if (reference.empty())
+      reference = r.rgba;
+    else
+      EXPECT_EQ(r.rgba, reference) << threads << " threads";
+  }
+}
+
+}  // namespace
+}  // namespace photon

@@ -1,0 +1,269 @@
+// The densities emitters give bidirectional estimators (emission_pdf.h), checked against
+// numeric integration: emitted rays weighted by radiance cos / (pdf_pos pdf_dir) must carry the
+// emitter's power; light samples weighted by radiance cos / direct_pdf must give the irradiance
+// found by quadrature over the emitter; and the densities reported for a point a camera ray
+// meets must be those of the light sample and emitted ray that would have produced it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "photon/base/sampling.h"
+#include "photon/lights/emitters.h"
+#include "photon/lights/environment.h"
+#include "photon/render/accel.h"
+#include "photon/testing/test_scenes.h"
+
+namespace photon {
+namespace {
+
+constexpr int kGrid = 256;  // strata per axis of the 2D sample grids
+
+Light make_lamp(LightType type, const Vec3& position, float power) {
+  Light l;
+  l.name = "lamp";
+  l.type = type;
+  l.light_to_world = Transform::translation(position);  // emits down world -Z
+  l.power = power;
+  return l;
+}
+
+// Mean over a kGrid^2 grid of u_pos and a shifted grid of u_dir of radiance cos / pdf.
+Vec3 emitted_power(const Emitter& e, const PhotonFrame& frame) {
+  double sum[3] = {0, 0, 0};
+  int failures = 0;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const Vec2 u_pos((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
+      // A different stratum order for the direction, so the two are not correlated.
+      const Vec2 u_dir(((j * 7 + i * 3) % kGrid + 0.5f) / kGrid,
+                       ((i * 5 + j * 11) % kGrid + 0.5f) / kGrid);
+      const float u_rest = ((i * 13 + j * 17) % kGrid + 0.5f) / kGrid;
+      EmissionSample s;
+      if (!e.emit_vcm(frame, u_rest, u_pos, u_dir, &s)) {
+        ++failures;
+        continue;
+      }
+      EXPECT_GT(s.pdf_pos, 0.0f);
+      EXPECT_GT(s.pdf_dir, 0.0f);
+      const Vec3 w = s.radiance * (s.cos_light / (s.pdf_pos * s.pdf_dir));
+      for (int c = 0; c < 3; ++c) sum[c] += w[c];
+    }
+  const double n = static_cast<double>(kGrid) * kGrid;
+  return Vec3(sum[0] / n, sum[1] / n, sum[2] / n);
+}
+
+// Mean of radiance cos_receiver / direct_pdf over light samples towards p with normal n.
+Vec3 sampled_irradiance(const Emitter& e, const PhotonFrame& frame, const Vec3& p, const Vec3& n) {
+  double sum[3] = {0, 0, 0};
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      Illumination s;
+      const float u_rest = ((i * 13 + j * 17) % kGrid + 0.5f) / kGrid;
+      if (!e.illuminate_vcm(frame, p, u_rest, Vec2((i + 0.5f) / kGrid, (j + 0.5f) / kGrid), &s))
+        continue;
+      const float c = std::max(0.0f, dot(s.wi, n));
+      const Vec3 w = s.radiance * (c / s.direct_pdf);
+      for (int k = 0; k < 3; ++k) sum[k] += w[k];
+    }
+  const double m = static_cast<double>(kGrid) * kGrid;
+  return Vec3(sum[0] / m, sum[1] / m, sum[2] / m);
+}
+
+// Irradiance at p (normal n) by midpoint quadrature over the directions of the sphere, with
+// `radiance(w)` the radiance arriving from w.
+double quadrature_irradiance(const Vec3& n, const std::function<double(const Vec3&)>& radiance,
+                             int steps = 1024) {
+  double sum = 0.0;
+  for (int j = 0; j < steps; ++j) {
+    const double z = 1.0 - 2.0 * (j + 0.5) / steps;
+    const double r = std::sqrt(std::max(0.0, 1.0 - z * z));
+    for (int i = 0; i < 2 * steps; ++i) {
+      const double phi = 2.0 * kPi * (i + 0.5) / (2 * steps);
+      const Vec3 w(static_cast<float>(r * std::cos(phi)), static_cast<float>(r * std::sin(phi)),
+                   static_cast<float>(z));
+      const double c = dot(w, n);
+      if (c > 0.0) sum += radiance(w) * c;
+    }
+  }
+  return sum * (4.0 * kPi) / (2.0 * steps * steps);
+}
+
+// The densities of a camera ray that meets what illuminate_vcm sampled equal the sample's.
+void expect_hit_matches_sample(const Emitter& e, const PhotonFrame& frame, const Vec3& p) {
+  int checked = 0;
+  for (int k = 0; k < 64; ++k) {
+    Illumination s;
+    const Vec2 u((k % 8 + 0.5f) / 8, (k / 8 + 0.5f) / 8);
+    if (!e.illuminate_vcm(frame, p, 0.37f, u, &s)) continue;
+    Ray ray;
+    ray.origin = p;
+    ray.direction = s.wi;
+    ray.tmin = 0.0f;
+    ray.tmax = INFINITY;
+    EmitterHit h;
+    ASSERT_TRUE(e.hit_vcm(frame, ray, INFINITY, &h)) << k;
+    float direct = h.direct_pdf;
+    if (std::isfinite(s.distance)) {  // area measure to solid angle at p
+      EXPECT_NEAR(h.distance, s.distance, 1e-4f * s.distance);
+      direct *= s.distance * s.distance / s.cos_light;
+    }
+    EXPECT_NEAR(direct, s.direct_pdf, 1e-3f * s.direct_pdf) << k;
+    EXPECT_NEAR(h.emission_pdf, s.emission_pdf, 1e-3f * s.emission_pdf) << k;
+    EXPECT_NEAR(h.radiance.x, s.radiance.x, 1e-4f * s.radiance.x) << k;
+    ++checked;
+  }
+  EXPECT_GT(checked, 16);
+}
+
+const PhotonFrame kFrame{Vec3(0.5f, -0.25f, 0.0f), 3.0f};
+
+TEST(EmissionPdf, AreaLampsCarryTheirPowerAndSampleTheirIrradiance) {
+  for (AreaShape shape : {AreaShape::kRectangle, AreaShape::kEllipse}) {
+    Light l = make_lamp(LightType::kArea, Vec3(0.2f, 0.1f, 2.0f), 50.0f);
+    l.shape = shape;
+    l.size_x = 1.5f;
+    l.size_y = 0.5f;
+    const LightSet set({l}, nullptr);
+    const LampEmitter e(set, 0);
+    EXPECT_EQ(e.vcm_flags(), kVcmSupported);
+    const Vec3 power = e.power(kFrame.radius);
+    EXPECT_NEAR(emitted_power(e, kFrame).x, power.x, 2e-3f * power.x);
+    // Quadrature of the irradiance at a tilted receiver below the light.
+    const Vec3 p(0.6f, -0.4f, 0.0f), n = normalize(Vec3(0.2f, 0.1f, 1.0f));
+    const float area = shape == AreaShape::kRectangle ? 1.5f * 0.5f : kPi * 0.75f * 0.25f;
+    const double radiance = 50.0 / (4.0 * area);
+    const double expected = quadrature_irradiance(n, [&](const Vec3& w) {
+      Ray ray{p, w, 0.0f, INFINITY};
+      EmitterHit h;
+      return e.hit_vcm(kFrame, ray, INFINITY, &h) ? radiance : 0.0;
+    });
+    EXPECT_NEAR(sampled_irradiance(e, kFrame, p, n).x, expected, 5e-3 * expected);
+    expect_hit_matches_sample(e, kFrame, p);
+  }
+}
+
+TEST(EmissionPdf, PointAndSpotLampsFollowTheirIntensity) {
+  const Vec3 pos(0.0f, 0.0f, 2.0f);
+  const LightSet points({make_lamp(LightType::kPoint, pos, 80.0f)}, nullptr);
+  const LampEmitter point(points, 0);
+  EXPECT_EQ(point.vcm_flags(), kVcmSupported | kVcmDeltaPosition);
+  EXPECT_NEAR(emitted_power(point, kFrame).x, 80.0f, 1e-3f * 80.0f);
+  Illumination s;
+  const Vec3 p(1.0f, 0.5f, 0.0f);
+  ASSERT_TRUE(point.illuminate_vcm(kFrame, p, 0.5f, Vec2(0.5f, 0.5f), &s));
+  EXPECT_NEAR(s.radiance.x / s.direct_pdf, 80.0f / (4.0f * kPi) / length_squared(pos - p), 1e-5f);
+  EXPECT_NEAR(s.emission_pdf, 1.0f / (4.0f * kPi), 1e-7f);
+
+  Light spot = make_lamp(LightType::kSpot, pos, 80.0f);
+  spot.spot_size = 1.2f;
+  spot.spot_blend = 0.3f;
+  const LightSet spots({spot}, nullptr);
+  const LampEmitter se(spots, 0);
+  const Vec3 power = se.power(kFrame.radius);
+  EXPECT_NEAR(emitted_power(se, kFrame).x, power.x, 3e-3f * power.x);
+  // Light sample and emitted ray: the emission density is the cone's, and a receiver outside
+  // the cone gets nothing.
+  ASSERT_TRUE(se.illuminate_vcm(kFrame, Vec3(0.1f, 0.0f, 0.0f), 0.5f, Vec2(0.5f, 0.5f), &s));
+  EXPECT_NEAR(s.emission_pdf, uniform_cone_pdf(std::cos(0.6f)), 1e-4f);
+  EXPECT_FALSE(se.illuminate_vcm(kFrame, Vec3(5.0f, 0.0f, 1.9f), 0.5f, Vec2(0.5f, 0.5f), &s));
+}
+
+TEST(EmissionPdf, SunBeamCarriesIrradianceOverTheSceneDisc) {
+  for (float angle : {0.0f, 1.0f}) {
+    Light l = make_lamp(LightType::kSun, Vec3(0.0f), 3.0f);
+    l.sun_angle = angle;
+    const LightSet set({l}, nullptr);
+    const LampEmitter e(set, 0);
+    EXPECT_EQ((e.vcm_flags() & kVcmDeltaDirection) != 0, angle == 0.0f);
+    const float power = 3.0f * kPi * kFrame.radius * kFrame.radius;
+    EXPECT_NEAR(emitted_power(e, kFrame).x, power, 1e-3f * power);
+    // A receiver facing the sun gets its irradiance (cos of the cone's directions aside).
+    const Vec3 n(0.0f, 0.0f, 1.0f);
+    const double expected = angle == 0.0f ? 3.0
+                                          : 3.0 * uniform_cone_pdf(std::cos(0.5f)) *
+                                                quadrature_irradiance(n, [&](const Vec3& w) {
+                                                  return dot(w, n) >= std::cos(0.5f) ? 1.0 : 0.0;
+                                                });
+    EXPECT_NEAR(sampled_irradiance(e, kFrame, Vec3(0.0f), n).x, expected, 5e-3 * expected);
+    if (angle > 0.0f) expect_hit_matches_sample(e, kFrame, Vec3(0.0f));
+  }
+}
+
+TEST(EmissionPdf, UniformWorldAndEnvironmentMap) {
+  const WorldEmitter world(Vec3(0.7f));
+  EXPECT_NEAR(emitted_power(world, kFrame).x, world.power(kFrame.radius).x,
+              1e-3f * world.power(kFrame.radius).x);
+  const Vec3 n = normalize(Vec3(0.3f, -0.2f, 1.0f));
+  EXPECT_NEAR(sampled_irradiance(world, kFrame, Vec3(0.0f), n).x, 0.7f * kPi, 5e-3f);
+  expect_hit_matches_sample(world, kFrame, Vec3(0.0f));
+
+  // A bright band and a dim rest: the table's density, its hit density and its emitted power.
+  const auto sky = [](const Vec3& w) { return Vec3(w.z > 0.8f ? 5.0f : 0.2f); };
+  const EnvironmentEmitter env(sky, 64);
+  // pi R^2 times the integral of the radiance over the sphere (the table's own estimate,
+  // power(), rounds the band's edges up).
+  const float power =
+      kPi * kFrame.radius * kFrame.radius * 2.0f * kPi * (5.0f * 0.2f + 0.2f * 1.8f);
+  EXPECT_NEAR(emitted_power(env, kFrame).x, power, 1e-2f * power);
+  const Vec3 up(0.0f, 0.0f, 1.0f);
+  const double expected = quadrature_irradiance(up, [&](const Vec3& w) { return sky(w).x; });
+  EXPECT_NEAR(sampled_irradiance(env, kFrame, Vec3(0.0f), up).x, expected, 1e-2 * expected);
+  expect_hit_matches_sample(env, kFrame, Vec3(0.0f));
+  // The direction density integrates to one over the sphere (both hemispheres, the cosine
+  // that quadrature_irradiance weighs by divided out).
+  double total = 0.0;
+  for (const Vec3& axis : {up, -up})
+    total += quadrature_irradiance(axis, [&](const Vec3& w) {
+      Ray ray{Vec3(0.0f), w, 0.0f, INFINITY};
+      EmitterHit h;
+      return env.hit_vcm(kFrame, ray, INFINITY, &h) ? h.direct_pdf / std::fabs(w.z) : 0.0;
+    });
+  EXPECT_NEAR(total, 1.0, 0.01);
+}
+
+TEST(EmissionPdf, EmissiveTrianglesAloneAndAsAGroup) {
+  Scene scene;
+  scene.materials.push_back(Material::diffuse(Vec3(0.0f)).with_emission(Vec3(2.0f)));
+  scene.materials.push_back(Material::diffuse(Vec3(0.0f)).with_emission(Vec3(6.0f)));
+  add_mesh_instance(&scene, make_quad({-1, -1, 2}, {1, 0, 0}, {0, 1, 0}), 0);
+  add_mesh_instance(&scene, make_quad({0.5f, 0, 1.5f}, {0.5f, 0, 0.3f}, {0, 0.7f, 0}), 1);
+  std::vector<std::string> warnings;
+  const Accel accel(scene, &warnings);
+  const EmissiveMeshes meshes(scene, accel);
+  ASSERT_EQ(meshes.size(), 4u);
+  const EmissiveGroupEmitter group(meshes);
+  const Vec3 power = group.power(1.0f);
+  EXPECT_NEAR(emitted_power(group, kFrame).x, power.x, 2e-3f * power.x);
+  const TriangleEmitter one(meshes, 2);
+  EXPECT_NEAR(emitted_power(one, kFrame).x, one.power(1.0f).x, 2e-3f * one.power(1.0f).x);
+
+  // Irradiance at a receiver: light samples against quadrature over directions, the group's
+  // triangles found by tracing the scene.
+  const Vec3 p(0.1f, 0.2f, 0.0f), n(0.0f, 0.0f, 1.0f);
+  const double expected = quadrature_irradiance(n, [&](const Vec3& w) {
+    Hit hit;
+    if (!accel.intersect(Ray{p, w, 0.0f, INFINITY}, kVisibleDiffuse, &hit)) return 0.0;
+    return meshes.triangle(meshes.find(hit.instance, hit.primitive)).radiance.x * 1.0;
+  });
+  EXPECT_NEAR(sampled_irradiance(group, kFrame, p, n).x, expected, 5e-3 * expected);
+  // A camera ray meeting a triangle: its densities are the light sample's.
+  for (int k = 0; k < 32; ++k) {
+    Illumination s;
+    ASSERT_TRUE(group.illuminate_vcm(kFrame, p, (k + 0.5f) / 32, Vec2(0.3f, 0.6f), &s));
+    Hit hit;
+    ASSERT_TRUE(accel.intersect(Ray{p, s.wi, 0.0f, INFINITY}, kVisibleDiffuse, &hit));
+    EmitterHit h;
+    const float cos_light = dot(s.wi, s.surface_normal);
+    ASSERT_TRUE(group.surface_hit_vcm(hit.instance, hit.primitive, cos_light, &h));
+    EXPECT_NEAR(h.direct_pdf * s.distance * s.distance / s.cos_light, s.direct_pdf,
+                1e-3f * s.direct_pdf);
+    EXPECT_NEAR(h.emission_pdf, s.emission_pdf, 1e-3f * s.emission_pdf);
+  }
+}
+
+}  // namespace
+}  // namespace photon
