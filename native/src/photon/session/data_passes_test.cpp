@@ -299,27 +299,29 @@ TEST(DataPasses, CryptomatteCountsWhatTheSamplesSeeThroughTransparency) {
   for (int f = 1; f < fa.floats; ++f) EXPECT_EQ(corner[f], 0.0f) << f;
 }
 
-// SPPM traces its own camera paths per iteration; its data passes come from the camera rays of
-// the Sampling panel's samples, so they are the same floats as a tiled render's, for any
+// SPPM and VCM trace their own camera paths per iteration; their data passes come from the camera
+// rays of the Sampling panel's samples, so they are the same floats as a tiled render's, for any
 // thread count, and every published iteration carries them.
-TEST(DataPasses, SppmWritesTheTiledIntegratorsDataPasses) {
+TEST(DataPasses, SppmAndVcmWriteTheTiledIntegratorsDataPasses) {
   auto scene = std::make_shared<Scene>(*veiled_quad_scene());
   scene->instances[0].cryptomatte_object = 3.5f;
   scene->instances[1].cryptomatte_object = 7.25f;
   RenderSettings tiled = settings(24, 4, kPassAllData);
   tiled.data_passes.cryptomatte = kCryptoObject;
   tiled.data_passes.cryptomatte_depth = 2;
-  RenderSettings sppm = tiled;
-  sppm.integrator = IntegratorType::kSppm;
-  sppm.sppm_iterations = 2;
-  sppm.sppm_photons_per_iteration = 2000;
-  sppm.threads = 1;
-  RenderSettings sppm_threads = sppm;
-  sppm_threads.threads = 3;
   const Frame expected = render(scene, tiled);
-  const Frame one = render(scene, sppm), three = render(scene, sppm_threads);
-  EXPECT_EQ(one.data, expected.data);
-  EXPECT_EQ(three.data, expected.data);
+  for (IntegratorType type : {IntegratorType::kSppm, IntegratorType::kVcm}) {
+    RenderSettings iterative = tiled;
+    iterative.integrator = type;
+    iterative.sppm_iterations = 2;
+    iterative.sppm_photons_per_iteration = 2000;
+    iterative.threads = 1;
+    RenderSettings more_threads = iterative;
+    more_threads.threads = 3;
+    const Frame one = render(scene, iterative), three = render(scene, more_threads);
+    EXPECT_EQ(one.data, expected.data) << static_cast<int>(type);
+    EXPECT_EQ(three.data, expected.data) << static_cast<int>(type);
+  }
 }
 
 }  // namespace
