@@ -474,7 +474,8 @@ class ViewportRender:
 
 
 def _image_key(image):
-    """(view serial, samples, quick, rows) of a session image: what tells two apart."""
+    """(view serial, samples, quick, rows) of a session image: what tells two apart (quick is
+    0, or 1 and 2 for the two first looks, which have the same size and sample count)."""
     pixels, samples, quick, serial = image
     return serial, samples, quick, pixels.shape[0]
 

@@ -123,10 +123,15 @@ void bind_progressive(py::module_& m) {
             auto* data = new std::vector<float>(std::move(img.rgba));
             py::capsule owner(data, [](void* p) { delete static_cast<std::vector<float>*>(p); });
             py::array_t<float> pixels({img.height, img.width, 4}, data->data(), owner);
-            return py::make_tuple(pixels, img.samples, img.quick, img.view_serial);
+            // 0: the integrator's own passes; 1: the direct-light first look; 2: the look over
+            // a coarse photon map. Distinct values tell the two first looks apart (same size
+            // and sample count) to a viewer that redraws on change.
+            const int quick = img.coarse_photons ? 2 : (img.quick ? 1 : 0);
+            return py::make_tuple(pixels, img.samples, quick, img.view_serial);
           },
           "(rgba[h, w, 4] top row first, samples, quick, view serial) of the latest finished "
-          "pass, or None before the first.")
+          "pass, or None before the first. quick is 0 for the integrator's own passes, 1 for "
+          "the ray-traced first look and 2 for the look over a coarse photon map.")
       .def_property_readonly("samples_done", &ProgressiveSession::samples_done)
       .def_property_readonly("target_samples", &ProgressiveSession::target_samples)
       .def_property_readonly("converged", &ProgressiveSession::converged)

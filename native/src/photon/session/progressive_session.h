@@ -33,14 +33,22 @@ struct ProgressiveImage {
   int width = 0, height = 0;  // of the view's rectangle
   std::vector<float> rgba;    // width * height * 4, top row first; empty before the first pass
   int samples = 0;            // samples per pixel averaged in `rgba`
-  // True while `rgba` is the quick first look (direct light of a ray-traced pass) shown
-  // before the integrator's preparation (photon maps, a radiosity solve) has finished.
+  // True while `rgba` is a quick first look shown before the integrator's preparation (photon
+  // maps, a radiosity solve) has finished: direct light of a ray-traced pass, then, for photon
+  // mapping, a pass over a coarse photon map (`coarse_photons`).
   bool quick = false;
+  bool coarse_photons = false;
   uint64_t view_serial = 0;  // the set_view() call this image belongs to (0: the initial view)
   // A coarse quick image has one pixel per step x step block of the view's rectangle (width
   // and height are then the coarse image's, rounded up), to be shown scaled up.
   int step = 1;
 };
+
+// The photon-mapping settings of the coarse map a session shows while the full one is traced:
+// kCoarsePhotonShare times fewer photons (and a shorter photon time budget, when one is set).
+// False when the integrator traces no photons or its map is small enough to come at once.
+constexpr int kCoarsePhotonShare = 16;
+bool coarse_photon_settings(const RenderSettings& settings, RenderSettings* coarse);
 
 class ProgressiveSession : public Job {
  public:
@@ -84,7 +92,11 @@ class ProgressiveSession : public Job {
   // Renders samples [first, end) of `view` into accum_ (sums); false when interrupted.
   bool render_pass(const RenderContext& context, const Integrator& integrator,
                    const ProgressiveView& view, int first, int end, uint64_t serial);
-  void publish(const ProgressiveView& view, int samples, bool quick, uint64_t serial);
+  void publish(const ProgressiveView& view, int samples, bool quick, uint64_t serial,
+               bool coarse_photons = false);
+  // One sample of every pixel with a photon map of kCoarsePhotonShare times fewer photons,
+  // published as a quick image; false when it does not apply or was interrupted.
+  bool render_coarse_photon_pass(const RenderContext& context, const PrepareControl& control);
   bool interrupted(uint64_t serial) const;
 
   std::shared_ptr<ViewportScene> viewport_scene_;

@@ -146,6 +146,72 @@ TEST(ProgressiveSession, QuickFirstImageBeforePhotonMaps) {
   EXPECT_EQ(session.samples_done(), 0);  // the quick look is not a sample of the real image
 }
 
+double mean_of(const ProgressiveImage& image) {
+  double sum = 0.0;
+  for (size_t i = 0; i < image.rgba.size(); i += 4)
+    sum += image.rgba[i] + image.rgba[i + 1] + image.rgba[i + 2];
+  return sum / (0.75 * image.rgba.size());
+}
+
+TEST(ProgressiveSession, CoarsePhotonSettingsTakeASixteenthOfLargeMapsOnly) {
+  RenderSettings s = settings(IntegratorType::kPhotonMap, 16, 1);
+  RenderSettings coarse;
+  s.photons = 20000;  // comes at once: no coarse map
+  EXPECT_FALSE(coarse_photon_settings(s, &coarse));
+  s.photons = 1600000;
+  s.caustic_photons = 320000;
+  ASSERT_TRUE(coarse_photon_settings(s, &coarse));
+  EXPECT_EQ(coarse.photons, 100000u);
+  EXPECT_EQ(coarse.caustic_photons, 20000u);
+  EXPECT_EQ(coarse.samples, s.samples);
+  s.photons = 20000;
+  s.photon_time = 2.0f;  // a time budget: a sixteenth of it
+  ASSERT_TRUE(coarse_photon_settings(s, &coarse));
+  EXPECT_FLOAT_EQ(coarse.photon_time, 0.125f);
+  s.integrator = IntegratorType::kSppm;  // shown through photon mapping outside final renders
+  EXPECT_TRUE(coarse_photon_settings(s, &coarse));
+  s.integrator = IntegratorType::kRadiosity;
+  EXPECT_FALSE(coarse_photon_settings(s, &coarse));
+  s.integrator = IntegratorType::kRayTrace;
+  EXPECT_FALSE(coarse_photon_settings(s, &coarse));
+}
+
+// After the direct-light look, a pass over a coarse photon map shows the indirect light while
+// the full map is traced; the converged image is the final render's as before.
+TEST(ProgressiveSession, CoarsePhotonMapShowsIndirectLightBeforeTheFullMap) {
+  auto scene = std::make_shared<Scene>(make_cornell_box());
+  RenderSettings s = settings(IntegratorType::kPhotonMap, 48, 2);
+  s.photons = 96000;  // the coarse map's 6,000 come several times faster
+  s.caustic_photons = 0;
+  ProgressiveSession session(scene, s);
+  session.start();
+  ProgressiveImage direct, coarse;
+  const auto t0 = Clock::now();
+  while (!session.converged() && seconds_since(t0) < 120.0) {
+    const ProgressiveImage image = session.image();
+    if (image.quick && !image.coarse_photons && image.step == 1 && direct.rgba.empty())
+      direct = image;
+    if (image.coarse_photons && coarse.rgba.empty()) {
+      coarse = image;
+      EXPECT_TRUE(session.preparing());  // the full map is still being traced
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  ASSERT_TRUE(session.converged());
+  ASSERT_FALSE(direct.rgba.empty());
+  ASSERT_FALSE(coarse.rgba.empty());
+  EXPECT_TRUE(coarse.quick);
+  const ProgressiveImage full = session.image();
+  const double d = mean_of(direct), c = mean_of(coarse), f = mean_of(full);
+  std::printf("image means: direct light %.4f, coarse photon map %.4f, full %.4f\n", d, c, f);
+  EXPECT_GT(c, d * 1.1);  // the indirect light of the box's walls
+  EXPECT_LT(std::fabs(c - f), 0.05 * f);
+  const std::vector<float> reference = final_render(scene, s);
+  ASSERT_EQ(full.rgba.size(), reference.size());
+  for (size_t i = 0; i < reference.size(); ++i)
+    ASSERT_NEAR(full.rgba[i], reference[i], 1e-6f * std::max(1.0f, std::fabs(reference[i])));
+}
+
 // Cancel (the viewport closed, the scene changed) stops a pass within a row of samples.
 TEST(ProgressiveSession, CancelLatency) {
   RenderSettings s = settings(IntegratorType::kPhotonMap, 128, 1 << 16);
