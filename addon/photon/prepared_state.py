@@ -8,8 +8,8 @@ without changing the .blend:
     PHOTON_PREPARE_ONLY=1       end each render once prepared (and saved): no pixels are
                                 rendered (Blender still writes its empty image)
 
-A run of '#' in FILE becomes the frame number, zero-padded to the run's length, as in Blender's
-output paths. A file prepared for another scene, frame or setting (anything but the render
+The last run of '#' in FILE's name (not its folders) becomes the frame number, zero-padded to
+the run's length, as in Blender's output paths. A file prepared for another scene, frame or setting (anything but the render
 border, threads and tile size), or a damaged one, is refused with a warning and the render
 prepares as usual. Only the PHOTON_MAP integrator shares its preparation; the others warn and
 ignore the variables. A frame with several view layers or views renders each with its own
@@ -24,13 +24,16 @@ LOAD = "PHOTON_PREPARED_LOAD"
 PREPARE_ONLY = "PHOTON_PREPARE_ONLY"
 
 
-def _frame_path(path, frame):
-    """`path` with its last run of '#' replaced by the zero-padded frame number."""
-    runs = list(re.finditer(r"#+", path))
+def frame_path(path, frame):
+    """`path` with the last run of '#' in its file name replaced by the zero-padded frame
+    number."""
+    folder, name = os.path.split(path)
+    runs = list(re.finditer(r"#+", name))
     if not runs:
         return path
     run = runs[-1]
-    return path[:run.start()] + str(frame).zfill(len(run.group())) + path[run.end():]
+    name = name[:run.start()] + str(frame).zfill(len(run.group())) + name[run.end():]
+    return os.path.join(folder, name)
 
 
 def from_environment(frame, environ=None):
@@ -42,8 +45,8 @@ def from_environment(frame, environ=None):
     prepare_only = environ.get(PREPARE_ONLY, "").strip().lower() not in ("", "0", "false", "no")
     if not (load or save or prepare_only):
         return None
-    return {"load": _frame_path(load, frame) if load else "",
-            "save": _frame_path(save, frame) if save else "",
+    return {"load": frame_path(load, frame) if load else "",
+            "save": frame_path(save, frame) if save else "",
             "prepare_only": prepare_only}
 
 
