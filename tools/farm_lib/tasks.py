@@ -58,6 +58,7 @@ def _band_expr(manifest, band):
 def _render(cmd, env, success_line):
     """Runs Blender, passing its output to the Slurm log. Returns (whether it exited 0 and
     printed `success_line`, the set of STATE_* markers it printed)."""
+    started = time.monotonic()
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             stdin=subprocess.DEVNULL, text=True, errors="replace")
     succeeded = False
@@ -67,8 +68,9 @@ def _render(cmd, env, success_line):
         succeeded = succeeded or line.startswith(success_line)
         markers.update(m for m in (STATE_SAVED, STATE_LOADED, STATE_REFUSED)
                        if line.startswith(m))
-    sys.stdout.flush()
-    return proc.wait() == 0 and succeeded, markers
+    code = proc.wait()
+    print(f"farm: Blender ran {time.monotonic() - started:.2f} s (exit {code})", flush=True)
+    return code == 0 and succeeded, markers
 
 
 def _blender_cmd(manifest, frame, out_prefix, expr=None):
@@ -174,6 +176,7 @@ def run_stitch(manifest_path):
     job_dir = Path(manifest["job_dir"])
     failed = 0
     for frame, path in zip(manifest["frames"], manifest["paths"]):
+        started = time.monotonic()
         bands = [band_path(manifest, frame, b) for b in range(manifest["split"])]
         missing = [str(b) for b in bands if not b.exists()]
         if missing:
@@ -188,7 +191,8 @@ def run_stitch(manifest_path):
             failed += 1
             continue
         (job_dir / "done" / f"frame_{frame}").write_text(str(path))
-        print(f"farm: stitched frame {frame} -> {path}", flush=True)
+        print(f"farm: stitched frame {frame} -> {path} in {time.monotonic() - started:.2f} s",
+              flush=True)
         # Its bands are done: the frame's shared preparation (often the job's largest file) goes.
         state_path(manifest, frame).unlink(missing_ok=True)
     if failed:
