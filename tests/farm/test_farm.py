@@ -383,3 +383,18 @@ def test_failed_render_makes_wait_fail(farm, split):
     # With --split 2 the frame's prepare task fails (and its bands never run).
     task_logs = "".join(logs_text(out, "*.log").values())
     assert "non-finite transform" in task_logs and "farm: error" in task_logs, task_logs
+
+
+def test_shared_preparation_plan():
+    """Which split submissions share a preparation, and the note when they do not."""
+    from farm_lib import jobs
+    info = {"integrator": "PHOTON_MAP", "view_layers": 1}
+    assert jobs.shared_prepare_plan(info, 1) == (False, "")
+    assert jobs.shared_prepare_plan(info, 4) == (True, "")
+    shared, note = jobs.shared_prepare_plan(info, 4, wanted=False)
+    assert not shared and "--no-shared-prepare" in note
+    for integrator in ("RAY_TRACE", "RADIOSITY", "SPPM", "VCM", None):
+        shared, note = jobs.shared_prepare_plan(dict(info, integrator=integrator), 4)
+        assert not shared and "only PHOTON_MAP" in note, integrator
+    shared, note = jobs.shared_prepare_plan(dict(info, view_layers=2), 4)
+    assert not shared and "2 view layers" in note
