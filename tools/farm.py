@@ -3,16 +3,20 @@
 any thread count and tile order), so a frame split into bands on several nodes stitches into
 exactly the image one machine makes.
 
-    tools/farm.py submit FILE.blend --out DIR [--frames A-B] [--split N] [--partition P] [--wait]
+    tools/farm.py submit FILE.blend --out DIR [--frames A-B] [--split N [--no-shared-prepare]]
+                         [--partition P] [--wait]
     tools/farm.py status JOB
     tools/farm.py cancel JOB
     tools/farm.py local-cluster start|stop
 
 submit queues one job-array task per frame (Blender's -a, with the file's output format), or
 with --split N, N tasks per frame each rendering one horizontal band through the render border,
-and a stitch job (afterok) assembling every channel of each frame. Failed tasks re-queue
-themselves (--retries); Slurm re-queues pre-empted ones (--requeue). Slurm runs the tasks with
-BLENDER_USER_SCRIPTS set to --addon-dir (default: build/stage of this checkout).
+and a stitch job (afterok) assembling every channel of each frame. With --split and the
+PHOTON_MAP integrator, a prepare task per frame first traces the photon maps and builds the
+caches once and saves them; the frame's bands (afterok) load them instead of each preparing
+again (--no-shared-prepare turns this off). Failed tasks re-queue themselves (--retries); Slurm
+re-queues pre-empted ones (--requeue). Slurm runs the tasks with BLENDER_USER_SCRIPTS set to
+--addon-dir (default: build/stage of this checkout).
 """
 
 import argparse
@@ -21,7 +25,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from farm_lib import blend_info, cluster, jobs, slurm  # noqa: E402
+from farm_lib import blend_info, cluster, jobs, slurm, tasks  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -42,25 +46,39 @@ def cmd_submit(args):
         reason = slurm.available()
         if reason:
             raise jobs.SubmitError(reason)
-        info = blend_info.read(args.blender, blend.resolve(), out_dir, first, last)
+        info = blend_info.read(args.blender, blend.resolve(), out_dir, first, last,
+                               addon_dir=addon_dir)
         jobs.check_settings(info, args.split)
+        shared, note = jobs.shared_prepare_plan(info, args.split, not args.no_shared_prepare)
         manifest = jobs.make_manifest(blend, out_dir, info, args.split, addon_dir, args.blender,
-                                      args.retries)
-        render_id, stitch_id = jobs.submit(manifest, args.partition, f"photon-{blend.stem}")
+                                      args.retries, shared)
+        prepare_id, render_ids, stitch_id = jobs.submit(manifest, args.partition,
+                                                        f"photon-{blend.stem}")
     except (jobs.SubmitError, blend_info.BlendError, slurm.SlurmError) as exc:
         return _fail(exc)
     frames = manifest["frames"]
-    print(f"render job {render_id}: {len(frames)} frame(s) {frames[0]}..{frames[-1]}"
-          + (f" x {args.split} bands" if args.split > 1 else ""))
+    if prepare_id:
+        print(f"prepare job {prepare_id}: the photon maps and caches of each frame, once, "
+              f"shared by its bands")
+    elif note:
+        print(f"farm: note: {note}")
+    bands = f" x {args.split} bands" if args.split > 1 else ""
+    if len(render_ids) == 1:
+        print(f"render job {render_ids[0]}: {len(frames)} frame(s) {frames[0]}..{frames[-1]}"
+              f"{bands}")
+    else:
+        print(f"render jobs {', '.join(render_ids)}: one per frame {frames[0]}..{frames[-1]}"
+              f"{bands} (after its prepare task)")
     if stitch_id:
-        print(f"stitch job {stitch_id} (after job {render_id})")
+        print(f"stitch job {stitch_id} (after the render job{'s' if len(render_ids) > 1 else ''})")
     print(f"logs: {manifest['job_dir']}/logs")
     if not args.wait:
         return 0
     try:
         missing = jobs.wait(manifest)
     except KeyboardInterrupt:
-        print(f"\nfarm: stopped waiting; the jobs keep running (tools/farm.py cancel {render_id})",
+        print(f"\nfarm: stopped waiting; the jobs keep running (tools/farm.py cancel "
+              f"{render_ids[0]})",
               file=sys.stderr)
         return 130
     if missing:
@@ -85,9 +103,7 @@ def cmd_status(args):
     if reason:
         return _fail(reason)
     manifest = _manifest_of(args.job)
-    ids = [args.job]
-    if manifest:
-        ids = [i for i in (manifest.get("render_job"), manifest.get("stitch_job")) if i]
+    ids = jobs.job_ids(manifest) if manifest else [args.job]
     states = {}
     for job_id in ids:
         for record in slurm.job_records(job_id):
@@ -117,9 +133,7 @@ def cmd_cancel(args):
     if reason:
         return _fail(reason)
     manifest = _manifest_of(args.job)
-    ids = [args.job]
-    if manifest:
-        ids = [i for i in (manifest.get("render_job"), manifest.get("stitch_job")) if i]
+    ids = jobs.job_ids(manifest) if manifest else [args.job]
     try:
         slurm.cancel(ids)
     except slurm.SlurmError as exc:
@@ -153,6 +167,9 @@ def main(argv=None):
     p.add_argument("--out", required=True, help="output folder (file names from the .blend)")
     p.add_argument("--frames", help="A-B or A (default: the file's frame range)")
     p.add_argument("--split", type=int, default=1, help="horizontal bands per frame (1)")
+    p.add_argument("--no-shared-prepare", action="store_true",
+                   help="with --split: every band traces its own photon maps and caches "
+                        "instead of loading the frame's shared preparation")
     p.add_argument("--partition", help="Slurm partition")
     p.add_argument("--wait", action="store_true", help="wait; exit 1 if any frame failed")
     p.add_argument("--retries", type=int, default=2,
@@ -170,14 +187,18 @@ def main(argv=None):
     p.add_argument("--dir", help="cluster folder (default: a new temporary folder)")
     p.set_defaults(func=cmd_local_cluster)
     # Run by Slurm, not by people.
-    for name in ("_task", "_stitch"):
+    for name in ("_prepare", "_task", "_stitch"):
         p = sub.add_parser(name)
         p.add_argument("manifest")
+        if name == "_task":
+            p.add_argument("--frame-index", type=int)
     args = parser.parse_args(argv)
+    if args.command == "_prepare":
+        return tasks.run_prepare(args.manifest)
     if args.command == "_task":
-        return jobs.run_task(args.manifest)
+        return tasks.run_task(args.manifest, args.frame_index)
     if args.command == "_stitch":
-        return jobs.run_stitch(args.manifest)
+        return tasks.run_stitch(args.manifest)
     return args.func(args)
 
 

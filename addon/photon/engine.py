@@ -7,7 +7,7 @@ import traceback
 import bpy
 import numpy as np
 
-from . import data_passes, properties, report, schema, sync, viewport
+from . import data_passes, prepared_state, properties, report, schema, sync, viewport
 from . import progress as render_progress
 from .sync import cache as sync_cache
 from .sync import camera as sync_camera
@@ -288,6 +288,10 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
         # A user watching the render sees the whole frame (direct light) before the slow
         # stages; in background mode nobody does and it would only cost time.
         session.set_quick_preview(not bpy.app.background)
+        # A render farm's bands of one frame share its preparation (prepared_state.py).
+        prepared_files = prepared_state.from_environment(scene.frame_current)
+        if prepared_files:
+            session.set_prepared_state(**prepared_files)
         capabilities = integrator_capabilities(native, scene)
         prepares = capabilities["prepares"]
         bar = render_progress.RenderProgress(prepares)
@@ -337,6 +341,11 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             session.wait()
             RENDER_STATUS.clear()
         cancelled = cancelled_during is not None
+        if prepared_files and prepared_files["prepare_only"] and not tiles_done:
+            # A result no tile was written to crashes Blender when it saves the image: an
+            # empty (zero) frame is written instead.
+            self._write_tile(0, 0, region_w, region_h,
+                             np.zeros((region_h, region_w, 4), dtype=np.float32), preview=True)
         if cancelled:
             reporter.warning(f"render cancelled (Esc) during '{cancelled_during}', stopped "
                              f"{time.perf_counter() - t_cancel:.3f} s later: the image keeps "
@@ -354,6 +363,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
                              f"and were dropped")
         elapsed = time.perf_counter() - t_start
         state = "cancelled" if cancelled else "rendered"
+        if prepared_files and prepared_files["prepare_only"] and not cancelled:
+            state = "prepared (no pixels: PHOTON_PREPARE_ONLY)"
         reporter.info(
             f"{state} frame {scene.frame_current} {region_w}x{region_h} "
             f"({self._samples_label(settings, stats)}, {stats.threads} threads): sync {sync_stats.seconds:.3f} s "
@@ -362,6 +373,8 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
             f"BVH {stats.build_seconds:.3f} s, "
             f"render {stats.render_seconds:.3f} s, total {elapsed:.3f} s"
             f"{self._layer_view_label(scene, view)}")
+        if prepared_files:
+            prepared_state.report(reporter, prepared_files, stats)
         for line in prepare_report(stats.integrator):
             reporter.info(line)
         if stats.sppm.iterations:

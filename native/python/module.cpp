@@ -498,12 +498,14 @@ PYBIND11_MODULE(_photon, m) {
         d["prepares"] = c.prepares;
         d["stop_early_effect"] = c.stop_early_effect;
         d["iterative"] = c.iterative;
+        d["shares_preparation"] = c.shares_preparation;
         return d;
       },
       py::arg("integrator"),
       "What an Integrator can do: bake (a view-independent solution for lighting bakes; "
       "no_bake_reason otherwise), stop_early (Esc ends its preparation while the status starts "
-      "with stop_early_status, and the render goes on as stop_early_effect says).");
+      "with stop_early_status, and the render goes on as stop_early_effect says), "
+      "shares_preparation (RenderSession.set_prepared_state saves and loads its preparation).");
   m.attr("PASS_NAMES") = py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics",
                                         "Photon Map");
 
@@ -538,6 +540,18 @@ PYBIND11_MODULE(_photon, m) {
       .def("start", &RenderSession::start)
       .def("cancel", &RenderSession::cancel)
       .def("stop_preparation", &RenderSession::stop_preparation)
+      .def(
+          "set_prepared_state",
+          [](RenderSession& s, const std::string& load, const std::string& save,
+             bool prepare_only) {
+            s.set_prepared_state({load, save, prepare_only});
+          },
+          py::arg("load") = "", py::arg("save") = "", py::arg("prepare_only") = false,
+          "Before start(): load the integrator's preparation (photon maps and caches) from the "
+          "file `load` instead of preparing, save it to `save`, and with prepare_only end the "
+          "render once prepared (no pixels). A file made for another scene, frame or setting, "
+          "or a damaged one, is refused with a warning and the render prepares as usual; "
+          "stats.prepared_state says what happened.")
       .def("set_quick_preview", &RenderSession::set_quick_preview, py::arg("enabled"),
            "Before start(): render a quick direct-light preview of the whole region before the "
            "integrator's preparation (take_preview() hands it out).")

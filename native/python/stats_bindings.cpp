@@ -67,6 +67,14 @@ void register_stats_classes(py::module_& m) {
       .def_readonly("irradiance_cache", &PrepareStats::irradiance_cache)
       .def_readonly("bake_irradiance_cache", &PrepareStats::bake_irradiance_cache)
       .def_readonly("radiosity", &PrepareStats::radiosity);
+  py::class_<PreparedStateStats>(m, "PreparedStateStats",
+                                 "A prepared-state file a render loaded or saved.")
+      .def_readonly("loaded", &PreparedStateStats::loaded)
+      .def_readonly("saved", &PreparedStateStats::saved)
+      .def_readonly("bytes", &PreparedStateStats::bytes)
+      .def_readonly("load_seconds", &PreparedStateStats::load_seconds)
+      .def_readonly("save_seconds", &PreparedStateStats::save_seconds)
+      .def_readonly("fingerprint", &PreparedStateStats::fingerprint);
   py::class_<RenderStats>(m, "RenderStats", "A render's statistics (RenderSession.stats).")
       .def_readonly("texture_seconds", &RenderStats::texture_seconds)
       .def_readonly("textures", &RenderStats::textures)
@@ -83,6 +91,7 @@ void register_stats_classes(py::module_& m) {
       .def_readonly("lights", &RenderStats::lights)
       .def_readonly("threads", &RenderStats::threads)
       .def_readonly("integrator", &RenderStats::integrator)
+      .def_readonly("prepared_state", &RenderStats::prepared_state)
       .def_readonly("sppm", &RenderStats::sppm);
   py::class_<BakeStats>(m, "BakeStats", "A bake's statistics (the result's 'stats').")
       .def_readonly("build_seconds", &BakeStats::build_seconds)

@@ -1,7 +1,8 @@
 """tools/farm.py on a single-node Slurm cluster that the tests start (and stop, even on failure):
 frames and split frames rendered through Slurm must equal Blender's own `-a` output bit for bit,
-every pass included; a band killed or re-queued mid-render is rendered again; bad input is
-refused before anything is queued.
+every pass included, whether the bands share the frame's preparation or each prepares itself;
+a band killed or re-queued mid-render is rendered again; a stale shared preparation is refused
+and the band renders correctly anyway; bad input is refused before anything is queued.
 
     /usr/bin/python3 -m pytest -q tests/farm/test_farm.py --photon-stage=build/stage \
         --blender=/usr/bin/blender --photon-out=build/test_out
@@ -149,15 +150,86 @@ def test_animation_matches_blender_animation_render(farm, scene):
     assert "frames done: 3/3" in status.stdout, status.log
 
 
-def test_split_frame_matches_unsplit_render(farm, scene):
+def job_dir(out):
+    return next((out / ".farm").iterdir())
+
+
+def logs_text(out, pattern):
+    return {p.name: p.read_text() for p in sorted((job_dir(out) / "logs").glob(pattern))}
+
+
+@pytest.mark.parametrize("shared", [True, False], ids=["shared_prepare", "no_shared_prepare"])
+def test_split_frame_matches_unsplit_render(farm, scene, shared):
     blend, ref = scene
-    out = farm.out / "split"
-    proc = farm.run("submit", blend, "--out", out, "--frames", "2", "--split", "4", "--wait")
+    out = farm.out / f"split_{'shared' if shared else 'own'}"
+    args = ["submit", blend, "--out", out, "--frames", "2", "--split", "4", "--wait"]
+    if not shared:
+        args.append("--no-shared-prepare")
+    proc = farm.run(*args)
     assert proc.returncode == 0, proc.log
     assert "stitch job" in proc.stdout
+    assert ("prepare job" in proc.stdout) == shared, proc.log
     assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == \
         ["farm_0002.exr"]
     assert_same_image(ref / "farm_0002.exr", out / "farm_0002.exr")
+    bands = logs_text(out, "render_*.log")
+    assert len(bands) == 4, bands.keys()
+    if shared:
+        (prepared,) = logs_text(out, "prepare_*.log").values()
+        assert "Photon: prepared state saved" in prepared and "farm: wrote" in prepared, prepared
+        for name, log in bands.items():
+            assert "Photon: prepared state loaded" in log, (name, log)
+            assert "used the frame's shared preparation" in log, (name, log)
+            # A band traced no photons of its own.
+            assert "Tracing photons" not in log, (name, log)
+        # Removed once the frame was stitched.
+        assert not any((job_dir(out) / "state").iterdir())
+    else:
+        assert not logs_text(out, "prepare_*.log")
+        for name, log in bands.items():
+            assert "prepared state" not in log, (name, log)
+
+
+def test_stale_shared_preparation_is_refused_and_bands_render_correctly(farm, scene):
+    """The frame's state file is swapped for frame 1's (another camera and objects) between
+    the prepare task and the bands: every band refuses it, prepares itself, and the stitched
+    frame is still bit-identical."""
+    blend, ref = scene
+    stale = farm.out / "frame1.photonstate"
+    env = dict(os.environ, BLENDER_USER_SCRIPTS=str(farm.stage),
+               PHOTON_PREPARED_SAVE=str(stale), PHOTON_PREPARE_ONLY="1")
+    made = subprocess.run([farm.blender, "-b", "--factory-startup", str(blend), "--addons",
+                           "photon", "-E", "PHOTON", "-o", str(farm.out / "stale_tmp" / "x_"),
+                           "-f", "1"], env=env, capture_output=True, text=True, timeout=120,
+                          stdin=subprocess.DEVNULL)
+    assert made.returncode == 0 and stale.is_file(), made.stdout + made.stderr
+
+    out = farm.out / "stale"
+    proc = farm.run("submit", blend, "--out", out, "--frames", "2", "--split", "2")
+    assert proc.returncode == 0 and "prepare job" in proc.stdout, proc.log
+    render = job_id(proc)
+    # The bands wait for the prepare task (afterok); held, they wait for the swap too.
+    assert farm.slurm("scontrol", "hold", render).returncode == 0
+    done = job_dir(out) / "done" / "prepare_0"
+    deadline = time.monotonic() + 90
+    while not done.exists() and time.monotonic() < deadline:
+        time.sleep(0.2)
+    assert done.exists(), f"prepare task did not finish: {farm.queue()}"
+    state = job_dir(out) / "state" / "frame_2.photonstate"
+    assert state.is_file()
+    shutil.copyfile(stale, state)
+    assert farm.slurm("scontrol", "release", render).returncode == 0
+    deadline = time.monotonic() + 120
+    while farm.queue() and time.monotonic() < deadline:
+        time.sleep(0.5)
+    assert not farm.queue(), farm.queue()
+    assert_same_image(ref / "farm_0002.exr", out / "farm_0002.exr")
+    bands = logs_text(out, "render_*.log")
+    assert len(bands) == 2
+    for name, log in bands.items():
+        assert "Photon: warning: prepared state refused" in log, (name, log)
+        assert "another scene or other render settings" in log, (name, log)
+        assert "prepared itself" in log, (name, log)
 
 
 def _blender_pid(job, task):
@@ -211,10 +283,15 @@ def test_requeued_and_killed_bands_render_again(farm, scene):
     assert re.search(rf"{job}_0\s+COMPLETED \(restarts [1-9]", status.stdout), status.log
     assert re.search(rf"{job}_1\s+COMPLETED \(restarts [1-9]", status.stdout), status.log
     assert "frames done: 1/1" in status.stdout, status.log
-    logs = next((out / ".farm").iterdir()) / "logs"
+    logs = job_dir(out) / "logs"
     killed_log = (logs / f"render_{job}_1.log").read_text()
     assert "farm: re-queuing" in killed_log and "attempt 2" in killed_log, killed_log
-    assert "attempt 2" in (logs / f"render_{job}_0.log").read_text()
+    requeued_log = (logs / f"render_{job}_0.log").read_text()
+    assert "attempt 2" in requeued_log
+    # The second attempts loaded the frame's shared preparation too.
+    for log in (killed_log, requeued_log):
+        second = log[log.index("attempt 2"):]
+        assert "used the frame's shared preparation" in second, log
     assert sorted(p.name for p in out.iterdir() if not p.name.startswith(".")) == \
         ["farm_0002.exr"]
     assert_same_image(ref / "farm_0002.exr", out / "farm_0002.exr")
@@ -303,6 +380,21 @@ def test_failed_render_makes_wait_fail(farm, split):
     assert "not rendered" in proc.stderr, proc.log
     assert not farm.queue()
     assert [p.name for p in out.iterdir()] == [".farm"]
-    logs = next((out / ".farm").iterdir()) / "logs"
-    task_log = (logs / f"render_{job_id(proc)}_0.log").read_text()
-    assert "non-finite transform" in task_log and "farm: error" in task_log, task_log
+    # With --split 2 the frame's prepare task fails (and its bands never run).
+    task_logs = "".join(logs_text(out, "*.log").values())
+    assert "non-finite transform" in task_logs and "farm: error" in task_logs, task_logs
+
+
+def test_shared_preparation_plan():
+    """Which split submissions share a preparation, and the note when they do not."""
+    from farm_lib import jobs
+    info = {"integrator": "PHOTON_MAP", "view_layers": 1}
+    assert jobs.shared_prepare_plan(info, 1) == (False, "")
+    assert jobs.shared_prepare_plan(info, 4) == (True, "")
+    shared, note = jobs.shared_prepare_plan(info, 4, wanted=False)
+    assert not shared and "--no-shared-prepare" in note
+    for integrator in ("RAY_TRACE", "RADIOSITY", "SPPM", "VCM", None):
+        shared, note = jobs.shared_prepare_plan(dict(info, integrator=integrator), 4)
+        assert not shared and "only PHOTON_MAP" in note, integrator
+    shared, note = jobs.shared_prepare_plan(dict(info, view_layers=2), 4)
+    assert not shared and "2 view layers" in note

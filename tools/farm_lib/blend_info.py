@@ -1,8 +1,11 @@
 """What the farm needs to know about a .blend before queuing anything: frame range, frame size,
-output format and the path Blender itself would write each frame to. Read by one short
-background Blender run (no add-on needed)."""
+output format, the path Blender itself would write each frame to, and Photon's integrator and
+the number of view layers (whether the bands of a frame can share one preparation). Read by
+one short background Blender run with the Photon add-on enabled (it registers scene.photon;
+without it the integrator is None)."""
 
 import json
+import os
 import subprocess
 
 MARKER = "PHOTON_FARM_INFO "
@@ -36,6 +39,8 @@ info = {
     "use_multiview": bool(r.use_multiview),
     "use_border": bool(r.use_border),
     "scene_frames": [scene.frame_start, scene.frame_end],
+    "integrator": getattr(getattr(scene, "photon", None), "integrator", None),
+    "view_layers": sum(1 for layer in scene.view_layers if layer.use),
 }
 print("PHOTON_FARM_INFO " + json.dumps(info), flush=True)
 """
@@ -45,13 +50,19 @@ class BlendError(RuntimeError):
     pass
 
 
-def read(blender, blend, out_dir, first=None, last=None, timeout=120):
-    """The .blend's render settings as a dict (see _SCRIPT), frame paths under out_dir."""
-    cmd = [blender, "-b", "--factory-startup", str(blend), "--python-expr", _SCRIPT, "--",
-           str(out_dir), "" if first is None else str(first), "" if last is None else str(last)]
+def read(blender, blend, out_dir, first=None, last=None, timeout=120, addon_dir=None):
+    """The .blend's render settings as a dict (see _SCRIPT), frame paths under out_dir.
+    `addon_dir` holds addons/photon (BLENDER_USER_SCRIPTS)."""
+    cmd = [blender, "-b", "--factory-startup", str(blend)]
+    env = dict(os.environ)
+    if addon_dir is not None:
+        cmd += ["--addons", "photon"]
+        env["BLENDER_USER_SCRIPTS"] = str(addon_dir)
+    cmd += ["--python-expr", _SCRIPT, "--", str(out_dir), "" if first is None else str(first),
+            "" if last is None else str(last)]
     try:
         proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout,
-                              stdin=subprocess.DEVNULL)
+                              stdin=subprocess.DEVNULL, env=env)
     except FileNotFoundError:
         raise BlendError(f"Blender executable not found: {blender}") from None
     except subprocess.TimeoutExpired:

@@ -1,18 +1,24 @@
 """A farm submission: the checks made before anything is queued, the manifest every task reads,
-and the bodies of the two kinds of Slurm job (render task, stitch).
+and the Slurm jobs (tasks.py holds their bodies).
 
 Layout under the output folder: OUT/.farm/job-<time>-<pid>/ holds manifest.json, logs/ (one
-Slurm log per task), bands/ (finished band renders), tmp/ (renders in progress) and done/ (a
-marker per finished task and per stitched frame). Every file a task makes is written under a
-temporary name and renamed when complete, so a killed or re-queued task never leaves a
-half-written frame or band behind.
+Slurm log per task), state/ (each split frame's shared preparation, removed once the frame is
+stitched), bands/ (finished band renders), tmp/ (renders in progress) and done/ (a marker per
+finished task and per stitched frame). Every file a task makes is written under a temporary
+name and renamed when complete, so a killed or re-queued task never leaves a half-written
+frame, band or state file behind.
+
+Jobs: without --split one render array, a task per frame. With --split N and a shared
+preparation (the default for the PHOTON_MAP integrator), a prepare array (a task per frame),
+then per frame a render array of N band tasks that waits for that frame's prepare task
+(afterok), then a stitch job after every render array; without sharing, one render array of
+frames x N band tasks and the stitch job.
 """
 
 import json
 import os
 import re
 import shutil
-import subprocess
 import sys
 import time
 from pathlib import Path
@@ -90,9 +96,26 @@ def check_settings(info, split):
                               f"(apt-get install python3-openimageio)") from None
 
 
-def make_manifest(blend, out_dir, info, split, addon_dir, blender, retries):
+def shared_prepare_plan(info, split, wanted=True):
+    """(whether the bands of each frame share one preparation, a note for the user or "")."""
+    if split <= 1:
+        return False, ""
+    if not wanted:
+        return False, "each band prepares itself (--no-shared-prepare)"
+    if info.get("integrator") != "PHOTON_MAP":
+        return False, (f"each band prepares itself: the file's integrator is "
+                       f"{info.get('integrator') or 'unknown'}, and only PHOTON_MAP shares its "
+                       f"preparation")
+    if info.get("view_layers", 1) > 1:
+        return False, (f"each band prepares itself: the file renders {info['view_layers']} view "
+                       f"layers, and a shared preparation holds one")
+    return True, ""
+
+
+def make_manifest(blend, out_dir, info, split, addon_dir, blender, retries,
+                  shared_prepare=False):
     job_dir = out_dir / ".farm" / f"job-{time.strftime('%Y%m%d-%H%M%S')}-{os.getpid()}"
-    for sub in ("logs", "bands", "tmp", "done"):
+    for sub in ("logs", "bands", "tmp", "done", "state"):
         (job_dir / sub).mkdir(parents=True, exist_ok=True)
     file_format = info["file_format"]
     manifest = {
@@ -109,39 +132,65 @@ def make_manifest(blend, out_dir, info, split, addon_dir, blender, retries):
         "band_format": stitch.BAND_FORMAT.get(file_format, file_format),
         "quality": info["quality"],
         "retries": retries,
+        "shared_prepare": bool(shared_prepare and split > 1),
         "job_dir": str(job_dir),
     }
     (job_dir / "manifest.json").write_text(json.dumps(manifest, indent=1))
     return manifest
 
 
-def _wrap(manifest, command):
-    return f"exec {manifest['python']} {FARM_PY} {command} {manifest['job_dir']}/manifest.json"
+def _wrap(manifest, command, *args):
+    extra = "".join(f" {a}" for a in args)
+    return (f"exec {manifest['python']} {FARM_PY} {command} {manifest['job_dir']}/manifest.json"
+            f"{extra}")
+
+
+def job_ids(manifest):
+    """Every Slurm job of the submission, in submission order."""
+    ids = [manifest.get("prepare_job"), *manifest.get("render_jobs", []),
+           manifest.get("stitch_job")]
+    return [i for i in ids if i]
 
 
 def submit(manifest, partition=None, name="photon"):
-    """Queues the render array (and the stitch job for split frames); returns their ids."""
+    """Queues the submission's jobs (see the module's doc); returns (prepare job or None,
+    render jobs, stitch job or None)."""
     job_dir = manifest["job_dir"]
     # Append: a re-queued task's log keeps every attempt.
     common = ["--requeue", "--open-mode=append", "--chdir", job_dir,
               f"--export=ALL,BLENDER_USER_SCRIPTS={manifest['addon_dir']}"]
     if partition:
         common += ["-p", partition]
-    count = len(manifest["frames"]) * manifest["split"]
-    render_id = slurm.sbatch([*common, "-J", f"{name}-render", "-a", f"0-{count - 1}",
-                              "-o", f"{job_dir}/logs/render_%A_%a.log",
-                              "--wrap", _wrap(manifest, "_task")])
-    manifest["render_job"] = render_id
+    frames, split = len(manifest["frames"]), manifest["split"]
+    prepare_id = None
+    render_ids = []
+    render = [*common, "-J", f"{name}-render", "-o", f"{job_dir}/logs/render_%A_%a.log"]
+    if manifest["shared_prepare"]:
+        prepare_id = slurm.sbatch([*common, "-J", f"{name}-prepare", "-a", f"0-{frames - 1}",
+                                   "-o", f"{job_dir}/logs/prepare_%A_%a.log",
+                                   "--wrap", _wrap(manifest, "_prepare")])
+        # Each frame's bands wait for that frame's preparation only.
+        for k in range(frames):
+            render_ids.append(slurm.sbatch([
+                *render, "-a", f"0-{split - 1}", f"--dependency=afterok:{prepare_id}_{k}",
+                "--kill-on-invalid-dep=yes", "--wrap", _wrap(manifest, "_task", "--frame-index",
+                                                             k)]))
+    else:
+        render_ids.append(slurm.sbatch([*render, "-a", f"0-{frames * split - 1}",
+                                        "--wrap", _wrap(manifest, "_task")]))
+    manifest["prepare_job"] = prepare_id
+    manifest["render_jobs"] = render_ids
+    manifest["render_job"] = render_ids[0]
     stitch_id = None
-    if manifest["split"] > 1:
+    if split > 1:
         stitch_id = slurm.sbatch([*common, "-J", f"{name}-stitch",
-                                  f"--dependency=afterok:{render_id}",
+                                  "--dependency=afterok:" + ":".join(render_ids),
                                   "--kill-on-invalid-dep=yes",
                                   "-o", f"{job_dir}/logs/stitch_%j.log",
                                   "--wrap", _wrap(manifest, "_stitch")])
     manifest["stitch_job"] = stitch_id
     Path(job_dir, "manifest.json").write_text(json.dumps(manifest, indent=1))
-    return render_id, stitch_id
+    return prepare_id, render_ids, stitch_id
 
 
 def missing_frames(manifest):
@@ -153,112 +202,7 @@ def missing_frames(manifest):
 
 
 def wait(manifest, poll=1.0):
-    ids = [i for i in (manifest.get("render_job"), manifest.get("stitch_job")) if i]
+    ids = job_ids(manifest)
     while slurm.queued(ids):
         time.sleep(poll)
     return missing_frames(manifest)
-
-
-# ---- Inside Slurm ----
-
-def band_path(manifest, frame, band):
-    ext = {"PNG": ".png", "TIFF": ".tif", "BMP": ".bmp", "TARGA_RAW": ".tga", "HDR": ".hdr"}
-    suffix = ext.get(manifest["band_format"], ".exr")
-    return Path(manifest["job_dir"]) / "bands" / f"frame_{frame}_band_{band}{suffix}"
-
-
-def _band_expr(manifest, band):
-    y0, y1 = manifest["rows"][band]
-    lo, hi = blend_info.band_border(manifest["height"], y0, y1)
-    expr = ("import bpy; r = bpy.context.scene.render; r.use_border = True; "
-            "r.use_crop_to_border = False; r.border_min_x, r.border_max_x = 0.0, 1.0; "
-            f"r.border_min_y, r.border_max_y = {lo!r}, {hi!r}")
-    if manifest["band_format"] != manifest["file_format"]:
-        expr += (f"; r.image_settings.file_format = {manifest['band_format']!r}"
-                 "; r.image_settings.color_depth = '8'")
-    return expr
-
-
-def _render(cmd, env):
-    """Runs Blender, passing its output to the Slurm log; True when Photon rendered."""
-    proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                            stdin=subprocess.DEVNULL, text=True, errors="replace")
-    rendered = False
-    for line in proc.stdout:
-        sys.stdout.write(line)
-        rendered = rendered or line.startswith("Photon: rendered frame")
-    sys.stdout.flush()
-    return proc.wait() == 0 and rendered
-
-
-def run_task(manifest_path):
-    manifest = json.loads(Path(manifest_path).read_text())
-    index = int(os.environ["SLURM_ARRAY_TASK_ID"])
-    split = manifest["split"]
-    frame = manifest["frames"][index // split]
-    band = index % split
-    job_dir = Path(manifest["job_dir"])
-    tmp = job_dir / "tmp" / f"task_{index}"
-    shutil.rmtree(tmp, ignore_errors=True)
-    tmp.mkdir(parents=True)
-    cmd = [manifest["blender"], "-b", "--factory-startup", manifest["blend"],
-           "--addons", "photon", "-E", "PHOTON"]
-    if split > 1:
-        cmd += ["--python-expr", _band_expr(manifest, band)]
-    cmd += ["-o", str(tmp / "out_"), "-f", str(frame)]
-    env = dict(os.environ, BLENDER_USER_SCRIPTS=manifest["addon_dir"])
-    print(f"farm: frame {frame}" + (f" band {band + 1}/{split}" if split > 1 else "") +
-          f", attempt {int(os.environ.get('SLURM_RESTART_COUNT', '0')) + 1}", flush=True)
-    outputs = []
-    if _render(cmd, env):
-        outputs = [p for p in tmp.iterdir() if p.is_file()]
-    if len(outputs) == 1:
-        dest = band_path(manifest, frame, band) if split > 1 else \
-            Path(manifest["paths"][index])
-        dest.parent.mkdir(parents=True, exist_ok=True)
-        os.replace(outputs[0], dest)
-        shutil.rmtree(tmp, ignore_errors=True)
-        (job_dir / "done" / f"task_{index}").write_text(str(dest))
-        print(f"farm: wrote {dest}", flush=True)
-        return 0
-    print(f"farm: error: Blender did not render frame {frame} (outputs: "
-          f"{[p.name for p in outputs]})", flush=True)
-    return _requeue_or_fail(manifest)
-
-
-def _requeue_or_fail(manifest):
-    restarts = int(os.environ.get("SLURM_RESTART_COUNT", "0"))
-    job_id = os.environ.get("SLURM_JOB_ID")
-    if job_id and restarts < manifest["retries"]:
-        print(f"farm: re-queuing (restart {restarts + 1} of {manifest['retries']})", flush=True)
-        proc = slurm.requeue(job_id)
-        if proc.returncode == 0:
-            # Slurm ends this run and starts the task again.
-            time.sleep(60)
-        print(f"farm: re-queue failed: {proc.stderr.strip()}", flush=True)
-    return 1
-
-
-def run_stitch(manifest_path):
-    manifest = json.loads(Path(manifest_path).read_text())
-    job_dir = Path(manifest["job_dir"])
-    failed = 0
-    for frame, path in zip(manifest["frames"], manifest["paths"]):
-        bands = [band_path(manifest, frame, b) for b in range(manifest["split"])]
-        missing = [str(b) for b in bands if not b.exists()]
-        if missing:
-            print(f"farm: error: frame {frame} misses bands {missing}", flush=True)
-            failed += 1
-            continue
-        try:
-            stitch.stitch(bands, manifest["rows"], path, manifest["file_format"],
-                          manifest["quality"])
-        except stitch.StitchError as exc:
-            print(f"farm: error: frame {frame}: {exc}", flush=True)
-            failed += 1
-            continue
-        (job_dir / "done" / f"frame_{frame}").write_text(str(path))
-        print(f"farm: stitched frame {frame} -> {path}", flush=True)
-    if failed:
-        return _requeue_or_fail(manifest)
-    return 0

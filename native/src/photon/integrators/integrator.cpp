@@ -37,6 +37,7 @@ IntegratorCapabilities integrator_capabilities(IntegratorType type) {
       c.name = "PHOTON_MAP";
       c.prepares = true;
       c.bake = true;
+      c.shares_preparation = true;
       // Only photon tracing (photon_tracer.cpp) polls stop_early; the maps are then built from
       // the photons stored so far.
       c.stop_early = true;

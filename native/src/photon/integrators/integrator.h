@@ -25,6 +25,8 @@ namespace photon {
 
 class EmissiveMeshes;
 class EmitterSet;
+class PreparedStateReader;
+class PreparedStateWriter;
 class TextureSet;
 
 // What a render is asked to do: the frame, and each algorithm's parameters (declared once in
@@ -112,6 +114,17 @@ class Integrator {
   }
   // Statistics of the preparation (and of prepare_bake), for the UI and logs.
   virtual PrepareStats prepare_stats() const { return {}; }
+  // Integrators whose preparation can be shared (integrator_capabilities: shares_preparation)
+  // write what prepare() computed that pixels read to a prepared-state file
+  // (prepared_state_file.h), and read it back instead of preparing: the pixels are then the
+  // same bits as after prepare(). load_prepared returns false with `error` and leaves the
+  // integrator unprepared when the payload is damaged.
+  virtual void save_prepared(PreparedStateWriter* out) const { (void)out; }
+  virtual bool load_prepared(PreparedStateReader* in, std::string* error) {
+    (void)in;
+    if (error) *error = "this integrator does not load a prepared state";
+    return false;
+  }
   // Radiance arriving along a camera ray whose first hit is already known (the renderer traces
   // camera rays in coherent batches). Must be thread-safe and deterministic in `sampler`.
   virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
@@ -155,6 +168,9 @@ struct IntegratorCapabilities {
   bool stop_early = false;
   const char* stop_early_status = "";
   const char* stop_early_effect = "";  // for the user: what the render goes on with
+  // prepare()'s result can be saved and loaded (save_prepared / load_prepared), so renders of
+  // bands of one frame share one preparation.
+  bool shares_preparation = false;
   // Renders whole frames in iterations (SPPM) instead of answering radiance queries: the render
   // session runs it through session/iterative_render.cpp, refining the image after each
   // iteration. Per-sample sessions (viewport, previews) use make_integrator's stand-in.

@@ -27,6 +27,7 @@ struct TextureSet::Entry {
   bool srgb_after_lookup = false;  // sRGB files: interpolated as stored, then linearised
   bool unassociate = false;        // colour divided by alpha after the lookup
   float max_color = 0.0f, max_alpha = 0.0f;
+  uint64_t key = 0;  // texture_key of the request
 };
 
 struct TextureSet::System {
@@ -143,6 +144,7 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
   system_ = std::make_unique<System>();
   for (size_t i = 0; i < n && !cancelled_; ++i) {
     Entry& e = entries_[i];
+    e.key = keys[i];
     e.extension = textures[i].extension;
     e.interpolation = textures[i].interpolation;
     e.unassociate = textures[i].unassociate && textures[i].alpha == TextureAlpha::kAssociate;
@@ -183,6 +185,10 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
 
 float TextureSet::max_color(int index) const {
   return valid(index) ? entries_[index].max_color : 0.0f;
+}
+
+uint64_t TextureSet::content_key(int index) const {
+  return index >= 0 && static_cast<size_t>(index) < entries_.size() ? entries_[index].key : 0;
 }
 
 float TextureSet::max_alpha(int index) const {

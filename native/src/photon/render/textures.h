@@ -6,6 +6,7 @@
 #pragma once
 
 #include <atomic>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -36,6 +37,9 @@ class TextureSet {
   // bounded range warn when their texture exceeds it.
   float max_color(int index) const;
   float max_alpha(int index) const;
+  // The content key of texture `index` (its pixels and colour settings, texture_convert.h), also
+  // for an image that could not be used; 0 when none could be computed.
+  uint64_t content_key(int index) const;
   bool cancelled() const { return cancelled_; }
   size_t reused() const { return reused_; }    // textures found already converted in the cache
   double seconds() const { return seconds_; }  // time spent preparing (hashing, converting)

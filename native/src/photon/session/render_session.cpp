@@ -195,7 +195,18 @@ void RenderSession::run() {
   control.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
   set_preparing(true);
   const bool iterative = integrator_capabilities(settings_.integrator).iterative;
-  if (!iterative) arena.execute([&] { integrator->prepare(context, control); });
+  PreparedStateStats prepared_state;
+  if (!iterative) {
+    arena.execute([&] {
+      prepare_with_state_files(context, resources->textures(), settings_.integrator,
+                               integrator.get(), control, prepared_files_, &prepared_state,
+                               &warnings);
+    });
+  } else if (!prepared_files_.load.empty() || !prepared_files_.save.empty()) {
+    warnings.push_back(
+        "prepared-state files are used by the PHOTON_MAP integrator only; this "
+        "render's iterative integrator ignores them");
+  }
   set_preparing(false);
   const double prepare_seconds = seconds_since(t0);
   if (cancel) return;
@@ -215,7 +226,9 @@ void RenderSession::run() {
     stats_.lights = resources->lights().size();
     stats_.threads = threads;
     stats_.integrator = integrator->prepare_stats();
+    stats_.prepared_state = prepared_state;
   }
+  if (prepared_files_.prepare_only) return;
   set_status("Rendering");
   if (iterative) {
     run_iterative(context, arena);

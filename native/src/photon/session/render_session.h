@@ -17,6 +17,7 @@
 #include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 #include "photon/session/job.h"
+#include "photon/session/prepared_state.h"
 
 namespace photon {
 
@@ -57,8 +58,9 @@ struct RenderStats {
   size_t bvh_reused = 0;  // of bvh_count, taken from the BlasCache (Persistent Data)
   size_t lights = 0;
   int threads = 0;
-  PrepareStats integrator;  // the integrator's prepare_stats()
-  SppmStats sppm;           // an iterative (SPPM) render's; iterations = 0 otherwise
+  PrepareStats integrator;            // the integrator's prepare_stats()
+  PreparedStateStats prepared_state;  // a prepared-state file loaded or saved
+  SppmStats sppm;                     // an iterative (SPPM) render's; iterations = 0 otherwise
 };
 
 class RenderSession : public Job {
@@ -77,6 +79,9 @@ class RenderSession : public Job {
   // Before start(): render a quick preview of the whole region (quick_preview.h) once the BVH is
   // built and before the integrator's preparation, for a user watching the render.
   void set_quick_preview(bool enabled) { quick_preview_ = enabled; }
+  // Before start(): load the integrator's preparation from a file and/or save it to one, and
+  // optionally stop once prepared (prepared_state.h).
+  void set_prepared_state(const PreparedStateFiles& files) { prepared_files_ = files; }
   // The preview (RGBA rows of the region, top row first) the first time it is asked for after
   // it was rendered; false before then and after.
   bool take_preview(std::vector<float>* rgba);
@@ -103,6 +108,7 @@ class RenderSession : public Job {
   RenderSettings settings_;
   size_t tile_count_ = 0;
   bool quick_preview_ = false;
+  PreparedStateFiles prepared_files_;
 
   mutable std::mutex mutex_;  // queue_, image_, stats_
   std::condition_variable tiles_ready_;

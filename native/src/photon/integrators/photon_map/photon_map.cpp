@@ -157,6 +157,13 @@ PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cance
   }
 }
 
+bool PhotonMap::from_balanced(std::vector<Photon> photons, PhotonMap* out) {
+  for (const Photon& p : photons)
+    if (p.split_axis() > 2) return false;
+  out->photons_ = std::move(photons);
+  return true;
+}
+
 // Balances [lo, hi): the median along the widest axis of the range's bounds becomes the node at
 // (lo + hi) / 2, smaller coordinates to its left. Big halves are built in parallel; the result
 // depends only on the input order.

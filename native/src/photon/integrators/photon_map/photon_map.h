@@ -60,11 +60,17 @@ class PhotonMap {
   // Takes the photons and balances the tree (parallel, deterministic for a given input order).
   // When `cancel` is set during the build the map is left empty (within ~a millisecond).
   explicit PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel = nullptr);
+  // A map of photons already in a PhotonMap's balanced order with their split axes (a saved
+  // map's photons(), prepared_state_io.h): kept as they are. False (and `out` untouched) when a
+  // split axis is not 0, 1 or 2.
+  static bool from_balanced(std::vector<Photon> photons, PhotonMap* out);
 
   size_t size() const { return photons_.size(); }
   bool empty() const { return photons_.empty(); }
   const Photon& operator[](size_t i) const { return photons_[i]; }
   size_t memory_bytes() const { return photons_.capacity() * sizeof(Photon); }
+  // The photons in balanced order (the implicit kd-tree).
+  const std::vector<Photon>& photons() const { return photons_; }
 
   // The `k` nearest photons to `p` within `max_radius` whose flags intersect `flag_mask`,
   // written to `out` (cleared first) as a max-heap on distance: out->front() is the farthest.

@@ -172,11 +172,13 @@ std::string raise_to_photon_density(const PhotonMap& map, size_t k, uint8_t flag
 void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
   const RenderSettings& s = *context.settings;
   stats_ = PrepareStats{};
-  irradiance_ = IrradianceCache();
+  state_.irradiance = IrradianceCache();
   const PhotonSources sources(context);
   const float scene_radius = sources.scene_radius();
-  global_radius_ = s.gather_radius > 0.0f ? s.gather_radius : kDefaultGlobalRadius * scene_radius;
-  caustic_radius_ = s.gather_radius > 0.0f ? s.gather_radius : kDefaultCausticRadius * scene_radius;
+  state_.global_radius =
+      s.gather_radius > 0.0f ? s.gather_radius : kDefaultGlobalRadius * scene_radius;
+  state_.caustic_radius =
+      s.gather_radius > 0.0f ? s.gather_radius : kDefaultCausticRadius * scene_radius;
 
   PhotonTraceSettings trace;
   trace.global_photons = s.photons;
@@ -195,17 +197,17 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
   control.report("Building photon maps", 1.0f);
   auto t0 = Clock::now();
   const uint64_t global_stored = traced.global.size(), caustic_stored = traced.caustic.size();
-  global_ = PhotonMap(std::move(traced.global), control.cancel);
+  state_.global = PhotonMap(std::move(traced.global), control.cancel);
   if (control.cancelled()) return;
-  caustic_ = PhotonMap(std::move(traced.caustic), control.cancel);
+  state_.caustic = PhotonMap(std::move(traced.caustic), control.cancel);
   if (control.cancelled()) return;
   if (s.gather_radius > 0.0f) {
     std::string notes;
     for (const std::string& note :
-         {raise_to_photon_density(global_, static_cast<size_t>(s.gather_count), kPhotonAny,
-                                  "global map", &global_radius_),
-          raise_to_photon_density(caustic_, static_cast<size_t>(s.caustic_gather_count),
-                                  kPhotonCaustic, "caustic map", &caustic_radius_)})
+         {raise_to_photon_density(state_.global, static_cast<size_t>(s.gather_count), kPhotonAny,
+                                  "global map", &state_.global_radius),
+          raise_to_photon_density(state_.caustic, static_cast<size_t>(s.caustic_gather_count),
+                                  kPhotonCaustic, "caustic map", &state_.caustic_radius)})
       if (!note.empty()) notes += (notes.empty() ? "" : "; ") + note;
     if (!notes.empty() && control.warn) {
       char text[160];
@@ -218,14 +220,14 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
     }
   }
   const double build_seconds = seconds_since(t0);
-  secondary_distance_ = std::min(
-      global_radius_,
-      global_.median_kth_distance(static_cast<size_t>(std::max(s.gather_count, 1)), kPhotonAny));
+  state_.secondary_distance = std::min(
+      state_.global_radius, state_.global.median_kth_distance(
+                                static_cast<size_t>(std::max(s.gather_count, 1)), kPhotonAny));
 
   // Christensen 1999: radiance (for albedo 1) precomputed at every gather point, so a final
   // gather ray needs one nearest-point lookup instead of a k-nearest estimate.
   t0 = Clock::now();
-  if (s.final_gather_rays > 0 && !global_.empty()) {
+  if (s.final_gather_rays > 0 && !state_.global.empty()) {
     control.report("Precomputing radiance", 1.0f);
     const std::vector<GatherPoint>& points = traced.gather_points;
     std::vector<RadianceRecord> records(points.size());
@@ -237,21 +239,21 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
         if (control.cancelled()) return;
         records[i].p = points[i].p;
         records[i].n = points[i].n;
-        records[i].radiance = global_.radiance_estimate(points[i].p, points[i].n, k, global_radius_,
-                                                        kPhotonAny, &scratch);
+        records[i].radiance = state_.global.radiance_estimate(
+            points[i].p, points[i].n, k, state_.global_radius, kPhotonAny, &scratch);
         // The same neighbours show where the indirect light comes from.
-        records[i].guide = build_guide(global_, scratch, Frame(points[i].n));
+        records[i].guide = build_guide(state_.global, scratch, Frame(points[i].n));
       }
     });
     if (control.cancelled()) return;
-    radiance_ = RadianceCache(
-        std::move(records),
-        record_cell_size(global_, points, k, global_radius_, context.accel->length_scale()),
-        control.cancel);
+    state_.radiance = RadianceCache(std::move(records),
+                                    record_cell_size(state_.global, points, k, state_.global_radius,
+                                                     context.accel->length_scale()),
+                                    control.cancel);
     if (control.cancelled()) return;
   }
   const double precompute_seconds = seconds_since(t0);
-  if (s.final_gather_rays > 0 && s.irradiance_cache && !global_.empty()) {
+  if (s.final_gather_rays > 0 && s.irradiance_cache && !state_.global.empty()) {
     build_irradiance(context, control);
     if (control.cancelled()) return;
   }
@@ -261,15 +263,16 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
   pm.caustic_photons_emitted = traced.caustic_emitted;
   pm.global_photons_stored = global_stored;
   pm.caustic_photons_stored = caustic_stored;
-  pm.radiance_points = radiance_.size();
+  pm.radiance_points = state_.radiance.size();
   pm.photon_rays = traced.rays;
   pm.photon_trace_seconds = traced.seconds;
   pm.photon_map_build_seconds = build_seconds;
   pm.radiance_precompute_seconds = precompute_seconds;
-  pm.photon_map_bytes = global_.memory_bytes() + caustic_.memory_bytes() + radiance_.memory_bytes();
-  pm.radiance_cell_size = radiance_.cell_size();
-  pm.global_gather_radius = global_radius_;
-  pm.caustic_gather_radius = caustic_radius_;
+  pm.photon_map_bytes =
+      state_.global.memory_bytes() + state_.caustic.memory_bytes() + state_.radiance.memory_bytes();
+  pm.radiance_cell_size = state_.radiance.cell_size();
+  pm.global_gather_radius = state_.global_radius;
+  pm.caustic_gather_radius = state_.caustic_radius;
 }
 
 void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
@@ -283,21 +286,30 @@ void PhotonMapIntegrator::build_irradiance(const RenderContext& context,
                     float* harmonic) {
     return final_gather(context, si, bsdf, rays, sampler, harmonic, control.cancel);
   };
-  irradiance_ = build_irradiance_cache(context, settings, gather, control, &build);
+  state_.irradiance = build_irradiance_cache(context, settings, gather, control, &build);
   stats_.irradiance_cache =
-      IrradianceCacheStats{irradiance_.size(), build.candidates, build.gather_rays,
-                           irradiance_.memory_bytes(), build.seconds};
+      IrradianceCacheStats{state_.irradiance.size(), build.candidates, build.gather_rays,
+                           state_.irradiance.memory_bytes(), build.seconds};
 }
 
 PrepareStats PhotonMapIntegrator::prepare_stats() const {
   return stats_;
 }
 
+void PhotonMapIntegrator::save_prepared(PreparedStateWriter* out) const {
+  write_photon_map_prepared(state_, stats_, out);
+}
+
+bool PhotonMapIntegrator::load_prepared(PreparedStateReader* in, std::string* error) {
+  return read_photon_map_prepared(in, &state_, &stats_, error);
+}
+
 Vec3 PhotonMapIntegrator::gathered_radiance(const Vec3& p, const Vec3& n,
                                             std::vector<PhotonNeighbor>* scratch) const {
-  if (const RadianceRecord* record = radiance_.nearest(p, n, kGatherMinCos))
+  if (const RadianceRecord* record = state_.radiance.nearest(p, n, kGatherMinCos))
     return record->radiance;
-  return global_.radiance_estimate(p, n, kFallbackCount, global_radius_, kPhotonAny, scratch);
+  return state_.global.radiance_estimate(p, n, kFallbackCount, state_.global_radius, kPhotonAny,
+                                         scratch);
 }
 
 Vec3 PhotonMapIntegrator::secondary_radiance(const RenderContext& context,
@@ -312,10 +324,10 @@ Vec3 PhotonMapIntegrator::secondary_radiance(const RenderContext& context,
   }
   Vec3 radiance = direct_irradiance(context, lit, sampler) * kInvPi;
   const RenderSettings& s = *context.settings;
-  if (!caustic_.empty())
-    radiance += caustic_.radiance_estimate(y.p, bsdf.ng(),
-                                           static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
-                                           caustic_radius_, kPhotonCaustic, scratch);
+  if (!state_.caustic.empty())
+    radiance += state_.caustic.radiance_estimate(
+        y.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+        state_.caustic_radius, kPhotonCaustic, scratch);
   // One cosine-distributed ray: pdf cos / pi, so its radiance is the (albedo 1) estimate.
   const Vec3 wi = bsdf.frame().to_world(sample_cosine_hemisphere(sampler.get_2d()));
   if (dot(wi, bsdf.ng()) > 0.0f) {
@@ -367,10 +379,10 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
       if (state.after_glossy) sum += state.throughput * sp.emission;
       const Vec3 rd = sp.bsdf.diffuse_reflectance();
       if (!is_black(rd)) {
-        // A record's estimate is blurred over about secondary_distance_: at a nearer first hit
+        // A record's estimate is blurred over about the secondary distance: at a nearer first hit
         // (a contact, a corner) that blur is larger than the gather's own spread, so the point
         // takes one more bounce (a secondary final gather) instead.
-        const bool near = primary && state.depth == 0 && hit.t < self.secondary_distance_;
+        const bool near = primary && state.depth == 0 && hit.t < self.state_.secondary_distance;
         sum += state.throughput * rd *
                (near ? self.secondary_radiance(context, y, sp.bsdf, -state.ray.direction, sampler,
                                                scratch)
@@ -397,7 +409,7 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
   // Directions from the nearest record's photon histogram mixed with cosine sampling; without
   // a record, plain cosine sampling.
-  const RadianceRecord* record = radiance_.nearest(x.p, bsdf.ng(), kGatherMinCos);
+  const RadianceRecord* record = state_.radiance.nearest(x.p, bsdf.ng(), kGatherMinCos);
   const GuidedSquare guide(record ? record->guide : GuideHistogram{});
   Vec3 sum(0.0f);
   double inverse_distances = 0.0;  // for the harmonic mean (Ward 1988)
@@ -426,9 +438,9 @@ Vec3 PhotonMapIntegrator::final_gather(const RenderContext& context, const Surfa
 // The dot radius follows the local photon spacing, so dots stay dots in dense and sparse areas.
 Vec3 PhotonMapIntegrator::photon_dots(const SurfaceInteraction& x) const {
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
-  for (const PhotonMap* map : {&caustic_, &global_}) {
+  for (const PhotonMap* map : {&state_.caustic, &state_.global}) {
     if (map->empty()) continue;
-    map->k_nearest(x.p, 8, global_radius_, kPhotonAny, &scratch);
+    map->k_nearest(x.p, 8, state_.global_radius, kPhotonAny, &scratch);
     if (scratch.size() < 2) continue;
     const float spacing2 =
         kPi * scratch.front().distance_squared / static_cast<float>(scratch.size());
@@ -454,11 +466,11 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
   const Vec3 weight = v.throughput * bsdf.diffuse_reflectance();
   if (is_black(weight)) return;
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
-  if (!caustic_.empty())
+  if (!state_.caustic.empty())
     result->caustic +=
-        weight * caustic_.radiance_estimate(
+        weight * state_.caustic.radiance_estimate(
                      x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
-                     caustic_radius_, kPhotonCaustic, &scratch);
+                     state_.caustic_radius, kPhotonCaustic, &scratch);
   // Final gathering at the first diffuse surface of the camera path, whatever lobes led there,
   // and at any diffuse surface seen through perfect mirrors and glass only; the global map's
   // own estimate only after a diffuse reflection (Jensen 1996, "Global Illumination using
@@ -468,17 +480,17 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
   // of k photons spreads far wider than the reflection blurs it.
   const bool gather = s.final_gather_rays > 0 && (!v.after_glossy || !v.after_diffuse);
   Vec3 cached;
-  if (gather && irradiance_.lookup(x.p, bsdf.frame().n, &cached)) {
+  if (gather && state_.irradiance.lookup(x.p, bsdf.frame().n, &cached)) {
     result->indirect += weight * cached;
   } else if (gather) {
     result->indirect += weight * final_gather(context, x, bsdf, s.final_gather_rays, sampler);
-  } else if (!global_.empty()) {
+  } else if (!state_.global.empty()) {
     // Photons that bounced off a diffuse or glossy surface at least once; direct light and
     // caustics come from the other two estimates.
     result->indirect +=
-        weight * global_.radiance_estimate(x.p, bsdf.ng(),
-                                           static_cast<size_t>(std::max(s.gather_count, 1)),
-                                           global_radius_, kPhotonIndirect, &scratch);
+        weight * state_.global.radiance_estimate(x.p, bsdf.ng(),
+                                                 static_cast<size_t>(std::max(s.gather_count, 1)),
+                                                 state_.global_radius, kPhotonIndirect, &scratch);
   }
 }
 
@@ -521,14 +533,14 @@ bool PhotonMapIntegrator::baked_radiance(const RenderContext& context, const Hit
         indirect += final_gather(context, si, sp.bsdf, s.final_gather_rays, inner);
     }
     reflected = direct * (kInvPi / n) + (from_cache ? cached : indirect / static_cast<float>(n));
-    if (!gather && !global_.empty())
-      reflected +=
-          global_.radiance_estimate(si.p, si.ng, static_cast<size_t>(std::max(s.gather_count, 1)),
-                                    global_radius_, kPhotonIndirect, &scratch);
-    if (!caustic_.empty())
-      reflected += caustic_.radiance_estimate(
-          si.p, si.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)), caustic_radius_,
-          kPhotonCaustic, &scratch);
+    if (!gather && !state_.global.empty())
+      reflected += state_.global.radiance_estimate(si.p, si.ng,
+                                                   static_cast<size_t>(std::max(s.gather_count, 1)),
+                                                   state_.global_radius, kPhotonIndirect, &scratch);
+    if (!state_.caustic.empty())
+      reflected += state_.caustic.radiance_estimate(
+          si.p, si.ng, static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+          state_.caustic_radius, kPhotonCaustic, &scratch);
     reflected *= albedo;
   }
   *radiance = sp.emission + reflected;
@@ -546,7 +558,7 @@ bool PhotonMapIntegrator::baked_probe(const RenderContext& context, const Hit& h
   // (direct photons included) of the nearest precomputed record on this side, else a small
   // estimate. Both sides of a bake point are probed, so this keeps the probe cheap.
   Vec3 photons(0.0f);
-  if (!global_.empty()) photons = gathered_radiance(si.p, si.ng, &scratch_neighbors());
+  if (!state_.global.empty()) photons = gathered_radiance(si.p, si.ng, &scratch_neighbors());
   *radiance = sp.emission + albedo * photons;
   return true;
 }
@@ -555,7 +567,7 @@ void PhotonMapIntegrator::prepare_bake(const RenderContext& context, const BakeP
                                        const PrepareControl& control) {
   bake_irradiance_ = IrradianceCache();
   const RenderSettings& s = *context.settings;
-  if (s.final_gather_rays <= 0 || global_.empty()) return;
+  if (s.final_gather_rays <= 0 || state_.global.empty()) return;
   PointIrradianceCacheSettings settings;
   settings.rays =
       std::clamp(kRecordRaysPerGatherRay * s.final_gather_rays, kMinRecordRays, kMaxRecordRays);

@@ -13,9 +13,7 @@
 
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/integrator.h"
-#include "photon/integrators/photon_map/irradiance_cache.h"
-#include "photon/integrators/photon_map/photon_map.h"
-#include "photon/integrators/photon_map/radiance_cache.h"
+#include "photon/integrators/photon_map/prepared_state_io.h"
 
 namespace photon {
 
@@ -25,6 +23,9 @@ class PhotonMapIntegrator : public Integrator {
   RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                    const CameraHit& first, Sampler& sampler) const override;
   PrepareStats prepare_stats() const override;
+  // The photon maps, radiance records, irradiance cache and radii (prepared_state_io.h).
+  void save_prepared(PreparedStateWriter* out) const override;
+  bool load_prepared(PreparedStateReader* in, std::string* error) override;
   // The light leaving a diffuse point on the side its normal faces, for lighting bakes:
   //   L = Le + albedo / pi * (E_direct + E_caustic + E_indirect)
   // with E_direct by light sampling and E_indirect by final gathering (or, with
@@ -68,14 +69,8 @@ class PhotonMapIntegrator : public Integrator {
                      RadianceSample* result) const;
   Vec3 photon_dots(const SurfaceInteraction& x) const;
 
-  PhotonMap global_, caustic_;
-  RadianceCache radiance_;           // precomputed at a subset of the global photons
-  IrradianceCache irradiance_;       // final gathers at camera-visible diffuse points
+  PhotonMapPrepared state_;          // what prepare() computes for the pixels
   IrradianceCache bake_irradiance_;  // final gathers among a bake's points
-  float global_radius_ = 0.0f, caustic_radius_ = 0.0f;
-  // The typical radius of a global-map estimate: final-gather hits nearer than this read a
-  // record blurred over more than their distance, so they take one more bounce.
-  float secondary_distance_ = 0.0f;
   PrepareStats stats_;
 };
 

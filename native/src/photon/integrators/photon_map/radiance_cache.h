@@ -33,6 +33,9 @@ class RadianceCache {
   size_t size() const { return records_.size(); }
   float cell_size() const { return cell_size_; }
   size_t memory_bytes() const;
+  // The records in the cache's order: RadianceCache(records(), cell_size()) rebuilds this cache
+  // exactly (the order is by cell, then by input position).
+  const std::vector<RadianceRecord>& records() const { return records_; }
 
   // Radiance of the nearest record to `p` in p's cell (or, if none fits, its 26 neighbours)
   // with dot(normal, n) >= min_cos that can lie on p's surface (on_same_surface of

@@ -81,30 +81,45 @@ void SppmRenderer::initial_radii(const std::atomic<bool>& cancel) {
   // of the pixel's first hit (0 where the pixel sees nothing).
   const Camera& camera = context_.scene->camera;
   const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
+  const auto centre_radius = [&](int px, int py) {
+    const Vec2 lens(0.5f, 0.5f);
+    const Ray a = generate_camera_ray(camera, (px + 0.5f) * inv_w, (py + 0.5f) * inv_h, lens);
+    const Ray b = generate_camera_ray(camera, (px + 1.5f) * inv_w, (py + 0.5f) * inv_h, lens);
+    Hit hit;
+    if (!context_.accel->intersect(a, kVisibleCamera, &hit)) return 0.0f;
+    const Vec3 d = (b.origin + hit.t * b.direction) - (a.origin + hit.t * a.direction);
+    const float r = kAutoRadiusPixels * length(d);
+    return std::isfinite(r) ? r : 0.0f;
+  };
   tbb::parallel_for(tbb::blocked_range<int>(0, height_, 1), [&](const auto& rows) {
     for (int row = rows.begin(); row != rows.end(); ++row) {
       if (cancel.load(std::memory_order_relaxed)) return;
-      const int py = s.y0 + row;
-      for (int col = 0; col < width_; ++col) {
-        const int px = s.x0 + col;
-        const Vec2 lens(0.5f, 0.5f);
-        const Ray a = generate_camera_ray(camera, (px + 0.5f) * inv_w, (py + 0.5f) * inv_h, lens);
-        const Ray b = generate_camera_ray(camera, (px + 1.5f) * inv_w, (py + 0.5f) * inv_h, lens);
-        Hit hit;
-        float r = 0.0f;
-        if (context_.accel->intersect(a, kVisibleCamera, &hit)) {
-          const Vec3 d = (b.origin + hit.t * b.direction) - (a.origin + hit.t * a.direction);
-          r = kAutoRadiusPixels * length(d);
-          if (!std::isfinite(r)) r = 0.0f;
-        }
-        pixels_[static_cast<size_t>(row) * width_ + col].radius = r;
-      }
+      for (int col = 0; col < width_; ++col)
+        pixels_[static_cast<size_t>(row) * width_ + col].radius =
+            centre_radius(s.x0 + col, s.y0 + row);
     }
   });
-  // Pixels that see nothing at their centre take the median radius of those that do.
+  // Pixels that see nothing at their centre take the median radius of the whole frame's pixels
+  // that see something, so a render border does not change it (a band of a frame equals the
+  // same rows of the full render).
   std::vector<float> seen;
-  for (const SppmPixel& p : pixels_)
-    if (p.radius > 0.0f) seen.push_back(p.radius);
+  const bool whole_frame = s.x0 == 0 && s.y0 == 0 && s.x1 == s.full_width && s.y1 == s.full_height;
+  if (whole_frame) {
+    for (const SppmPixel& p : pixels_)
+      if (p.radius > 0.0f) seen.push_back(p.radius);
+  } else {
+    std::vector<float> frame(static_cast<size_t>(s.full_width) * s.full_height);
+    tbb::parallel_for(tbb::blocked_range<int>(0, s.full_height, 1), [&](const auto& rows) {
+      for (int py = rows.begin(); py != rows.end(); ++py) {
+        if (cancel.load(std::memory_order_relaxed)) return;
+        for (int px = 0; px < s.full_width; ++px)
+          frame[static_cast<size_t>(py) * s.full_width + px] = centre_radius(px, py);
+      }
+    });
+    for (float r : frame)
+      if (r > 0.0f) seen.push_back(r);
+  }
+  if (cancel.load()) return;
   float fallback = 0.01f * sources_.scene_radius();
   if (!seen.empty()) {
     std::nth_element(seen.begin(), seen.begin() + seen.size() / 2, seen.end());

@@ -16,7 +16,9 @@
 // Determinism: camera samples draw from (seed, pixel, iteration) streams and photons from
 // (seed, iteration, photon index); each pixel is updated by one thread from its own visible
 // point, which sums photons in the kd-tree's fixed order. The image after k iterations is the
-// same bits for any thread count, and tiles play no part.
+// same bits for any thread count, and tiles play no part. A render border does not change a
+// pixel either: pixel streams are indexed in the full frame and the automatic radius of pixels
+// that see nothing is a median over the whole frame.
 #pragma once
 
 #include <atomic>

@@ -59,14 +59,15 @@ VcmRenderer::~VcmRenderer() = default;
 
 float VcmRenderer::automatic_radius() const {
   // The distance between neighbouring pixels' centre rays at the depth each sees, on a grid of
-  // at most 64 x 64 pixels of the region; the median.
+  // at most 64 x 64 pixels of the whole frame (not the render region: a band of a frame must
+  // render with the full frame's radius); the median.
   const RenderSettings& s = *context_.settings;
   const Camera& camera = context_.scene->camera;
   const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
-  const int step = std::max(1, std::max(width_, height_) / 64);
+  const int step = std::max(1, std::max(s.full_width, s.full_height) / 64);
   std::vector<float> seen;
-  for (int py = s.y0; py < s.y1; py += step)
-    for (int px = s.x0; px < s.x1; px += step) {
+  for (int py = 0; py < s.full_height; py += step)
+    for (int px = 0; px < s.full_width; px += step) {
       const Vec2 lens(0.5f, 0.5f);
       const Ray a = generate_camera_ray(camera, (px + 0.5f) * inv_w, (py + 0.5f) * inv_h, lens);
       const Ray b = generate_camera_ray(camera, (px + 1.5f) * inv_w, (py + 0.5f) * inv_h, lens);

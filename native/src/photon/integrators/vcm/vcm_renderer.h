@@ -17,7 +17,9 @@
 // Determinism: light subpaths and their splats are traced in fixed chunks and applied in chunk
 // order (vcm_light_paths.h); the grid is built by a counting sort in vertex order; each pixel's
 // camera subpath draws from its own (seed, pixel, iteration) stream and is summed by one thread.
-// The image after k iterations is the same bits for any thread count.
+// The image after k iterations is the same bits for any thread count, and a render border
+// renders the same bits as the same pixels of the full frame (the automatic merging radius is
+// measured over the whole frame, pixel streams and light-path pairing use full-frame indices).
 //
 // Supported: pinhole perspective cameras (the session renders other cameras with SPPM and says
 // so), every emitter kind of emission_pdf.h (lamps with a radius as points). Not rendered: the
