@@ -147,3 +147,9 @@ float visible_wavelength_pdf(float lambda);
 float sample_visible_wavelength(float u);
 
 }  // namespace photon::spectral
+
+namespace photon {
+// The renderer uses these by their short names.
+using spectral::SampledSpectrum;
+using spectral::SampledWavelengths;
+}  // namespace photon
