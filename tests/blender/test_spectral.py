@@ -27,6 +27,7 @@ def test_spectral_settings_reach_the_native_scene(blender):
     assert rna["spectrum"]["items"] == ["RGB", "BLACKBODY", "ILLUMINANT"]
     assert rna["spectrum"]["default"] == "RGB"
     assert rna["illuminant"]["items"] == ["D65", "A", "F2", "F7", "F11"]
+    assert result["panels"] == ["PHOTON_PT_spectral", "PHOTON_PT_material"]
 
     closures = result["closures"]
     assert [c.get("abbe") for c in closures["Glass"]] == [30.0]

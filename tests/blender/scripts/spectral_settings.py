@@ -104,6 +104,8 @@ def main():
         name: [c["abbe"] for c in _photon.describe_material(name, closures[name])["closures"]]
         for name in closures}
     result["warnings"] = reporter.warnings
+    result["panels"] = [name for name in ("PHOTON_PT_spectral", "PHOTON_PT_material")
+                        if hasattr(bpy.types, name)]
     return result
 
 
