@@ -164,6 +164,29 @@ TEST(SpectralRender, BlackbodyLampHasItsColourInBothModes) {
   }
 }
 
+// Dispersion moves light without creating or losing any: the caustic box's image mean with a
+// dispersive glass ball equals the plain ball's. A wrong weight on terminated wavelengths (the
+// hero counted once per subpath instead of once per path, in SPPM's and VCM's joins) would
+// change the dispersed share by a factor of 4.
+TEST(SpectralRender, DispersionKeepsTheCausticBoxsLight) {
+  for (IntegratorType type :
+       {IntegratorType::kPhotonMap, IntegratorType::kSppm, IntegratorType::kVcm}) {
+    Scene scene = make_caustic_box();
+    RenderSettings s = settings_for(type, 16, type == IntegratorType::kPhotonMap ? 8 : 32, true);
+    s.sppm_photons_per_iteration = 15000;
+    s.final_gather_rays = 8;
+    const Vec3 plain = mean_rgb(render(scene, s));
+    scene.materials[3].closures[0].abbe = 20.0f;
+    const Vec3 dispersive = mean_rgb(render(scene, s));
+    std::printf("integrator %d: plain %.4f %.4f %.4f, dispersive %.4f %.4f %.4f\n",
+                static_cast<int>(type), plain.x, plain.y, plain.z, dispersive.x, dispersive.y,
+                dispersive.z);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_NEAR(dispersive[c], plain[c], 0.03f * plain[c])
+          << "integrator " << static_cast<int>(type) << " channel " << c;
+  }
+}
+
 TEST(SpectralRender, ImageDoesNotDependOnTheThreadCount) {
   Scene scene = make_caustic_box();
   scene.materials[3].closures[0].abbe = 25.0f;  // the glass ball disperses
