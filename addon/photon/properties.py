@@ -1,7 +1,9 @@
-"""Render settings stored on the scene as scene.photon."""
+"""Render settings stored on the scene as scene.photon, and Photon's settings of materials
+(material.photon) and lights (light.photon)."""
 
 import bpy
-from bpy.props import BoolProperty, EnumProperty, IntProperty, PointerProperty, StringProperty
+from bpy.props import (BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty,
+                       StringProperty)
 
 from . import schema
 
@@ -79,6 +81,47 @@ class PhotonViewLayerSettings(bpy.types.PropertyGroup):
         default=False)
 
 
+class PhotonMaterialSettings(bpy.types.PropertyGroup):
+    """material.photon: what Photon renders of a material beyond its node tree."""
+    abbe_number: FloatProperty(
+        name="Abbe Number",
+        description="Dispersion of the material's Glass, Refraction and Principled transmission "
+                    "in spectral mode: the IOR is taken at 587.6 nm and varies with the "
+                    "wavelength by Cauchy's law (crown glass about 60, flint 30, diamond 55; "
+                    "lower disperses more). 0: no dispersion",
+        default=0.0, min=0.0, max=200.0, soft_max=100.0)
+
+
+# The spectra a light can emit (native LightSpectrum / StandardIlluminant).
+LIGHT_SPECTRA = [
+    ("RGB", "RGB", "The light's colour (white is daylight D65 in spectral mode)"),
+    ("BLACKBODY", "Blackbody",
+     "Planck's law at the temperature: its colour in RGB mode, its spectrum in spectral mode; "
+     "the light's colour only scales its brightness (by luminance)"),
+    ("ILLUMINANT", "Illuminant",
+     "A CIE standard illuminant; the light's colour only scales its brightness (by luminance)"),
+]
+ILLUMINANTS = [
+    ("D65", "D65", "CIE D65, daylight (6504 K)"),
+    ("A", "A", "CIE A, incandescent tungsten (2856 K)"),
+    ("F2", "F2", "CIE F2, cool white fluorescent"),
+    ("F7", "F7", "CIE F7, broadband daylight fluorescent"),
+    ("F11", "F11", "CIE F11, narrow tri-band fluorescent"),
+]
+
+
+class PhotonLightSettings(bpy.types.PropertyGroup):
+    """light.photon: the spectrum a lamp emits. A Blackbody node feeding the light's Emission
+    colour (Use Nodes) sets Blackbody with its temperature while this is RGB."""
+    spectrum: EnumProperty(name="Spectrum", description="What the light emits",
+                           items=LIGHT_SPECTRA, default="RGB")
+    temperature: FloatProperty(
+        name="Temperature", description="Blackbody temperature", default=6500.0,
+        min=800.0, max=100000.0, soft_min=1000.0, soft_max=12000.0)
+    illuminant: EnumProperty(name="Illuminant", description="CIE standard illuminant",
+                             items=ILLUMINANTS, default="D65")
+
+
 # (pass name in Blender, view-layer property, index in the native pass array)
 LIGHT_PASSES = (
     ("Photon Direct", "use_pass_direct", 0),
@@ -110,7 +153,8 @@ def _add_schema_properties():
 
 _add_schema_properties()
 
-classes = (PhotonRenderSettings, PhotonViewLayerSettings)
+classes = (PhotonRenderSettings, PhotonViewLayerSettings, PhotonMaterialSettings,
+           PhotonLightSettings)
 
 
 def register():
@@ -118,9 +162,13 @@ def register():
         bpy.utils.register_class(cls)
     bpy.types.Scene.photon = PointerProperty(type=PhotonRenderSettings)
     bpy.types.ViewLayer.photon = PointerProperty(type=PhotonViewLayerSettings)
+    bpy.types.Material.photon = PointerProperty(type=PhotonMaterialSettings)
+    bpy.types.Light.photon = PointerProperty(type=PhotonLightSettings)
 
 
 def unregister():
+    del bpy.types.Light.photon
+    del bpy.types.Material.photon
     del bpy.types.ViewLayer.photon
     del bpy.types.Scene.photon
     for cls in reversed(classes):

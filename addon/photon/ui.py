@@ -79,6 +79,25 @@ class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
         schema.draw(layout, context.scene.photon, "sampling")
 
 
+class PHOTON_PT_spectral(PhotonPanel, bpy.types.Panel):
+    bl_label = "Spectral"
+    bl_parent_id = "PHOTON_PT_render"
+
+    def draw_header(self, context):
+        self.layout.prop(context.scene.photon, "spectral", text="")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        props = context.scene.photon
+        col = layout.column()
+        col.active = props.spectral
+        col.prop(props, "spectral_samples")
+        if props.spectral and props.integrator == "RADIOSITY":
+            col.label(text="Radiosity renders in RGB", icon="INFO")
+
+
 class PHOTON_PT_photon_mapping(PhotonPanel, bpy.types.Panel):
     bl_label = "Photon Mapping"
     bl_parent_id = "PHOTON_PT_render"
@@ -312,6 +331,13 @@ class PHOTON_PT_light(PhotonLightPanel, bpy.types.Panel):
         layout.use_property_split = True
         layout.use_property_decorate = False
         col = layout.column()
+        settings = getattr(light, "photon", None)
+        if settings is not None:
+            col.prop(settings, "spectrum")
+            if settings.spectrum == "BLACKBODY":
+                col.prop(settings, "temperature")
+            elif settings.spectrum == "ILLUMINANT":
+                col.prop(settings, "illuminant")
         col.prop(light, "color")
         col.prop(light, "energy")
         col.separator()
@@ -346,6 +372,23 @@ class PHOTON_PT_spot(PhotonLightPanel, bpy.types.Panel):
         col.prop(light, "spot_size", text="Size")
         col.prop(light, "spot_blend", text="Blend")
         col.prop(light, "show_cone")
+
+
+class PHOTON_PT_material(PhotonPanel, bpy.types.Panel):
+    """Material > Photon: settings Photon reads beside the node tree."""
+    bl_label = "Photon"
+    bl_context = "material"
+
+    @classmethod
+    def poll(cls, context):
+        return super().poll(context) and context.material is not None and \
+            hasattr(context.material, "photon")
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        layout.prop(context.material.photon, "abbe_number")
 
 
 class PhotonObjectVisibilityPanel(PhotonPanel):
@@ -393,11 +436,12 @@ class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
         self.layout.label(text="Renders only the shadows cast on it")
 
 
-classes = (PHOTON_PT_render, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity, PHOTON_PT_sppm,
+classes = (PHOTON_PT_render, PHOTON_PT_spectral, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity,
+           PHOTON_PT_sppm,
            PHOTON_PT_simplify, PHOTON_PT_simplify_viewport, PHOTON_PT_simplify_render,
            PHOTON_PT_performance, PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data,
            PHOTON_PT_passes_cryptomatte, PHOTON_PT_layer_override,
-           PHOTON_PT_light, PHOTON_PT_spot, PHOTON_PT_object_ray_visibility,
+           PHOTON_PT_light, PHOTON_PT_spot, PHOTON_PT_material, PHOTON_PT_object_ray_visibility,
            PHOTON_PT_object_mask)
 
 

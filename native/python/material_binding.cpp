@@ -97,8 +97,9 @@ Input parse_input(const py::handle& value, ParamKind kind, const Input& fallback
 Closure parse_closure(const py::handle& item, const std::string& what) {
   if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
   py::dict d = py::reinterpret_borrow<py::dict>(item);
-  check_keys(d, {"type", "sharp", "params", "normal_map", "normal", "clearcoat_normal", "weight"},
-             what);
+  check_keys(
+      d, {"type", "sharp", "abbe", "params", "normal_map", "normal", "clearcoat_normal", "weight"},
+      what);
   if (!d.contains("type")) fail(what + " has no 'type'");
   const std::string type = py::str(d["type"]);
   const ClosureSpec* found = find_closure(type.c_str());
@@ -107,6 +108,11 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   closure.type = found->type;
   closure.params = default_params(closure.type);  // inputs the dict leaves out
   if (d.contains("sharp")) closure.sharp = d["sharp"].cast<bool>();
+  if (d.contains("abbe")) {
+    // Non-finite or negative: no dispersion; glass catalogues stop near 100.
+    const float abbe = d["abbe"].cast<float>();
+    closure.abbe = std::isfinite(abbe) ? std::clamp(abbe, 0.0f, 1000.0f) : 0.0f;
+  }
 
   if (d.contains("params")) {
     if (!py::isinstance<py::dict>(d["params"])) fail(what + ": 'params' must be a dict");
@@ -238,6 +244,7 @@ py::dict describe_material(const Material& material) {
     py::dict d;
     d["type"] = closure_spec(c.type).name;
     d["sharp"] = c.sharp;
+    d["abbe"] = c.abbe;
     py::dict params;
     for (const ClosureParamSpec& info : closure_spec(ClosureType::kPrincipled).params)
       params[info.key] = describe_input(c[info.param], info.kind);

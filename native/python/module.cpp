@@ -7,25 +7,25 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "data_pass_bindings.h"
 #include "material_binding.h"
-#include "program_binding.h"
-#include "photon/shading/program_eval.h"
+#include "photon/integrators/render_params.h"
+#include "photon/render/texture_convert.h"
 #include "photon/scene/mesh_attribute.h"
 #include "photon/scene/mesh_import.h"
-#include "photon/integrators/render_params.h"
+#include "photon/scene/scene.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
-#include "photon/scene/scene.h"
-#include "photon/render/texture_convert.h"
-#include "data_pass_bindings.h"
+#include "photon/shading/program_eval.h"
+#include "program_binding.h"
 #include "sppm_bindings.h"
 #include "stats_bindings.h"
 
 namespace py = pybind11;
 using namespace photon;
 
-void bind_bake(py::module_& m);  // bake_bindings.cpp
-void bind_persistent(py::module_& m);  // persistent_bindings.cpp
+void bind_bake(py::module_& m);         // bake_bindings.cpp
+void bind_persistent(py::module_& m);   // persistent_bindings.cpp
 void bind_progressive(py::module_& m);  // progressive_bindings.cpp
 
 namespace {
@@ -80,13 +80,13 @@ py::dict finish_mesh(Scene& scene, Mesh&& mesh) {
 }
 
 template <typename Array>
-const typename Array::value_type* optional_data(const py::object& obj, Array* holder,
-                                                size_t group, size_t count, const char* what) {
+const typename Array::value_type* optional_data(const py::object& obj, Array* holder, size_t group,
+                                                size_t count, const char* what) {
   if (obj.is_none()) return nullptr;
   *holder = obj.cast<Array>();
   if (static_cast<size_t>(holder->size()) != group * count)
-    throw std::invalid_argument(std::string(what) + ": expected " +
-                                std::to_string(group * count) + " values");
+    throw std::invalid_argument(std::string(what) + ": expected " + std::to_string(group * count) +
+                                " values");
   return holder->data();
 }
 
@@ -168,7 +168,8 @@ PYBIND11_MODULE(_photon, m) {
             Mesh mesh;
             mesh.name = name;
             copy_rows(positions, 3, &mesh.positions, "positions");
-            // Reinterpreted as unsigned: a negative index becomes huge and is dropped as out of range.
+            // Reinterpreted as unsigned: a negative index becomes huge and is dropped as out of
+            // range.
             copy_rows(triangles, 3, &mesh.indices, "triangles");
             if (!corner_normals.is_none())
               copy_rows(corner_normals.cast<FloatArray>(), 3, &mesh.corner_normals,
@@ -176,8 +177,7 @@ PYBIND11_MODULE(_photon, m) {
             if (!corner_uvs.is_none())
               copy_rows(corner_uvs.cast<FloatArray>(), 2, &mesh.corner_uvs, "corner_uvs");
             if (!material_slots.is_none())
-              copy_rows(material_slots.cast<IntArray>(), 1, &mesh.material_slots,
-                        "material_slots");
+              copy_rows(material_slots.cast<IntArray>(), 1, &mesh.material_slots, "material_slots");
             return finish_mesh(scene, std::move(mesh));
           },
           py::arg("name"), py::arg("positions"), py::arg("triangles"),
@@ -187,13 +187,13 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "add_loop_mesh",
           [](Scene& scene, const std::string& name, const FloatArray& positions,
-             const IntArray& corner_loops, const IntArray& loop_vertices,
-             py::object vertex_normals, py::object loop_normals, py::object loop_uvs,
-             py::object material_slots) {
+             const IntArray& corner_loops, const IntArray& loop_vertices, py::object vertex_normals,
+             py::object loop_normals, py::object loop_uvs, py::object material_slots) {
             Mesh mesh;
             mesh.name = name;
             copy_rows(positions, 3, &mesh.positions, "positions");
-            if (corner_loops.size() % 3) throw std::invalid_argument("corner_loops: 3 per triangle");
+            if (corner_loops.size() % 3)
+              throw std::invalid_argument("corner_loops: 3 per triangle");
             LoopMeshView view;
             view.corner_loops = corner_loops.data();
             view.corner_count = corner_loops.size();
@@ -202,21 +202,20 @@ PYBIND11_MODULE(_photon, m) {
             FloatArray vn, ln, uv;
             view.vertex_normals =
                 optional_data(vertex_normals, &vn, 3, mesh.positions.size(), "vertex_normals");
-            view.loop_normals = optional_data(loop_normals, &ln, 3, view.loop_count, "loop_normals");
+            view.loop_normals =
+                optional_data(loop_normals, &ln, 3, view.loop_count, "loop_normals");
             view.loop_uvs = optional_data(loop_uvs, &uv, 2, view.loop_count, "loop_uvs");
             {
               py::gil_scoped_release release;
               gather_loop_mesh(view, &mesh);
             }
             if (!material_slots.is_none())
-              copy_rows(material_slots.cast<IntArray>(), 1, &mesh.material_slots,
-                        "material_slots");
+              copy_rows(material_slots.cast<IntArray>(), 1, &mesh.material_slots, "material_slots");
             return finish_mesh(scene, std::move(mesh));
           },
-          py::arg("name"), py::arg("positions"), py::arg("corner_loops"),
-          py::arg("loop_vertices"), py::arg("vertex_normals") = py::none(),
-          py::arg("loop_normals") = py::none(), py::arg("loop_uvs") = py::none(),
-          py::arg("material_slots") = py::none(),
+          py::arg("name"), py::arg("positions"), py::arg("corner_loops"), py::arg("loop_vertices"),
+          py::arg("vertex_normals") = py::none(), py::arg("loop_normals") = py::none(),
+          py::arg("loop_uvs") = py::none(), py::arg("material_slots") = py::none(),
           "Adds a mesh given as Blender stores it: three loop indices per triangle, the vertex "
           "of each loop, and per-vertex or per-loop normals and per-loop UVs.")
       .def(
@@ -386,14 +385,20 @@ PYBIND11_MODULE(_photon, m) {
           [](Scene& scene, const std::string& name, const std::string& type,
              const FloatArray& matrix, const std::vector<float>& color, float power, float radius,
              float spot_size, float spot_blend, float sun_angle, const std::string& shape,
-             float size_x, float size_y, uint32_t visibility) {
+             float size_x, float size_y, uint32_t visibility, const std::string& spectrum,
+             float temperature, const std::string& illuminant) {
             Light l;
             l.name = name;
-            if (type == "POINT") l.type = LightType::kPoint;
-            else if (type == "SPOT") l.type = LightType::kSpot;
-            else if (type == "SUN") l.type = LightType::kSun;
-            else if (type == "AREA") l.type = LightType::kArea;
-            else throw std::invalid_argument("unknown light type " + type);
+            if (type == "POINT")
+              l.type = LightType::kPoint;
+            else if (type == "SPOT")
+              l.type = LightType::kSpot;
+            else if (type == "SUN")
+              l.type = LightType::kSun;
+            else if (type == "AREA")
+              l.type = LightType::kArea;
+            else
+              throw std::invalid_argument("unknown light type " + type);
             l.light_to_world = transform_from(matrix);
             l.color = vec3_from(color, "color");
             l.power = power;
@@ -402,18 +407,41 @@ PYBIND11_MODULE(_photon, m) {
             l.spot_blend = spot_blend;
             l.sun_angle = sun_angle;
             l.shape = (shape == "DISK" || shape == "ELLIPSE") ? AreaShape::kEllipse
-                                                               : AreaShape::kRectangle;
+                                                              : AreaShape::kRectangle;
             l.size_x = size_x;
             l.size_y = (shape == "SQUARE" || shape == "DISK") ? size_x : size_y;
             l.visibility = visibility & kVisibleAll;
+            if (spectrum == "RGB")
+              l.spectrum = LightSpectrum::kRgb;
+            else if (spectrum == "BLACKBODY")
+              l.spectrum = LightSpectrum::kBlackbody;
+            else if (spectrum == "ILLUMINANT")
+              l.spectrum = LightSpectrum::kIlluminant;
+            else
+              throw std::invalid_argument("unknown light spectrum " + spectrum);
+            l.temperature = temperature;
+            if (illuminant == "D65")
+              l.illuminant = StandardIlluminant::kD65;
+            else if (illuminant == "A")
+              l.illuminant = StandardIlluminant::kA;
+            else if (illuminant == "F2")
+              l.illuminant = StandardIlluminant::kF2;
+            else if (illuminant == "F7")
+              l.illuminant = StandardIlluminant::kF7;
+            else if (illuminant == "F11")
+              l.illuminant = StandardIlluminant::kF11;
+            else
+              throw std::invalid_argument("unknown illuminant " + illuminant);
             scene.lights.push_back(std::move(l));
             return scene.lights.size() - 1;
           },
           py::arg("name"), py::arg("type"), py::arg("matrix"), py::arg("color"), py::arg("power"),
-          py::arg("radius") = 0.0f, py::arg("spot_size") = 0.785398f,
-          py::arg("spot_blend") = 0.15f, py::arg("sun_angle") = 0.0f,
-          py::arg("shape") = "SQUARE", py::arg("size_x") = 1.0f, py::arg("size_y") = 1.0f,
-          py::arg("visibility") = static_cast<uint32_t>(kVisibleGlossy | kVisibleTransmission))
+          py::arg("radius") = 0.0f, py::arg("spot_size") = 0.785398f, py::arg("spot_blend") = 0.15f,
+          py::arg("sun_angle") = 0.0f, py::arg("shape") = "SQUARE", py::arg("size_x") = 1.0f,
+          py::arg("size_y") = 1.0f,
+          py::arg("visibility") = static_cast<uint32_t>(kVisibleGlossy | kVisibleTransmission),
+          py::arg("spectrum") = "RGB", py::arg("temperature") = 6500.0f,
+          py::arg("illuminant") = "D65")
       .def(
           "set_camera",
           [](Scene& scene, const std::string& projection, const FloatArray& matrix,
@@ -434,8 +462,7 @@ PYBIND11_MODULE(_photon, m) {
             c.focus_distance = focus_distance;
           },
           py::arg("projection"), py::arg("matrix"), py::arg("window"), py::arg("clip_start"),
-          py::arg("clip_end"), py::arg("aperture_radius") = 0.0f,
-          py::arg("focus_distance") = 10.0f)
+          py::arg("clip_end"), py::arg("aperture_radius") = 0.0f, py::arg("focus_distance") = 10.0f)
       .def(
           "set_world",
           [](Scene& scene, const std::vector<float>& color) {
@@ -506,8 +533,8 @@ PYBIND11_MODULE(_photon, m) {
       "no_bake_reason otherwise), stop_early (Esc ends its preparation while the status starts "
       "with stop_early_status, and the render goes on as stop_early_effect says), "
       "shares_preparation (RenderSession.set_prepared_state saves and loads its preparation).");
-  m.attr("PASS_NAMES") = py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics",
-                                        "Photon Map");
+  m.attr("PASS_NAMES") =
+      py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics", "Photon Map");
 
   photon_python::register_data_pass_classes(m);  // before RenderSettings.data_passes
   py::class_<RenderSettings> settings_class(m, "RenderSettings");
@@ -524,9 +551,8 @@ PYBIND11_MODULE(_photon, m) {
   bind_render_params(settings_class);
   // The schema as plain lists and dicts (render_params.h); the add-on generates its
   // properties, panels and make_settings from it.
-  m.def("parameter_schema", [] {
-    return py::module_::import("json").attr("loads")(render_param_schema_json());
-  });
+  m.def("parameter_schema",
+        [] { return py::module_::import("json").attr("loads")(render_param_schema_json()); });
 
   bind_persistent(m);  // before RenderSession, whose blas_cache argument is a BlasCache
 

@@ -7,6 +7,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
 from harness import read_image  # noqa: E402
@@ -47,10 +48,14 @@ def test_masks_cover_their_objects():
             assert not (masks[a] & masks[b]).any(), f"{a} and {b} overlap"
 
 
-def test_object_colours_match_cycles(blender, tmp_path):
-    proc = blender.run([str(SCENE.with_suffix(".blend")), "-E", "PHOTON", "-o",
-                        str(tmp_path / "spheres_####"), "-F", "OPEN_EXR", "-x", "1", "-f", "1"],
-                       timeout=600)
+@pytest.mark.parametrize("spectral", [False, True], ids=["rgb", "spectral"])
+def test_object_colours_match_cycles(blender, tmp_path, spectral):
+    # Spectral mode: the colours uplifted to spectra (Jakob & Hanika 2019) and white light as
+    # D65 must stay within the same limits.
+    expr = f"import bpy; bpy.context.scene.photon.spectral = {spectral}"
+    proc = blender.run([str(SCENE.with_suffix(".blend")), "-E", "PHOTON", "--python-expr", expr,
+                        "-o", str(tmp_path / "spheres_####"), "-F", "OPEN_EXR", "-x", "1",
+                        "-f", "1"], timeout=600)
     assert "Photon: rendered frame" in proc.stdout, proc.log
     image = read_image(tmp_path / "spheres_0001.exr")[..., :3]
     reference = read_image(SCENE.with_suffix(".exr"))[..., :3]

@@ -4,6 +4,8 @@ import math
 
 import numpy as np
 
+from . import nodes
+
 
 def visibility_bits(native, obj):
     """Object > Visibility > Ray Visibility toggles as the native visibility mask."""
@@ -19,6 +21,42 @@ def visibility_bits(native, obj):
     if getattr(obj, "visible_shadow", True):
         bits |= native.VISIBLE_SHADOW
     return bits
+
+
+def blackbody_temperature(light):
+    """The temperature of a Blackbody node feeding the Color of the Emission node at the light's
+    output (Use Nodes), when its Temperature is a plain value; else None."""
+    tree = light.node_tree if getattr(light, "use_nodes", False) else None
+    if tree is None:
+        return None
+    output = nodes.output_node(tree, 'OUTPUT_LIGHT')
+    surface = output.inputs.get("Surface") if output else None
+    emission = nodes.source(surface).node if surface is not None else None
+    if emission is None or emission.type != 'EMISSION':
+        return None
+    color = nodes.find_input(emission, "Color")
+    found = nodes.source(color).node if color is not None else None
+    if found is None or found.type != 'BLACKBODY':
+        return None
+    temperature = nodes.find_input(found, "Temperature")
+    if temperature is None or temperature.is_linked:
+        return None
+    value = float(temperature.default_value)
+    return value if math.isfinite(value) and value > 0.0 else None
+
+
+def light_spectrum(light):
+    """The spectrum, temperature and illuminant add_light takes: light.photon's, or Blackbody
+    at a Blackbody node's temperature (see blackbody_temperature) while that is RGB."""
+    settings = getattr(light, "photon", None)
+    spectrum = settings.spectrum if settings is not None else "RGB"
+    temperature = float(settings.temperature) if settings is not None else 6500.0
+    illuminant = settings.illuminant if settings is not None else "D65"
+    if spectrum == "RGB":
+        node_temperature = blackbody_temperature(light)
+        if node_temperature is not None:
+            spectrum, temperature = "BLACKBODY", node_temperature
+    return spectrum, temperature, illuminant
 
 
 def light_arguments(native, obj, matrix, reporter):
@@ -42,6 +80,7 @@ def light_arguments(native, obj, matrix, reporter):
         "power": power,
         "visibility": visibility_bits(native, obj),
     }
+    kwargs["spectrum"], kwargs["temperature"], kwargs["illuminant"] = light_spectrum(light)
     if light.type in {'POINT', 'SPOT'}:
         kwargs["radius"] = float(light.shadow_soft_size)
     if light.type == 'SPOT':

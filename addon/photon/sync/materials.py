@@ -175,11 +175,27 @@ def _convert(material, reporter, textures):
         unique = list(dict.fromkeys(ctx.ignored_principled))
         reporter.warning(f"Material '{name}': Principled BSDF inputs not supported yet are "
                          f"rendered at their defaults: {', '.join(unique)}")
+    _add_dispersion(material, closures)
     scattering = sum(1 for c in closures if c["type"] not in ("EMISSION", "HOLDOUT"))
     if scattering > MAX_BSDF_LOBES:
         reporter.warning(f"Material '{name}': {scattering} BSDF closures; Photon shades the "
                          f"{MAX_BSDF_LOBES} strongest lobes at each point and drops the rest")
     return name, closures, ctx
+
+
+# Closures whose IOR material.photon.abbe_number makes vary with the wavelength.
+DISPERSIVE_CLOSURES = ("GLASS", "REFRACTION", "PRINCIPLED")
+
+
+def _add_dispersion(material, closures):
+    """The material's Abbe number on its glass closures (spectral mode disperses them)."""
+    settings = getattr(material, "photon", None)
+    abbe = float(getattr(settings, "abbe_number", 0.0)) if settings is not None else 0.0
+    if not math.isfinite(abbe) or abbe <= 0.0:
+        return
+    for c in closures:
+        if c["type"] in DISPERSIVE_CLOSURES:
+            c["abbe"] = abbe
 
 
 def _without_registers(closures):

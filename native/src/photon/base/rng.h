@@ -16,7 +16,9 @@ inline uint64_t mix64(uint64_t z) {
   return z ^ (z >> 31);
 }
 
-inline uint64_t hash_combine(uint64_t a, uint64_t b) { return mix64(a ^ mix64(b)); }
+inline uint64_t hash_combine(uint64_t a, uint64_t b) {
+  return mix64(a ^ mix64(b));
+}
 
 // Maps the top 24 bits to [0, 1) exactly representable in float.
 inline float to_unit_float(uint64_t bits) {
@@ -75,6 +77,20 @@ class Sampler {
       : key_(hash_combine(seed, stream)), sample_(sample_index), count_(sample_count) {}
 
   float get_1d() { return to_unit_float(mix64(key_ ^ mix64(sample_ * 0x100000001B3ull + dim_++))); }
+
+  // A number in [0, 1) outside the dimension sequence (every get_1d / get_2d stays as it was),
+  // told apart from other such numbers by `tag`: the sample indices of a pixel (of
+  // `sample_count`) are stratified over [0, 1) in a per-pixel random order and jittered within
+  // their stratum. Spectral rendering draws its wavelengths from it, so a spectral and an RGB
+  // render of one seed share every other random number.
+  float stratified_1d(uint64_t tag) const {
+    const uint64_t h = mix64(key_ ^ mix64(tag ^ 0x5EC7A1ull));
+    const float jitter = to_unit_float(mix64(h ^ sample_));
+    if (!count_) return jitter;
+    const uint32_t stratum =
+        permute_index(static_cast<uint32_t>(sample_), count_, static_cast<uint32_t>(h >> 32));
+    return clamp_below_one((static_cast<float>(stratum) + jitter) / static_cast<float>(count_));
+  }
 
   Vec2 get_2d() {
     constexpr double kG = 1.32471795724474602596;  // plastic number

@@ -383,6 +383,31 @@ TEST(Sampler, Get2dIsStratifiedOverSampleIndices) {
   }
 }
 
+TEST(Sampler, Stratified1dTakesNoDimensionAndCoversEveryStratum) {
+  const uint32_t kN = 256;
+  for (uint64_t stream : {0ull, 99ull}) {
+    std::vector<int> hits(kN, 0);
+    for (uint32_t s = 0; s < kN; ++s) {
+      Sampler a(5, stream, s, kN), b(5, stream, s, kN);
+      const float u = a.stratified_1d(1);
+      ASSERT_GE(u, 0.0f);
+      ASSERT_LT(u, 1.0f);
+      ++hits[static_cast<int>(u * kN)];
+      // Other tags give other numbers; the dimension sequence is untouched.
+      EXPECT_NE(u, a.stratified_1d(2));
+      EXPECT_EQ(a.get_1d(), b.get_1d());
+      const Vec2 pa = a.get_2d(), pb = b.get_2d();
+      EXPECT_EQ(pa.x, pb.x);
+      EXPECT_EQ(pa.y, pb.y);
+    }
+    for (int h : hits) EXPECT_EQ(h, 1);  // one sample per stratum of 1 / kN
+  }
+  // Without a sample count: still in [0, 1) and a pure function of its inputs.
+  Sampler c(1, 2, 3, 0), d(1, 2, 3, 0);
+  EXPECT_EQ(c.stratified_1d(7), d.stratified_1d(7));
+  EXPECT_LT(c.stratified_1d(7), 1.0f);
+}
+
 // Regression test for a bug in photon/rng.h as of commit 109ae12: every get_2d() dimension
 // returned the same R2 point of the sample index, only shifted by a per-(pixel, dimension)
 // Cranley-Patterson rotation, so within one pixel the second 2D value was the first plus a

@@ -13,19 +13,34 @@
 
 #include "photon/integrators/integrator.h"
 #include "photon/integrators/path_walker.h"
+#include "photon/integrators/spectral_path.h"
 #include "photon/render/material_eval.h"
 
 namespace photon {
+
+// The light a spectral camera path gathers, by pass (RadianceSample's direct, indirect, caustic).
+struct SpectralSample {
+  SpectralTally direct, indirect, caustic;
+};
+
+// A spectral camera path at a vertex: where its integrator adds what it estimates there.
+struct SpectralVertex {
+  const SampledWavelengths* wl;  // the path's, with its pdfs as they are at this vertex
+  SampledSpectrum beta;          // camera -> this vertex, without the vertex's own BSDF
+  const SpectralBsdf* bsdf;      // the vertex's BSDF at the wavelengths
+  SpectralSample* light;         // add(L, *wl) here; RGB estimates may go to the RadianceSample
+};
 
 struct PathVertex {
   const SurfaceInteraction* si;  // normals as wound by the mesh
   const ShadingPoint* shading;   // BSDF with normals facing wo
   Vec3 wo;
-  Vec3 throughput;            // camera -> this vertex, without the vertex's own BSDF
-  int depth = 0;              // bounces before this vertex
-  bool after_glossy = false;  // a rough (non-delta) lobe was sampled on the way here
+  Vec3 throughput;             // camera -> this vertex, without the vertex's own BSDF
+  int depth = 0;               // bounces before this vertex
+  bool after_glossy = false;   // a rough (non-delta) lobe was sampled on the way here
   bool after_diffuse = false;  // an earlier vertex of this path had a diffuse lobe
-  float path_length = 0.0f;   // distance along the path from the camera to this vertex
+  float path_length = 0.0f;    // distance along the path from the camera to this vertex
+  const SpectralVertex* spectral = nullptr;  // set on spectral paths (throughput is then unused)
 };
 
 using DiffuseShader = std::function<void(const PathVertex& vertex, RadianceSample* result)>;
@@ -45,6 +60,10 @@ struct CameraWalk {
   // later vertex it accepts) the path goes on through delta lobes only: mirror and glass
   // layers keep their reflections, while indirect light at later rough vertices is left out.
   bool (*visible_point)(const Bsdf& bsdf) = nullptr;
+  // Spectral mode: the path carries wavelengths (spectral_path.h), its own sample's unless
+  // `wavelengths` gives them (an SPPM iteration's, shared by its photons).
+  bool spectral = false;
+  const SampledWavelengths* wavelengths = nullptr;
 };
 
 // The render's camera walk: glossy and specular lobes ray traced up to max_depth bounces,

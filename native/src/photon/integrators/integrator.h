@@ -38,12 +38,13 @@ struct RenderSettings : SamplingParams,
                         PerformanceParams,
                         PhotonMapParams,
                         RadiosityParams,
-                        SppmParams {
+                        SppmParams,
+                        SpectralParams {
   int full_width = 64, full_height = 64;  // whole frame in pixels
   // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
   int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
   bool transparent_background = false;  // from the scene's Film > Transparent
-  bool light_passes = false;  // also write the Direct / Indirect / Caustics / Photon Map passes
+  bool light_passes = false;     // also write the Direct / Indirect / Caustics / Photon Map passes
   DataPassSettings data_passes;  // Depth, Mist, Normal, ... (session/data_passes.h)
 };
 

@@ -27,8 +27,58 @@ void spawn_ray(const SurfaceInteraction& si, const Vec3& wi, float length_scale,
   ray->tmax = INFINITY;
 }
 
-bool continue_path(const PathRules& rules, const Bsdf& bsdf, const Vec3& wo, Sampler& sampler,
-                   PathState* state, BsdfSample* s) {
+namespace {
+
+// continue_path for a spectral path: the same draws and rules on beta. Q of Russian roulette
+// is taken over the wavelengths (beta is 0 at those not in use).
+bool continue_spectral_path(const PathRules& rules, const SpectralBsdf& bsdf, const Vec3& wo,
+                            Sampler& sampler, PathState* state, BsdfSample* s) {
+  const float u_lobe = sampler.get_1d();
+  const Vec2 u = sampler.get_2d();
+  // The survival number is drawn where the RGB path draws it.
+  const float u_survive = rules.roulette == Roulette::kBounceAlbedo ? sampler.get_1d() : 0.0f;
+  SpectralBsdfSample ss;
+  if (!bsdf.sample(wo, u_lobe, u, rules.continue_lobes, &ss)) return false;
+  // A dispersive refraction: only the hero wavelength goes on (its weight is the only one).
+  if (ss.terminate) state->wl.terminate_secondary();
+  SampledSpectrum weight = ss.weight;
+  for (int i = 0; i < spectral::kSpectrumSamples; ++i)
+    if (!state->wl.active(i)) weight[i] = state->beta[i] = 0.0f;
+  if (is_black(weight)) return false;
+  switch (rules.roulette) {
+    case Roulette::kBounceAlbedo: {
+      const float q = std::min(1.0f, max_component(weight));
+      if (!(u_survive < q)) return false;
+      state->beta = state->beta * weight / q;
+      break;
+    }
+    case Roulette::kPathThroughput:
+      state->beta *= weight;
+      if (state->depth >= rules.roulette_depth) {
+        const float q = std::min(1.0f, max_component(state->beta));
+        if (!(sampler.get_1d() < q)) return false;
+        state->beta = state->beta / q;
+      }
+      break;
+    case Roulette::kNone:
+      state->beta *= weight;
+      break;
+  }
+  s->wi = ss.wi;
+  s->pdf = ss.pdf;
+  s->flags = ss.flags;
+  s->transparent = ss.transparent;
+  state->last_delta = ss.is_delta();
+  state->after_glossy = state->after_glossy || !ss.is_delta();
+  return true;
+}
+
+}  // namespace
+
+bool continue_path(const PathRules& rules, const Bsdf& bsdf, const SpectralBsdf* spectral,
+                   const Vec3& wo, Sampler& sampler, PathState* state, BsdfSample* s) {
+  if (state->spectral && spectral)
+    return continue_spectral_path(rules, *spectral, wo, sampler, state, s);
   const float u_lobe = sampler.get_1d();
   const Vec2 u = sampler.get_2d();
   switch (rules.roulette) {

@@ -30,6 +30,7 @@
 #include "photon/base/ray_offset.h"
 #include "photon/integrators/integrator.h"
 #include "photon/render/bsdf.h"
+#include "photon/render/spectral_bsdf.h"
 
 namespace photon {
 
@@ -59,11 +60,16 @@ inline PathRules power_rules(int max_depth, uint8_t continue_lobes) {
   return r;
 }
 
-// Where a path stands. `throughput` is the camera-path weight or the photon's power.
+// Where a path stands. `throughput` is the camera-path weight or the photon's power; in
+// spectral mode `beta` holds it at the wavelengths `wl` instead (wavelengths not in use, or
+// terminated by dispersion, have beta 0).
 struct PathState {
   Ray ray;
   uint32_t mask = kVisibleCamera;  // visibility class of the current segment
   Vec3 throughput{1.0f};
+  bool spectral = false;
+  SampledWavelengths wl;
+  SampledSpectrum beta{1.0f};
   int depth = 0;  // bounces before the current segment's end
   // The bounces of `depth` by kind, as Cycles counts them for the Light Path node: reflections
   // off diffuse lobes, other reflections (glossy or mirror), transmissions, and straight
@@ -72,6 +78,14 @@ struct PathState {
   bool after_glossy = false;  // a rough (non-delta) lobe was sampled on the way
   bool last_delta = true;     // the last sampled lobe was delta (or there was none yet)
   bool see_through = true;    // only Transparent pass-throughs since the path began
+
+  bool black() const { return spectral ? is_black(beta) : is_black(throughput); }
+  // Spectral mode: starts at wavelengths `w` with weight `b` at each one in use (0 elsewhere).
+  void start_spectral(const SampledWavelengths& w, const SampledSpectrum& b) {
+    spectral = true;
+    wl = w;
+    for (int i = 0; i < spectral::kSpectrumSamples; ++i) beta[i] = w.active(i) ? b[i] : 0.0f;
+  }
 };
 
 // What the visitor decides at a vertex.
@@ -79,10 +93,14 @@ struct VertexStep {
   enum Kind : uint8_t { kStop, kPassThrough, kScatter };
   Kind kind = kStop;
   const Bsdf* bsdf = nullptr;  // kScatter: the BSDF to sample (kept alive by the visitor)
+  // kScatter of a spectral path: the same BSDF at the path's wavelengths (kept alive too).
+  const SpectralBsdf* spectral = nullptr;
 
   static VertexStep stop() { return {}; }
-  static VertexStep pass_through() { return {kPassThrough, nullptr}; }
-  static VertexStep scatter(const Bsdf& bsdf) { return {kScatter, &bsdf}; }
+  static VertexStep pass_through() { return {kPassThrough, nullptr, nullptr}; }
+  static VertexStep scatter(const Bsdf& bsdf, const SpectralBsdf* spectral = nullptr) {
+    return {kScatter, &bsdf, spectral};
+  }
 };
 
 // The ray visibility class of the next segment after a sampled lobe (Cycles' ray types).
@@ -97,9 +115,12 @@ void spawn_ray(const SurfaceInteraction& si, const Vec3& wi, float length_scale,
 
 // Samples the lobe that continues the path at a vertex of `bsdf` seen from `wo` and applies
 // Russian roulette; on success updates the throughput and the chain flags of `state` (not yet
-// its ray) and returns the sample. False ends the path.
-bool continue_path(const PathRules& rules, const Bsdf& bsdf, const Vec3& wo, Sampler& sampler,
-                   PathState* state, BsdfSample* sample);
+// its ray) and returns the sample. False ends the path. A spectral path samples `spectral`
+// (the same BSDF at its wavelengths) with the same random numbers, updates beta, and
+// terminates its secondary wavelengths after a dispersive refraction; `sample`'s weight is then
+// not set.
+bool continue_path(const PathRules& rules, const Bsdf& bsdf, const SpectralBsdf* spectral,
+                   const Vec3& wo, Sampler& sampler, PathState* state, BsdfSample* sample);
 
 // The walk. `state` holds the first ray, its visibility and the initial throughput. With
 // `first`, the first segment's hit is already traced (camera rays are traced in batches).
@@ -130,7 +151,7 @@ void walk_path(const RenderContext& context, const PathRules& rules, PathState* 
     if (step.kind == VertexStep::kStop) return;
     if (step.kind == VertexStep::kPassThrough) {
       // Straight on through the surface (a shadow catcher): same ray class, same chain.
-      if (is_black(state->throughput) || state->depth >= rules.max_depth) return;
+      if (state->black() || state->depth >= rules.max_depth) return;
       ++state->transparent_depth;
       spawn_ray(si, state->ray.direction, length_scale, &state->ray);
       continue;
@@ -138,7 +159,7 @@ void walk_path(const RenderContext& context, const PathRules& rules, PathState* 
     BsdfSample s;
     const bool continues =
         state->depth < rules.max_depth &&
-        continue_path(rules, *step.bsdf, -state->ray.direction, sampler, state, &s);
+        continue_path(rules, *step.bsdf, step.spectral, -state->ray.direction, sampler, state, &s);
     visitor.scattered(*state, continues);
     if (!continues) return;
     // A straight delta transmission (a Transparent BSDF) keeps a camera ray a camera ray.

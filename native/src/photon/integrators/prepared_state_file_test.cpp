@@ -135,6 +135,7 @@ TEST(PreparedStateFingerprint, FollowsSceneAndSettingsButNotTheBorder) {
       {"final gather rays", [](RenderSettings* s) { s->final_gather_rays = 3; }},
       {"irradiance cache", [](RenderSettings* s) { s->irradiance_cache = false; }},
       {"max depth", [](RenderSettings* s) { s->max_depth = 3; }},
+      {"spectral", [](RenderSettings* s) { s->spectral = true; }},
   };
   for (const auto& [what, change] : settings) {
     RenderSettings s = base;
@@ -150,6 +151,8 @@ TEST(PreparedStateFingerprint, FollowsSceneAndSettingsButNotTheBorder) {
       {"material colour",
        [](Scene* sc) { sc->materials[0].closures[0][Param::kColor].value.y += 0.01f; }},
       {"light power", [](Scene* sc) { sc->lights[0].power *= 2.0f; }},
+      {"light spectrum", [](Scene* sc) { sc->lights[0].spectrum = LightSpectrum::kBlackbody; }},
+      {"abbe number", [](Scene* sc) { sc->materials[0].closures[0].abbe = 30.0f; }},
       {"camera", [](Scene* sc) { sc->camera.camera_to_world.m[2][3] += 0.1f; }},
       {"world colour", [](Scene* sc) { sc->world.color = Vec3(0.1f); }},
       {"visibility", [](Scene* sc) { sc->instances[0].visibility &= ~kVisibleDiffuse; }},

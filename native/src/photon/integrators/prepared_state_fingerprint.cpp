@@ -79,7 +79,7 @@ void add_material(Fingerprint* f, const Material& m) {
     f->add(c.type);
     for (const Input& in : c.params) add_input(f, in);
     f->add(c.sharp), f->add(c.normal.texture), f->add(c.normal.strength);
-    f->add(c.normal_reg), f->add(c.clearcoat_normal_reg);
+    f->add(c.normal_reg), f->add(c.clearcoat_normal_reg), f->add(c.abbe);
     f->add<uint64_t>(c.weight.size());
     for (const WeightFactor& w : c.weight) add_input(f, w.fac), f->add(w.complement);
   }
@@ -113,6 +113,7 @@ void add_light(Fingerprint* f, const Light& l) {
   f->add(l.name), f->add(l.type), f->add(l.light_to_world), f->add(l.color), f->add(l.power);
   f->add(l.radius), f->add(l.spot_size), f->add(l.spot_blend), f->add(l.sun_angle);
   f->add(l.shape), f->add(l.size_x), f->add(l.size_y), f->add(l.visibility);
+  f->add(l.spectrum), f->add(l.temperature), f->add(l.illuminant);
 }
 
 void add_camera(Fingerprint* f, const Camera& c) {

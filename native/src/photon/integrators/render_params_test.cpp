@@ -37,6 +37,7 @@ TEST(RenderParams, SchemasCoverEveryField) {
   expect_covers_every_field(performance_schema());
   expect_covers_every_field(photon_map_schema());
   expect_covers_every_field(radiosity_schema());
+  expect_covers_every_field(spectral_schema());
 }
 
 TEST(RenderParams, NamesAreUniqueAndDefaultsInRange) {
@@ -54,7 +55,7 @@ TEST(RenderParams, NamesAreUniqueAndDefaultsInRange) {
       EXPECT_EQ(find_render_param(spec.name), &p);
     }
   // RenderSettings holds the parameters plus the frame (size, border, film, passes) only.
-  EXPECT_EQ(names.size(), 29u);
+  EXPECT_EQ(names.size(), 31u);
 }
 
 // Every numeric entry: a value just beyond each end of its hard range comes back at that end

@@ -1,5 +1,7 @@
 #include "photon/integrators/sampling_params.h"
 
+#include "photon/spectral/sampled_spectrum.h"
+
 // Schema entries name only the fields they set (designated initializers); the rest keep
 // ParamSpec's defaults, which is what -Wmissing-field-initializers would flag.
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -134,6 +136,31 @@ const ParamSchema<PerformanceParams>& performance_schema() {
                                 .max = 4096,
                                 .soft_min = 8,
                                 .subtype = "PIXEL"}),
+      }};
+  return schema;
+}
+
+const ParamSchema<SpectralParams>& spectral_schema() {
+  using S = SpectralParams;
+  static const ParamSchema<S> schema{
+      "spectral",
+      "Spectral",
+      "",
+      {
+          param(&S::spectral,
+                {.name = "spectral",
+                 .label = "Spectral",
+                 .description = "Render with sampled wavelengths instead of RGB (hero-wavelength "
+                                "sampling over 360-830 nm), so glass with an Abbe number "
+                                "disperses light into colours; radiosity stays RGB"}),
+          param(&S::spectral_samples,
+                {.name = "spectral_samples",
+                 .label = "Wavelengths",
+                 .description = "Wavelengths each path carries (stratified over the spectrum): "
+                                "more gives less colour noise per sample at a small cost",
+                 .min = 1,
+                 .max = spectral::kSpectrumSamples,
+                 .ui = {.active_if = "spectral"}}),
       }};
   return schema;
 }

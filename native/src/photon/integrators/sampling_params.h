@@ -31,6 +31,13 @@ struct FilmParams {
   float exposure = 1.0f;  // pixel colours are multiplied by it (Cycles' film exposure)
 };
 
+// Spectral rendering (integrators/spectral_path.h): paths carry `spectral_samples` wavelengths
+// instead of RGB, so glass with an Abbe number disperses light. Radiosity stays RGB.
+struct SpectralParams {
+  bool spectral = false;
+  int spectral_samples = 4;  // wavelengths per path, 1..kSpectrumSamples
+};
+
 struct PerformanceParams {
   int threads = 0;  // 0 = all cores
   int tile_size = 64;
@@ -39,5 +46,6 @@ struct PerformanceParams {
 const ParamSchema<SamplingParams>& sampling_schema();
 const ParamSchema<FilmParams>& film_schema();
 const ParamSchema<PerformanceParams>& performance_schema();
+const ParamSchema<SpectralParams>& spectral_schema();
 
 }  // namespace photon

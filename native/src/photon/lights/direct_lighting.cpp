@@ -5,9 +5,32 @@
 #include "photon/lights/emissive_mesh.h"
 #include "photon/lights/emitter_set.h"
 #include "photon/render/material_eval.h"
+#include "photon/render/spectral_bsdf.h"
 
 namespace photon {
 namespace {
+
+// How direct lighting sees colours: in RGB, or at the sampled wavelengths of a spectral path
+// (emitters' values converted where they are used: Emitter::spectrum, the illuminant uplift of
+// a surface's emission). The RGB instantiation is the RGB renderer's arithmetic, unchanged.
+struct RgbColours {
+  using Color = Vec3;
+  using BsdfType = Bsdf;
+  using Sample = BsdfSample;
+  static Vec3 zero() { return Vec3(0.0f); }
+  const Vec3& emitted(const Emitter&, const Vec3& rgb) const { return rgb; }
+  const Vec3& surface(const Vec3& rgb) const { return rgb; }
+};
+
+struct SpectralColours {
+  using Color = SampledSpectrum;
+  using BsdfType = SpectralBsdf;
+  using Sample = SpectralBsdfSample;
+  const SampledWavelengths& wl;
+  static SampledSpectrum zero() { return SampledSpectrum(0.0f); }
+  SampledSpectrum emitted(const Emitter& e, const Vec3& rgb) const { return e.spectrum(rgb, wl); }
+  SampledSpectrum surface(const Vec3& rgb) const { return spectral::illuminant_at(rgb, wl); }
+};
 
 // Veach 1997, eq. 9.13 with beta = 2. Densities above ~1.8e19 (a light of tiny area seen from
 // afar) overflow when squared: then the same weight is taken in ratio form, so it stays 1 for
@@ -42,78 +65,92 @@ bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, cons
 }
 
 // f |cos| towards a sampled light direction, and the BSDF's density of sampling it.
-Vec3 bsdf_towards(const Bsdf& bsdf, const Vec3& wo, const Vec3& wi, uint8_t lobes, float* pdf) {
-  const Vec3 f = bsdf.eval(wo, wi, lobes);
+template <class B>
+auto bsdf_towards(const B& bsdf, const Vec3& wo, const Vec3& wi, uint8_t lobes, float* pdf) {
+  const auto f = bsdf.eval(wo, wi, lobes);
   *pdf = bsdf.pdf(wo, wi, lobes);
   return f * std::fabs(dot(bsdf.frame().n, wi));
 }
 
-// Light sample of light i (or of the emissive meshes), weighted against BSDF sampling.
-Vec3 light_sample_term(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
-                       const Vec3& wo, uint8_t lobes, const LightSample& ls) {
+// Light sample `ls` of emitter `e` (or of the emissive meshes), weighted against BSDF sampling.
+template <class P>
+typename P::Color light_sample_term(const P& colours, const RenderContext& context,
+                                    const SurfaceInteraction& si, const typename P::BsdfType& bsdf,
+                                    const Vec3& wo, uint8_t lobes, const Emitter& e,
+                                    const LightSample& ls) {
   float pdf_bsdf;
-  const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, lobes, &pdf_bsdf);
-  if (is_black(f_cos) || !unoccluded(context, si, ls)) return Vec3(0.0f);
+  const typename P::Color f_cos = bsdf_towards(bsdf, wo, ls.wi, lobes, &pdf_bsdf);
+  if (is_black(f_cos) || !unoccluded(context, si, ls)) return P::zero();
   const float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, pdf_bsdf) : 1.0f;
-  return f_cos * ls.weight * w;
+  return f_cos * colours.emitted(e, ls.weight) * w;
 }
 
 // One BSDF sample's light, weighted against light sampling of the emitter(s) it can reach:
 // a lamp, found analytically. `light_pmf` is the probability that light sampling picks it (1
 // when every emitter is sampled).
-Vec3 bsdf_sample_term(const RenderContext& context, const SurfaceInteraction& si, const Emitter& e,
-                      const BsdfSample& bs, float light_pmf) {
+template <class P>
+typename P::Color bsdf_sample_term(const P& colours, const RenderContext& context,
+                                   const SurfaceInteraction& si, const Emitter& e,
+                                   const typename P::Sample& bs, float light_pmf) {
   switch (e.kind()) {
     case EmitterKind::kLamp: {
       Vec3 le;
       float distance, pdf_light;
-      if (!e.eval(si.p, bs.wi, &le, &distance, &pdf_light)) return Vec3(0.0f);
-      if (!unoccluded(context, si, bs.wi, distance)) return Vec3(0.0f);
-      return le * bs.weight * power_heuristic(bs.pdf, light_pmf * pdf_light);
+      if (!e.eval(si.p, bs.wi, &le, &distance, &pdf_light)) return P::zero();
+      if (!unoccluded(context, si, bs.wi, distance)) return P::zero();
+      return colours.emitted(e, le) * bs.weight * power_heuristic(bs.pdf, light_pmf * pdf_light);
     }
     case EmitterKind::kSurface:  // found by the scene's BVH: emissive_hit_term
     case EmitterKind::kWorld:    // found by rays leaving the scene
       break;
   }
-  return Vec3(0.0f);
+  return P::zero();
 }
 
 // The world along a BSDF-sampled direction, if nothing occludes it. An environment map's light
 // sample covers the same directions: weighted against it by MIS; a uniform world has no light
 // sample, so the BSDF sample takes all of it.
-Vec3 world_bsdf_term(const RenderContext& context, const SurfaceInteraction& si, const Emitter& e,
-                     const BsdfSample& bs) {
-  const Vec3 le = e.radiance_at_infinity(bs.wi);
-  if (is_black(le) || !unoccluded(context, si, bs.wi, INFINITY)) return Vec3(0.0f);
+template <class P>
+typename P::Color world_bsdf_term(const P& colours, const RenderContext& context,
+                                  const SurfaceInteraction& si, const Emitter& e,
+                                  const typename P::Sample& bs) {
+  const Vec3 rgb = e.radiance_at_infinity(bs.wi);
+  if (is_black(rgb) || !unoccluded(context, si, bs.wi, INFINITY)) return P::zero();
+  const typename P::Color le = colours.emitted(e, rgb);
   const float pdf_light = e.pdf_at_infinity(bs.wi);
   return pdf_light > 0.0f ? le * bs.weight * power_heuristic(bs.pdf, pdf_light) : le * bs.weight;
 }
 
 // The emissive surface a BSDF-sampled ray hits (if any), weighted against light sampling with
 // density `surface_pdf(hit, light_si)`.
-template <class SurfacePdf>
-Vec3 emissive_hit_term(const RenderContext& context, const SurfaceInteraction& si,
-                       const BsdfSample& bs, SurfacePdf&& surface_pdf) {
+template <class P, class SurfacePdf>
+typename P::Color emissive_hit_term(const P& colours, const RenderContext& context,
+                                    const SurfaceInteraction& si, const typename P::Sample& bs,
+                                    SurfacePdf&& surface_pdf) {
   Ray ray;
   ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
   ray.direction = bs.wi;
   Hit hit;
-  if (!context.accel->intersect(ray, kVisibleShadow, &hit)) return Vec3(0.0f);
+  if (!context.accel->intersect(ray, kVisibleShadow, &hit)) return P::zero();
   const SurfaceInteraction light_si = context.accel->interaction(hit);
   const float pdf_light = surface_pdf(hit, light_si);
-  if (!(pdf_light > 0.0f)) return Vec3(0.0f);
-  return emitted_radiance(*light_si.mat, light_si, context.textures) * bs.weight *
+  if (!(pdf_light > 0.0f)) return P::zero();
+  return colours.surface(emitted_radiance(*light_si.mat, light_si, context.textures)) * bs.weight *
          power_heuristic(bs.pdf, pdf_light);
 }
 
 // Every emitter sampled at every shading point (EmitterSet::every_light()).
-Vec3 every_light_radiance(const RenderContext& context, const SurfaceInteraction& si,
-                          const Bsdf& bsdf, const Vec3& wo, Sampler& sampler, uint8_t lobes) {
-  Vec3 l(0.0f);
-  BsdfSample bs;
+template <class P>
+typename P::Color every_light_radiance(const P& colours, const RenderContext& context,
+                                       const SurfaceInteraction& si,
+                                       const typename P::BsdfType& bsdf, const Vec3& wo,
+                                       Sampler& sampler, uint8_t lobes) {
+  typename P::Color l = P::zero();
+  typename P::Sample bs;
   for (const Emitter* e : context.emitters->every_light()) {
     LightSample ls;
-    if (e->sample(si.p, sampler, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+    if (e->sample(si.p, sampler, &ls))
+      l += light_sample_term(colours, context, si, bsdf, wo, lobes, *e, ls);
     if (!e->has_area()) continue;
     // BSDF sample, weighted against the light sample.
     const float u_lobe = sampler.get_1d();
@@ -121,15 +158,16 @@ Vec3 every_light_radiance(const RenderContext& context, const SurfaceInteraction
     if (!bsdf.sample(wo, u_lobe, u, lobes, &bs)) continue;
     switch (e->kind()) {
       case EmitterKind::kLamp:
-        l += bsdf_sample_term(context, si, *e, bs, 1.0f);
+        l += bsdf_sample_term(colours, context, si, *e, bs, 1.0f);
         break;
       case EmitterKind::kSurface:
-        l += emissive_hit_term(context, si, bs, [&](const Hit& hit, const SurfaceInteraction& h) {
-          return e->surface_pdf(hit.instance, hit.primitive, hit.t, dot(bs.wi, h.ng));
-        });
+        l += emissive_hit_term(
+            colours, context, si, bs, [&](const Hit& hit, const SurfaceInteraction& h) {
+              return e->surface_pdf(hit.instance, hit.primitive, hit.t, dot(bs.wi, h.ng));
+            });
         break;
       case EmitterKind::kWorld:
-        l += world_bsdf_term(context, si, *e, bs);
+        l += world_bsdf_term(colours, context, si, *e, bs);
         break;
     }
   }
@@ -139,14 +177,17 @@ Vec3 every_light_radiance(const RenderContext& context, const SurfaceInteraction
 // Many emitters: suns one by one, one emitter picked by the light tree, one BSDF sample
 // weighted against it (the tree's pmf times the emitter's density is the light strategy's
 // density, Conty Estevez & Kulla 2018 sec. 5.1), and the world.
-Vec3 tree_radiance(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
-                   const Vec3& wo, Sampler& sampler, uint8_t lobes) {
+template <class P>
+typename P::Color tree_radiance(const P& colours, const RenderContext& context,
+                                const SurfaceInteraction& si, const typename P::BsdfType& bsdf,
+                                const Vec3& wo, Sampler& sampler, uint8_t lobes) {
   const EmitterSet& set = *context.emitters;
   const LightTree& tree = set.tree();
-  Vec3 l(0.0f);
+  typename P::Color l = P::zero();
   for (const Emitter* e : set.distant()) {
     LightSample ls;
-    if (e->sample(si.p, sampler, &ls)) l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+    if (e->sample(si.p, sampler, &ls))
+      l += light_sample_term(colours, context, si, bsdf, wo, lobes, *e, ls);
   }
   if (!tree.empty()) {
     const float u_pick = sampler.get_1d();
@@ -157,12 +198,12 @@ Vec3 tree_radiance(const RenderContext& context, const SurfaceInteraction& si, c
       if (set.tree_emitter(index).sample(si.p, sampler, &ls)) {
         ls.weight = ls.weight / pmf;
         ls.pdf *= pmf;
-        l += light_sample_term(context, si, bsdf, wo, lobes, ls);
+        l += light_sample_term(colours, context, si, bsdf, wo, lobes, set.tree_emitter(index), ls);
       }
     } else {
       sampler.get_2d();  // keep the sampler's dimensions aligned between shading points
     }
-    BsdfSample bs;
+    typename P::Sample bs;
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) {
@@ -186,7 +227,9 @@ Vec3 tree_radiance(const RenderContext& context, const SurfaceInteraction& si, c
         if (!set.tree_emitter(i).eval(si.p, bs.wi, &le, &distance, &pdf_lamp)) return;
         if (found && t_geo < distance * (1.0f - 1e-4f)) return;  // behind the geometry
         const float pmf_i = tree.pmf(si.p, i);
-        if (pmf_i > 0.0f) l += le * bs.weight * power_heuristic(bs.pdf, pmf_i * pdf_lamp);
+        if (pmf_i > 0.0f)
+          l += colours.emitted(set.tree_emitter(i), le) * bs.weight *
+               power_heuristic(bs.pdf, pmf_i * pdf_lamp);
       });
       const EmissiveMeshes* emissive = set.emissive();
       const long t = found && emissive ? emissive->find(hit.instance, hit.primitive) : -1;
@@ -197,33 +240,49 @@ Vec3 tree_radiance(const RenderContext& context, const SurfaceInteraction& si, c
             tree.pmf(si.p, i) * set.tree_emitter(i).surface_pdf(hit.instance, hit.primitive, hit.t,
                                                                 dot(bs.wi, light_si.ng));
         if (pdf_light > 0.0f)
-          l += emitted_radiance(*light_si.mat, light_si, context.textures) * bs.weight *
-               power_heuristic(bs.pdf, pdf_light);
+          l += colours.surface(emitted_radiance(*light_si.mat, light_si, context.textures)) *
+               bs.weight * power_heuristic(bs.pdf, pdf_light);
       }
     }
   }
   if (const Emitter* world = set.world()) {
     LightSample ls;
     if (world->sampled_at_infinity() && world->sample(si.p, sampler, &ls))
-      l += light_sample_term(context, si, bsdf, wo, lobes, ls);
-    BsdfSample bs;
+      l += light_sample_term(colours, context, si, bsdf, wo, lobes, *world, ls);
+    typename P::Sample bs;
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
-    if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) l += world_bsdf_term(context, si, *world, bs);
+    if (bsdf.sample(wo, u_lobe, u, lobes, &bs))
+      l += world_bsdf_term(colours, context, si, *world, bs);
   }
   return l;
+}
+
+template <class P>
+typename P::Color direct_radiance_in(const P& colours, const RenderContext& context,
+                                     const SurfaceInteraction& si, const typename P::BsdfType& bsdf,
+                                     const Vec3& wo, Sampler& sampler, uint8_t lobes) {
+  lobes &= kLobeDiffuse | kLobeGlossy;  // delta lobes reach lights by ray tracing
+  if (!(bsdf.flags() & lobes)) return P::zero();
+  const typename P::Color l =
+      context.emitters->use_tree()
+          ? tree_radiance(colours, context, si, bsdf, wo, sampler, lobes)
+          : every_light_radiance(colours, context, si, bsdf, wo, sampler, lobes);
+  return is_finite(l) ? l : P::zero();
 }
 
 }  // namespace
 
 Vec3 direct_radiance(const RenderContext& context, const SurfaceInteraction& si, const Bsdf& bsdf,
                      const Vec3& wo, Sampler& sampler, uint8_t lobes) {
-  lobes &= kLobeDiffuse | kLobeGlossy;  // delta lobes reach lights by ray tracing
-  if (!(bsdf.flags() & lobes)) return Vec3(0.0f);
-  const Vec3 l = context.emitters->use_tree()
-                     ? tree_radiance(context, si, bsdf, wo, sampler, lobes)
-                     : every_light_radiance(context, si, bsdf, wo, sampler, lobes);
-  return is_finite(l) ? l : Vec3(0.0f);
+  return direct_radiance_in(RgbColours{}, context, si, bsdf, wo, sampler, lobes);
+}
+
+SampledSpectrum direct_radiance(const RenderContext& context, const SurfaceInteraction& si,
+                                const SpectralBsdf& bsdf, const Vec3& wo, Sampler& sampler,
+                                uint8_t lobes) {
+  return direct_radiance_in(SpectralColours{bsdf.wavelengths()}, context, si, bsdf, wo, sampler,
+                            lobes);
 }
 
 Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,

@@ -10,6 +10,7 @@
 #include "photon/base/rng.h"
 #include "photon/lights/light_bounds.h"
 #include "photon/lights/lights.h"
+#include "photon/spectral/sampled_spectrum.h"
 
 namespace photon {
 
@@ -56,6 +57,13 @@ class Emitter {
   virtual bool sampled_at_infinity() const { return false; }
   // kWorld: sample()'s solid-angle density of `direction` (0 when not sampled_at_infinity()).
   virtual float pdf_at_infinity(const Vec3& /*direction*/) const { return 0.0f; }
+
+  // Spectral mode: what this emitter sends at the wavelengths, given any value `rgb` it
+  // returned (radiance, a light sample's weight, flux: non-negative multiples of its colour at
+  // that point). By default the colour uplifted as an illuminant; lamps use their spectrum.
+  virtual SampledSpectrum spectrum(const Vec3& rgb, const SampledWavelengths& wl) const {
+    return spectral::illuminant_at(rgb, wl);
+  }
 
   // Photon emission (Jensen 2001 sec. 5.1). power(): emitted flux, W per channel.
   virtual Vec3 power(float scene_radius) const = 0;

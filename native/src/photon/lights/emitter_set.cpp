@@ -60,16 +60,18 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, co
 }
 
 bool EmitterSet::intersect_lamps(const Ray& ray, float tmax, uint32_t mask, float* t_hit,
-                                 Vec3* radiance) const {
-  if (!use_tree_) return lamps_->intersect(ray, tmax, mask, t_hit, radiance);
+                                 Vec3* radiance, size_t* lamp_index) const {
+  if (!use_tree_) return lamps_->intersect(ray, tmax, mask, t_hit, radiance, lamp_index);
   Ray bounded = ray;
   bounded.tmax = tmax;
   bool found = false;
   float best = tmax;
   tree_.for_each_hit(bounded, [&](uint32_t i) {
     const uint32_t lamp = tree_lamp_[i];
-    if (lamp != UINT32_MAX && lamps_->intersect_one(lamp, ray, best, mask, &best, radiance))
+    if (lamp != UINT32_MAX && lamps_->intersect_one(lamp, ray, best, mask, &best, radiance)) {
       found = true;
+      if (lamp_index) *lamp_index = lamp;
+    }
   });
   if (found) *t_hit = best;
   return found;

@@ -51,6 +51,11 @@ class EmitterSet {
   Vec3 world_radiance(const Vec3& direction) const {
     return world_ ? world_->radiance_at_infinity(direction) : Vec3(0.0f);
   }
+  // The same at the wavelengths (the world's colour uplifted as an illuminant).
+  SampledSpectrum world_radiance(const Vec3& direction, const SampledWavelengths& wl) const {
+    return world_ ? world_->spectrum(world_->radiance_at_infinity(direction), wl)
+                  : SampledSpectrum(0.0f);
+  }
   const LightTree& tree() const { return tree_; }
   const Emitter& tree_emitter(uint32_t i) const { return *tree_emitters_[i]; }
   // Tree entry of emissive triangle `triangle` (EmissiveMeshes index).
@@ -63,8 +68,9 @@ class EmitterSet {
   // the lamps whose boxes in the tree the ray crosses are tested, so camera and glossy rays do
   // not pay for every lamp of the scene. Lamps without power are not in the tree and so are
   // never met (they would only have hidden lamps behind them).
-  bool intersect_lamps(const Ray& ray, float tmax, uint32_t mask, float* t_hit,
-                       Vec3* radiance) const;
+  // `lamp`, when given, receives the LightSet index of the lamp met.
+  bool intersect_lamps(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance,
+                       size_t* lamp = nullptr) const;
 
  private:
   std::vector<std::unique_ptr<Emitter>> owned_;

@@ -25,6 +25,9 @@ class LampEmitter final : public Emitter {
             float* pdf) const override {
     return lamps_.eval(index_, p, wi, radiance, distance, pdf);
   }
+  SampledSpectrum spectrum(const Vec3& rgb, const SampledWavelengths& wl) const override {
+    return lamps_.spectrum(index_, rgb, wl);
+  }
   Vec3 power(float scene_radius) const override { return lamps_.power(index_, scene_radius); }
   void emit(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir,
             EmittedPhoton* out) const override {

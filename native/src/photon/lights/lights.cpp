@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "photon/base/sampling.h"
+#include "photon/spectral/illuminants.h"
 
 namespace photon {
 namespace {
@@ -18,6 +19,30 @@ bool finite_light(const Light& l) {
          std::isfinite(l.spot_size) && std::isfinite(l.spot_blend) && std::isfinite(l.sun_angle);
 }
 
+spectral::Illuminant standard_illuminant(StandardIlluminant i) {
+  switch (i) {
+    case StandardIlluminant::kA:
+      return spectral::Illuminant::kA;
+    case StandardIlluminant::kF2:
+      return spectral::Illuminant::kF2;
+    case StandardIlluminant::kF7:
+      return spectral::Illuminant::kF7;
+    case StandardIlluminant::kF11:
+      return spectral::Illuminant::kF11;
+    default:
+      return spectral::Illuminant::kD65;
+  }
+}
+
+// Planck's law at `kelvin` on the 1 nm table, scaled to luminance 1.
+std::shared_ptr<const spectral::TabulatedSpectrum> blackbody_shape(float kelvin) {
+  auto s = std::make_shared<spectral::TabulatedSpectrum>(spectral::TabulatedSpectrum::from_function(
+      [kelvin](float lambda) { return spectral::blackbody_normalized(lambda, kelvin); }));
+  const float y = spectral::emission_to_xyz(*s).y;
+  if (y > 0.0f) s->scale(1.0f / y);
+  return s;
+}
+
 }  // namespace
 
 LightSet::LightSet(const std::vector<Light>& lights, std::vector<std::string>* warnings) {
@@ -29,8 +54,23 @@ LightSet::LightSet(const std::vector<Light>& lights, std::vector<std::string>* w
       warn("Light '" + l.name + "' has non-finite settings or transform; skipped");
       continue;
     }
+    // A blackbody or standard illuminant: its own chromaticity (Rec.709, luminance 1) at the
+    // colour's luminance, in both modes.
+    Spectrum spectrum;
+    Vec3 light_color = l.color;
+    if (l.spectrum == LightSpectrum::kBlackbody) {
+      const float kelvin =
+          std::isfinite(l.temperature) ? std::clamp(l.temperature, 800.0f, 1e5f) : 6500.0f;
+      shapes_.push_back(blackbody_shape(kelvin));
+      spectrum.shape = shapes_.back().get();
+    } else if (l.spectrum == LightSpectrum::kIlluminant) {
+      spectrum.shape = &spectral::illuminant_spectrum(standard_illuminant(l.illuminant));
+    }
+    if (spectrum.shape)
+      light_color = spectral::xyz_to_rec709(spectral::emission_to_xyz(*spectrum.shape)) *
+                    std::max(luminance(max(l.color, Vec3(0.0f))), 0.0f);
     // In double: colour x power can overflow a float before it is clamped.
-    const Vec3 color = max(l.color, Vec3(0.0f));
+    const Vec3 color = max(light_color, Vec3(0.0f));
     double power = std::max(l.power, 0.0f);
     const double brightest = static_cast<double>(max_component(color)) * power;
     if (!(brightest > 0.0)) continue;  // zero power: contributes nothing, costs nothing
@@ -92,8 +132,34 @@ LightSet::LightSet(const std::vector<Light>& lights, std::vector<std::string>* w
         break;
       }
     }
+    if (!spectrum.shape && luminance(color) > 0.0f) {
+      spectrum.uplift.emplace(spectral::RgbToSpectrumTable::rec709(), color);
+      spectrum.inv_luminance = 1.0f / luminance(color);
+    }
     lights_.push_back(p);
+    spectra_.push_back(std::move(spectrum));
   }
+}
+
+SampledSpectrum LightSet::spectrum(size_t index, const Vec3& rgb,
+                                   const SampledWavelengths& wl) const {
+  const Spectrum& s = spectra_[index];
+  if (s.shape) return s.shape->sample(wl) * std::max(luminance(rgb), 0.0f);
+  // Every value a light returns is its colour times a non-negative number (the uplift is
+  // homogeneous), found from the luminances.
+  if (s.uplift) return s.uplift->sample(wl) * (std::max(luminance(rgb), 0.0f) * s.inv_luminance);
+  return spectral::illuminant_at(rgb, wl);
+}
+
+SampledSpectrum LightSet::distant_radiance(const Vec3& direction, uint32_t mask,
+                                           const SampledWavelengths& wl) const {
+  SampledSpectrum sum(0.0f);
+  for (size_t i = 0; i < lights_.size(); ++i) {
+    const Prepared& l = lights_[i];
+    if (l.type != LightType::kSun || !(l.visibility & mask) || l.sun_cos_max >= 1.0f) continue;
+    if (dot(-direction, l.axis) >= l.sun_cos_max) sum += spectrum(i, l.radiance, wl);
+  }
+  return sum;
 }
 
 // Cycles 3.x spot_attenuation: the cosine to the axis, faded to zero over the blend region.
@@ -136,8 +202,8 @@ bool LightSet::sample(size_t index, const Vec3& p, Vec2 u, LightSample* out) con
     }
     case LightType::kSun: {
       const Frame frame(-l.axis);
-      out->wi = l.sun_cos_max < 1.0f ? frame.to_world(sample_uniform_cone(u, l.sun_cos_max))
-                                     : -l.axis;
+      out->wi =
+          l.sun_cos_max < 1.0f ? frame.to_world(sample_uniform_cone(u, l.sun_cos_max)) : -l.axis;
       out->distance = INFINITY;
       out->weight = l.irradiance;
       return true;
@@ -166,18 +232,21 @@ bool LightSet::sample(size_t index, const Vec3& p, Vec2 u, LightSample* out) con
   return false;
 }
 
-bool LightSet::intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit,
-                         Vec3* radiance) const {
+bool LightSet::intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance,
+                         size_t* index) const {
   bool found = false;
   float best = tmax;
   for (size_t i = 0; i < lights_.size(); ++i)
-    if (intersect_one(i, ray, best, mask, &best, radiance)) found = true;
+    if (intersect_one(i, ray, best, mask, &best, radiance)) {
+      found = true;
+      if (index) *index = i;
+    }
   if (found) *t_hit = best;
   return found;
 }
 
-bool LightSet::intersect_one(size_t index, const Ray& ray, float tmax, uint32_t mask,
-                             float* t_hit, Vec3* radiance) const {
+bool LightSet::intersect_one(size_t index, const Ray& ray, float tmax, uint32_t mask, float* t_hit,
+                             Vec3* radiance) const {
   const Prepared& l = lights_[index];
   if (!(l.visibility & mask)) return false;
   bool found = false;

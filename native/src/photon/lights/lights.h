@@ -7,6 +7,8 @@
 //    0.25 / A), emitted down the light's local -Z axis.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <vector>
 
 #include "photon/base/math.h"
@@ -14,8 +16,11 @@
 #include "photon/lights/emission_pdf.h"
 #include "photon/lights/light_bounds.h"
 #include "photon/scene/scene.h"
+#include "photon/spectral/rgb_uplift.h"
 
 namespace photon {
+
+class Emitter;
 
 // A sampled connection from a shading point to a light.
 struct LightSample {
@@ -34,6 +39,8 @@ struct LightSample {
 struct EmittedPhoton {
   Ray ray;
   Vec3 power;
+  // The emitter it left (set by PhotonSources), whose spectrum it carries in spectral mode.
+  const Emitter* emitter = nullptr;
 };
 
 // Spheres around the specular objects that caustic photons are aimed at.
@@ -52,8 +59,10 @@ class LightSet {
   bool sample(size_t index, const Vec3& p, Vec2 u, LightSample* out) const;
 
   // Nearest light surface (area quad/disc or point-light sphere) hit by the ray before `tmax`
-  // among lights whose visibility matches `mask`. Returns the emitted radiance towards the ray.
-  bool intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance) const;
+  // among lights whose visibility matches `mask`. Returns the emitted radiance towards the ray
+  // and, when `index` is given, the light's index.
+  bool intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance,
+                 size_t* index = nullptr) const;
   // The same for light `index` alone.
   bool intersect_one(size_t index, const Ray& ray, float tmax, uint32_t mask, float* t_hit,
                      Vec3* radiance) const;
@@ -61,6 +70,14 @@ class LightSet {
   // Radiance from lights at infinity (sun discs) along a ray that left the scene, for lights
   // whose visibility matches `mask`. Zero when the direction misses every sun.
   Vec3 distant_radiance(const Vec3& direction, uint32_t mask) const;
+
+  // Spectral mode: what light `index` emits at the wavelengths, given a value `rgb` it returned
+  // (its radiance, intensity, flux or a sample weight, all multiples of its colour): its
+  // spectrum scaled to that value's luminance, or its colour's illuminant uplift scaled alike.
+  SampledSpectrum spectrum(size_t index, const Vec3& rgb, const SampledWavelengths& wl) const;
+  // distant_radiance at the wavelengths.
+  SampledSpectrum distant_radiance(const Vec3& direction, uint32_t mask,
+                                   const SampledWavelengths& wl) const;
 
   // For multiple importance sampling: whether sample() of this light has a density (area
   // lights, point and spot lights with a radius), and the radiance, distance and solid-angle
@@ -115,9 +132,17 @@ class LightSet {
     float spot_smooth;
     float sun_cos_max;  // cos of half the sun's angular diameter
   };
+  // A light's spectrum: a tabulated shape of luminance 1, or its colour uplifted once.
+  struct Spectrum {
+    const spectral::TabulatedSpectrum* shape = nullptr;
+    std::optional<spectral::RgbIlluminantSpectrum> uplift;
+    float inv_luminance = 0.0f;  // 1 / luminance of the colour the uplift was made from
+  };
   static float spot_attenuation(const Prepared& l, const Vec3& dir_from_light);
   static Cap emission_region(const Prepared& l);
   std::vector<Prepared> lights_;
+  std::vector<Spectrum> spectra_;                                           // one per light
+  std::vector<std::shared_ptr<const spectral::TabulatedSpectrum>> shapes_;  // blackbodies
 };
 
 }  // namespace photon

@@ -66,6 +66,9 @@ struct Lobe {
   float alpha_y = -1.0f;
   float roughness = 0.0f;  // Burley diffuse roughness / Oren-Nayar sigma (Blender's, not squared)
   float ior = 1.45f;       // kDielectric Fresnel and glass / refraction lobes
+  // Abbe number of the lobe's dielectric (0: none): in spectral mode its index of refraction at
+  // a wavelength follows Cauchy's law through (ior at the d line, abbe) (spectral/dispersion.h).
+  float abbe = 0.0f;
   FresnelMode fresnel = FresnelMode::kNone;
   Vec3 f0{0.04f};  // kSchlick reflectance at normal incidence; kInterpolated's tint
   // The lobe's own shading normal (world space, facing wo's side like the BSDF's), or zero for
@@ -76,6 +79,9 @@ struct Lobe {
   Vec3 tangent{0.0f};
 
   bool anisotropic() const { return alpha_y >= 0.0f; }
+  // Whether the lobe's index of refraction depends on the wavelength: an Abbe number and a
+  // lobe that reads `ior` (glass, refraction, dielectric or interpolated Fresnel).
+  bool dispersive() const;
 
   uint8_t flags() const;  // LobeFlags of this lobe with its parameters (delta when alpha small)
 };
@@ -92,6 +98,8 @@ struct BsdfSample {
 // The Fresnel factor of a kGgxReflection lobe (its FresnelMode) at the microfacet cosine
 // `cos_oh`, with `eta` the relative index of refraction of the side wo is on.
 Vec3 lobe_reflection_fresnel(const Lobe& lobe, float cos_oh, float eta);
+
+class SpectralBsdf;
 
 class Bsdf {
  public:
@@ -139,6 +147,7 @@ class Bsdf {
   bool front_facing() const { return front_facing_; }
 
  private:
+  friend class SpectralBsdf;  // the same lobes at sampled wavelengths (spectral_bsdf.h)
   // Normalises wo and maps it to the shading frame; false when it cannot be shaded (NaN,
   // zero, at or below the shading or geometric horizon, or no lobes).
   bool to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const;

@@ -219,6 +219,7 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
     r.fresnel = FresnelMode::kInterpolated;
     r.f0 = lerp(Vec3(1.0f), base, specular_tint);
     r.ior = ior;
+    r.abbe = c.abbe;
     r.normal = geo.lobe_n;
     out->bsdf.add(r);
     const float rt = 1.0f - (1.0f - roughness) * (1.0f - transmission_roughness);
@@ -227,6 +228,7 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
     t.weight = base * (w * final_transmission * (1.0f - fresnel));
     t.alpha = rt * rt;
     t.ior = ior;
+    t.abbe = c.abbe;
     t.normal = geo.lobe_n;
     out->bsdf.add(t);
   }
@@ -291,10 +293,12 @@ void add_closure(const Closure& c, float w, const InputReader& reader, const Lob
     case ClosureType::kGlass:
       l.type = LobeType::kGgxGlass;
       l.fresnel = FresnelMode::kDielectric;
+      l.abbe = c.abbe;
       break;
     case ClosureType::kRefraction:
       l.type = LobeType::kGgxRefraction;
       l.fresnel = FresnelMode::kDielectric;
+      l.abbe = c.abbe;
       break;
     case ClosureType::kTransparent:
       l.type = LobeType::kTransparent;

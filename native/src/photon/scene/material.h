@@ -113,6 +113,9 @@ struct Closure {
   ClosureType type = ClosureType::kDiffuse;
   std::array<Input, static_cast<size_t>(Param::kCount)> params = default_params();
   bool sharp = false;  // Glossy / Glass / Refraction with the Sharp distribution
+  // Abbe number of Glass, Refraction and Principled transmission (0: no dispersion): in
+  // spectral mode the IOR, taken at the d line (587.6 nm), varies with the wavelength.
+  float abbe = 0.0f;
   NormalMap normal;
   int32_t normal_reg = -1;  // a program register holding the Normal input (Bump, Normal Map...)
   // A program register holding the Principled Clearcoat Normal input, or -1 (the shading normal).
@@ -131,7 +134,7 @@ struct Material {
   // The node tree's program: evaluated once per shading point before the closures' inputs are
   // read (empty when every input is a constant or a plain image lookup).
   ShaderProgram program;
-  float pass_index = 0.0f;  // Object Info's Material Index
+  float pass_index = 0.0f;            // Object Info's Material Index
   float cryptomatte_material = 0.0f;  // Cryptomatte ID from the name's hash (zero: none)
 
   // Single-closure materials for tests, the CLI and the built-in scenes.

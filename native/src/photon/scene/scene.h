@@ -84,6 +84,16 @@ struct Instance {
 enum class LightType : uint8_t { kPoint, kSpot, kSun, kArea };
 enum class AreaShape : uint8_t { kRectangle, kEllipse };
 
+// The spectrum a light emits in spectral mode. Other than kRgb, the spectrum's chromaticity
+// replaces the light's colour in both modes (RGB mode renders its Rec.709 colour, so the two
+// agree) and the colour's luminance scales it.
+enum class LightSpectrum : uint8_t {
+  kRgb,         // the colour, uplifted as an illuminant (white is D65)
+  kBlackbody,   // Planck's law at `temperature`
+  kIlluminant,  // a CIE standard illuminant
+};
+enum class StandardIlluminant : uint8_t { kD65, kA, kF2, kF7, kF11 };
+
 // Blender light conventions: the light looks down its local -Z axis; `power` is Blender's
 // `energy` (W for point, spot and area lights, W/m^2 irradiance for the sun).
 struct Light {
@@ -99,6 +109,9 @@ struct Light {
   AreaShape shape = AreaShape::kRectangle;
   float size_x = 1.0f, size_y = 1.0f;
   uint32_t visibility = kVisibleGlossy | kVisibleTransmission;  // lamps hide from camera rays
+  LightSpectrum spectrum = LightSpectrum::kRgb;
+  float temperature = 6500.0f;  // kelvin, kBlackbody
+  StandardIlluminant illuminant = StandardIlluminant::kD65;
 };
 
 enum class Projection : uint8_t { kPerspective, kOrthographic };

@@ -55,9 +55,10 @@ ProgressiveImage progressive(std::shared_ptr<const Scene> scene, const RenderSet
 
 // N samples accumulated in passes are the final render of N samples: each pixel's sum adds
 // the same (seed, pixel, sample) samples in the same order.
-void expect_matches_final(IntegratorType type) {
+void expect_matches_final(IntegratorType type, bool spectral = false) {
   auto scene = std::make_shared<Scene>(make_cornell_box());
-  const RenderSettings s = settings(type, 48, 12);
+  RenderSettings s = settings(type, 48, 12);
+  s.spectral = spectral;
   const std::vector<float> reference = final_render(scene, s);
   const ProgressiveImage image = progressive(scene, s);
   ASSERT_EQ(image.rgba.size(), reference.size());
@@ -78,6 +79,11 @@ TEST(ProgressiveSession, PassesEqualFinalRenderRayTrace) {
 
 TEST(ProgressiveSession, PassesEqualFinalRenderPhotonMap) {
   expect_matches_final(IntegratorType::kPhotonMap);
+}
+
+// The viewport in spectral mode: a sample's wavelengths depend on its index only.
+TEST(ProgressiveSession, PassesEqualFinalRenderSpectral) {
+  expect_matches_final(IntegratorType::kPhotonMap, true);
 }
 
 // A frame wide enough for the coarse first pass (every 3rd pixel): it is only shown, never

@@ -71,6 +71,8 @@ RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
   // Every parameter into its schema's range (after the machine's thread limit, which is the
   // tighter bound and says why).
   clamp_render_params(&s, warnings);
+  if (s.spectral && s.integrator == IntegratorType::kRadiosity && warnings)
+    warnings->push_back("Spectral rendering is not available with radiosity: rendering in RGB");
   return s;
 }
 

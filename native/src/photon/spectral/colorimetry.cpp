@@ -1,6 +1,7 @@
 #include "photon/spectral/colorimetry.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace photon::spectral {
@@ -118,6 +119,21 @@ const Mat3& rec709_to_xyz_matrix() {
 const Mat3& xyz_to_rec709_matrix() {
   static const Mat3 m = invert(rec709_to_xyz_matrix());
   return m;
+}
+
+Vec3 wavelength_rec709(float lambda) {
+  // Tabulated every 1 nm (xyz_to_rec709 of cie_xyz / integral), linearly interpolated.
+  static const std::array<Vec3, kTableSamples> table = [] {
+    std::array<Vec3, kTableSamples> t;
+    const float inv = 1.0f / cie_y_integral();
+    for (int i = 0; i < kTableSamples; ++i) t[i] = xyz_to_rec709(cie_xyz(kLambdaMin + i) * inv);
+    return t;
+  }();
+  if (!(lambda >= kLambdaMin && lambda <= kLambdaMax)) return Vec3(0.0f);
+  const float x = lambda - kLambdaMin;
+  const int i = std::min(static_cast<int>(x), kTableSamples - 2);
+  const float f = x - static_cast<float>(i);
+  return table[i] + (table[i + 1] - table[i]) * f;
 }
 
 Vec3 xyz_to_lab(const Vec3& xyz, const Vec3& white) {

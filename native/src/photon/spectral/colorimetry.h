@@ -69,6 +69,12 @@ inline Vec3 rec709_to_xyz(const Vec3& rgb) {
   return rec709_to_xyz_matrix() * rgb;
 }
 
+// Linear Rec.709 of a unit of spectral radiance at `lambda` nm: xyz(lambda) / sum(y), so that a
+// sample of value L drawn with density pdf adds wavelength_rec709(lambda) L / pdf to a Monte
+// Carlo estimate of emission_to_xyz (a photon's share). Tabulated every 1 nm; may be negative
+// (spectral colours lie outside the Rec.709 gamut); 0 outside 360..830 nm.
+Vec3 wavelength_rec709(float lambda);
+
 // CIE 1976 L*a*b* of `xyz` relative to the reference white `white` (CIE 15:2004, Section 8.2.1).
 Vec3 xyz_to_lab(const Vec3& xyz, const Vec3& white);
 

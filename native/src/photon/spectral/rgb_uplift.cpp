@@ -157,4 +157,33 @@ SampledSpectrum RgbIlluminantSpectrum::sample(const SampledWavelengths& wl) cons
   return unbounded_.sample(wl) * illuminant_->sample(wl);
 }
 
+ReflectanceSpectrum::ReflectanceSpectrum(const Vec3& rgb) {
+  if (rgb.x == rgb.y && rgb.y == rgb.z) {
+    scale_ = std::isfinite(rgb.x) ? std::max(rgb.x, 0.0f) : 0.0f;
+    return;
+  }
+  grey_ = false;
+  const RgbToSpectrumTable& table = RgbToSpectrumTable::rec709();
+  const Vec3 c(std::isfinite(rgb.x) ? std::max(rgb.x, 0.0f) : 0.0f,
+               std::isfinite(rgb.y) ? std::max(rgb.y, 0.0f) : 0.0f,
+               std::isfinite(rgb.z) ? std::max(rgb.z, 0.0f) : 0.0f);
+  const float m = max_component(c);
+  if (m <= 1.0f) {
+    blend_ = table(c);  // RgbAlbedoSpectrum
+    scale_ = 1.0f;
+  } else {
+    scale_ = 2.0f * m;  // RgbUnboundedSpectrum
+    blend_ = table(c / scale_);
+  }
+}
+
+SampledSpectrum illuminant_at(const Vec3& rgb, const SampledWavelengths& wl) {
+  if (rgb.x == rgb.y && rgb.y == rgb.z) {
+    const float c = std::isfinite(rgb.x) ? std::max(rgb.x, 0.0f) : 0.0f;
+    if (c == 0.0f) return SampledSpectrum(0.0f);
+    return illuminant_spectrum(Illuminant::kD65).sample(wl) * c;
+  }
+  return RgbIlluminantSpectrum(RgbToSpectrumTable::rec709(), rgb).sample(wl);
+}
+
 }  // namespace photon::spectral

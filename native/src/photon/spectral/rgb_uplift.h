@@ -124,4 +124,27 @@ class RgbIlluminantSpectrum {
   const TabulatedSpectrum* illuminant_;
 };
 
+// A reflectance or weight colour as a spectrum: RgbAlbedoSpectrum within [0, 1], else
+// RgbUnboundedSpectrum (Add Shader sums above 1); grey is exactly its value everywhere.
+class ReflectanceSpectrum {
+ public:
+  explicit ReflectanceSpectrum(const Vec3& rgb);
+  float operator()(float lambda) const { return grey_ ? scale_ : scale_ * blend_(lambda); }
+  SampledSpectrum sample(const SampledWavelengths& wl) const {
+    return grey_ ? SampledSpectrum(scale_) : blend_.sample(wl) * scale_;
+  }
+
+ private:
+  BlendedSigmoids blend_;
+  float scale_ = 0.0f;
+  bool grey_ = true;
+};
+
+inline SampledSpectrum reflectance_at(const Vec3& rgb, const SampledWavelengths& wl) {
+  return ReflectanceSpectrum(rgb).sample(wl);
+}
+// An emitted colour (radiance, intensity, flux) at the wavelengths: RgbIlluminantSpectrum, so
+// white is D65. Homogeneous: illuminant_at(k c) = k illuminant_at(c) for k >= 0.
+SampledSpectrum illuminant_at(const Vec3& rgb, const SampledWavelengths& wl);
+
 }  // namespace photon::spectral

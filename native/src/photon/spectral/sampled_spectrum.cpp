@@ -73,10 +73,39 @@ SampledWavelengths SampledWavelengths::sample_visible(float u) {
   return w;
 }
 
+SampledWavelengths SampledWavelengths::sample_visible(float u, int n) {
+  n = std::clamp(n, 1, kSpectrumSamples);
+  if (n == kSpectrumSamples) return sample_visible(u);
+  SampledWavelengths w;
+  const float scale = static_cast<float>(n) / kSpectrumSamples;
+  for (int i = 0; i < n; ++i) {
+    const float up = wrap01(u + static_cast<float>(i) / n);
+    w.lambda_[i] = sample_visible_with_pdf(up, &w.pdf_[i]);
+    w.pdf_[i] *= scale;
+  }
+  // Unused wavelengths keep a valid value (the hero's) and pdf 0.
+  for (int i = n; i < kSpectrumSamples; ++i) w.lambda_[i] = w.lambda_[0];
+  return w;
+}
+
+SampledWavelengths SampledWavelengths::single(float lambda, float pdf) {
+  SampledWavelengths w;
+  w.lambda_.fill(lambda);
+  w.pdf_[0] = pdf / kSpectrumSamples;
+  return w;
+}
+
 void SampledWavelengths::terminate_secondary() {
   if (secondary_terminated()) return;
+  const int n = active_count();
   for (int i = 1; i < kSpectrumSamples; ++i) pdf_[i] = 0.0f;
-  pdf_[0] /= kSpectrumSamples;
+  pdf_[0] /= static_cast<float>(n);
+}
+
+int SampledWavelengths::active_count() const {
+  int n = 0;
+  for (float p : pdf_) n += p > 0.0f ? 1 : 0;
+  return n;
 }
 
 bool SampledWavelengths::secondary_terminated() const {

@@ -45,6 +45,9 @@ class SampledSpectrum {
   PHOTON_SPECTRUM_OP(-)
   PHOTON_SPECTRUM_OP(*)
 #undef PHOTON_SPECTRUM_OP
+  SampledSpectrum operator/(float s) const {
+    return *this * (1.0f / s);
+  }
 
   // Division that gives 0 where the divisor is 0 (a terminated wavelength has pdf 0).
   SampledSpectrum safe_div(const SampledSpectrum& b) const {
@@ -69,6 +72,11 @@ class SampledSpectrum {
     for (float v : values_) s += v;
     return s / kSpectrumSamples;
   }
+  bool is_finite() const {
+    for (float v : values_)
+      if (!std::isfinite(v)) return false;
+    return true;
+  }
 
  private:
   std::array<float, kSpectrumSamples> values_{};
@@ -76,6 +84,19 @@ class SampledSpectrum {
 
 inline SampledSpectrum operator*(float s, const SampledSpectrum& v) {
   return v * s;
+}
+
+// The Vec3 helpers' counterparts, so colour-generic code reads the same for both types.
+inline bool is_black(const SampledSpectrum& s) {
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    if (s[i] > 0.0f) return false;
+  return true;
+}
+inline bool is_finite(const SampledSpectrum& s) {
+  return s.is_finite();
+}
+inline float max_component(const SampledSpectrum& s) {
+  return s.max_value();
 }
 
 class SampledWavelengths {
@@ -89,6 +110,12 @@ class SampledWavelengths {
   // being u + i/N wrapped (stratified), as pbrt-v4's SampleVisible: fewer samples where the
   // eye does not see.
   static SampledWavelengths sample_visible(float u);
+  // The same with only the first `n` (1..N) wavelengths in use, u + i/n for i < n: the others
+  // get pdf 0, and the used ones pdf times n/N, so the N-sample average of sampled_to_xyz is
+  // the n-sample estimator.
+  static SampledWavelengths sample_visible(float u, int n);
+  // One wavelength `lambda` drawn with density `pdf` (a photon's): lane 0, the others unused.
+  static SampledWavelengths single(float lambda, float pdf);
 
   float lambda(int i) const { return lambda_[i]; }
   float pdf(int i) const { return pdf_[i]; }
@@ -100,9 +127,13 @@ class SampledWavelengths {
 
   // After a wavelength-dependent event (dispersion) only the hero wavelength goes on: the
   // secondaries get pdf 0 (their contributions vanish through safe_div) and the hero's pdf is
-  // divided by N so that the N-sample average becomes the one-sample estimator.
+  // divided by the number of wavelengths in use, so that their average becomes the one-sample
+  // estimator.
   void terminate_secondary();
   bool secondary_terminated() const;
+  // Wavelengths in use (pdf > 0), and whether wavelength i is.
+  int active_count() const;
+  bool active(int i) const { return pdf_[i] > 0.0f; }
 
  private:
   std::array<float, kSpectrumSamples> lambda_{};
@@ -116,3 +147,9 @@ float visible_wavelength_pdf(float lambda);
 float sample_visible_wavelength(float u);
 
 }  // namespace photon::spectral
+
+namespace photon {
+// The renderer uses these by their short names.
+using spectral::SampledSpectrum;
+using spectral::SampledWavelengths;
+}  // namespace photon

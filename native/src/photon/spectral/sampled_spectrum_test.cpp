@@ -68,6 +68,40 @@ TEST(SpectralSampling, TerminateSecondaryKeepsOneSampleEstimator) {
   for (int i = 1; i < kSpectrumSamples; ++i) EXPECT_EQ(q[i], 0.0f);
 }
 
+TEST(SpectralSampling, FewerWavelengthsThanLanesKeepTheEstimatorNormalised) {
+  for (int n = 1; n <= kSpectrumSamples; ++n) {
+    auto wl = SampledWavelengths::sample_visible(0.2f, n);
+    EXPECT_EQ(wl.active_count(), n);
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+      EXPECT_EQ(wl.active(i), i < n);
+      EXPECT_GE(wl.lambda(i), kLambdaMin);
+      EXPECT_LE(wl.lambda(i), kLambdaMax);
+    }
+    // The used wavelengths are the n-stratified visible samples, pdf scaled by n / N.
+    for (int i = 0; i < n; ++i) {
+      const float u = 0.2f + static_cast<float>(i) / n;
+      EXPECT_NEAR(wl.lambda(i), sample_visible_wavelength(u - std::floor(u)), 1e-2f);
+      EXPECT_NEAR(wl.pdf(i), visible_wavelength_pdf(wl.lambda(i)) * n / kSpectrumSamples, 1e-6f);
+    }
+    // A constant spectrum of 1: every wavelength estimates the same, so the estimate is exact
+    // up to the shape of the colour matching functions; the Y averaged over u must be 1.
+    double y = 0.0;
+    const int count = 4000;
+    for (int k = 0; k < count; ++k) {
+      auto w = SampledWavelengths::sample_visible((k + 0.5f) / count, n);
+      if (k % 2) w.terminate_secondary();
+      y += sampled_to_xyz(SampledSpectrum(1.0f), w).y;
+    }
+    EXPECT_NEAR(y / count, 1.0, 2e-3) << n;
+  }
+  // A single wavelength of its own pdf (a photon's) estimates L / pdf alone.
+  const auto one = SampledWavelengths::single(550.0f, 0.004f);
+  EXPECT_EQ(one.active_count(), 1);
+  EXPECT_TRUE(one.secondary_terminated());
+  const Vec3 xyz = sampled_to_xyz(SampledSpectrum(1.0f), one);
+  EXPECT_NEAR(xyz.y, cie_xyz(550.0f).y / (0.004f * cie_y_integral()), 1e-4f);
+}
+
 // Mean and per-estimate standard deviation (in Rec.709) of the XYZ estimate of `s` over
 // `count` stratified u.
 struct Estimate {
@@ -137,6 +171,11 @@ TEST(SpectralSampling, SpectrumArithmetic) {
   EXPECT_FLOAT_EQ(b.average(), 3.0f);
   EXPECT_FALSE(b.is_black());
   EXPECT_TRUE(SampledSpectrum().is_black());
+  EXPECT_FLOAT_EQ((a / 4.0f)[2], 0.5f);
+  EXPECT_TRUE(is_finite(a));
+  EXPECT_FALSE(is_finite(a * SampledSpectrum(INFINITY)));
+  EXPECT_FALSE(is_black(b));
+  EXPECT_FLOAT_EQ(max_component(b), 4.0f);
 }
 
 }  // namespace

@@ -19,7 +19,7 @@ GuideHistogram build_guide(const PhotonMap& map, const std::vector<PhotonNeighbo
     const int cx = std::min(static_cast<int>(u.x * kGuideResolution), kGuideResolution - 1);
     const int cy = std::min(static_cast<int>(u.y * kGuideResolution), kGuideResolution - 1);
     float& w = weights[cx * kGuideResolution + cy];
-    w += luminance(ph.power());
+    w += luminance(map.power(ph));
     largest = std::max(largest, w);
   }
   GuideHistogram h;

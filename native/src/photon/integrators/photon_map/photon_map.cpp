@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "photon/base/cancel_poll.h"
 
@@ -136,8 +137,51 @@ Photon Photon::make(const Vec3& p, const Vec3& direction, const Vec3& power, uin
   return ph;
 }
 
-PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel)
-    : photons_(std::move(photons)) {
+namespace {
+
+constexpr float kWavelengthSteps = 65535.0f / (spectral::kLambdaMax - spectral::kLambdaMin);
+
+}  // namespace
+
+Photon Photon::make_spectral(const Vec3& p, const Vec3& direction, float lambda, float power,
+                             uint8_t flags, const Vec3& normal) {
+  Photon ph = make(p, direction, Vec3(0.0f), flags, normal);
+  const float code = std::clamp((lambda - spectral::kLambdaMin) * kWavelengthSteps, 0.0f, 65535.0f);
+  const auto w = static_cast<uint16_t>(std::lround(std::isfinite(code) ? code : 0.0f));
+  std::memcpy(ph.power_rgbe, &w, 2);
+  ph.set_spectral_power(power);
+  return ph;
+}
+
+float Photon::wavelength() const {
+  uint16_t w;
+  std::memcpy(&w, power_rgbe, 2);
+  return spectral::kLambdaMin + static_cast<float>(w) / kWavelengthSteps;
+}
+
+float Photon::spectral_power() const {
+  uint16_t q;
+  std::memcpy(&q, power_rgbe + 2, 2);
+  const uint32_t bits = static_cast<uint32_t>(q) << 15;
+  float v;
+  std::memcpy(&v, &bits, 4);
+  return v;
+}
+
+void Photon::set_spectral_power(float power) {
+  uint16_t q = 0;
+  if (power > 0.0f && std::isfinite(power)) {
+    uint32_t bits;
+    std::memcpy(&bits, &power, 4);
+    // Round to the nearest of the kept 16 bits; the largest finite floats saturate.
+    bits = std::min<uint32_t>(bits + (1u << 14), 0x7F7FFFFFu);
+    q = static_cast<uint16_t>(bits >> 15);
+  }
+  std::memcpy(power_rgbe + 2, &q, 2);
+}
+
+PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel, bool spectral)
+    : photons_(std::move(photons)), spectral_(spectral) {
   try {
     if (photons_.capacity() != photons_.size()) {
       // shrink_to_fit, in slices that poll for cancellation (a billion-photon copy takes seconds).
@@ -157,10 +201,11 @@ PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cance
   }
 }
 
-bool PhotonMap::from_balanced(std::vector<Photon> photons, PhotonMap* out) {
+bool PhotonMap::from_balanced(std::vector<Photon> photons, bool spectral, PhotonMap* out) {
   for (const Photon& p : photons)
     if (p.split_axis() > 2) return false;
   out->photons_ = std::move(photons);
+  out->spectral_ = spectral;
   return true;
 }
 
@@ -263,8 +308,36 @@ int64_t PhotonMap::nearest(const Vec3& p, float max_radius, uint8_t flag_mask) c
   return one.empty() ? -1 : static_cast<int64_t>(one[0].index);
 }
 
+Vec3 PhotonMap::power(const Photon& ph) const {
+  return spectral_ ? spectral::wavelength_rec709(ph.wavelength()) * ph.spectral_power()
+                   : ph.power();
+}
+
 Vec3 PhotonMap::radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
                                   uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const {
+  if (!spectral_)
+    return estimate(p, n, k, max_radius, flag_mask, scratch,
+                    [](const Photon& ph) { return ph.power(); });
+  return estimate(p, n, k, max_radius, flag_mask, scratch, [](const Photon& ph) {
+    return spectral::wavelength_rec709(ph.wavelength()) * ph.spectral_power();
+  });
+}
+
+Vec3 PhotonMap::reflected_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
+                                   uint8_t flag_mask, const Vec3& albedo,
+                                   std::vector<PhotonNeighbor>* scratch) const {
+  if (!spectral_) return radiance_estimate(p, n, k, max_radius, flag_mask, scratch) * albedo;
+  const spectral::ReflectanceSpectrum reflectance(albedo);
+  return estimate(p, n, k, max_radius, flag_mask, scratch, [&](const Photon& ph) {
+    const float lambda = ph.wavelength();
+    return spectral::wavelength_rec709(lambda) * (ph.spectral_power() * reflectance(lambda));
+  });
+}
+
+template <class Value>
+Vec3 PhotonMap::estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
+                         uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch,
+                         Value&& value) const {
   k_nearest(p, k, max_radius, flag_mask, scratch);
   if (scratch->empty()) return Vec3(0.0f);
   // With fewer than k photons inside max_radius the disc is the whole search disc; otherwise it
@@ -279,7 +352,7 @@ Vec3 PhotonMap::radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float 
     const float d = std::sqrt(nb.distance_squared);
     if (!photon_on_surface(ph, p, n, d)) continue;
     const float w = 1.0f - d / (kConeFilterC * r);
-    sum += ph.power() * w;
+    sum += value(ph) * w;
   }
   const float norm = 1.0f - 2.0f / (3.0f * kConeFilterC);
   return sum * (kInvPi / (norm * kPi * r2));
@@ -318,11 +391,12 @@ float PhotonMap::median_kth_distance(size_t k, uint8_t flag_mask, size_t samples
   return distances[distances.size() / 2];
 }
 
-Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask) {
+Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask, bool spectral) {
   double s[3] = {0, 0, 0};
   for (const Photon& ph : photons) {
     if (!(ph.flags & flag_mask)) continue;
-    const Vec3 p = ph.power();
+    const Vec3 p =
+        spectral ? spectral::wavelength_rec709(ph.wavelength()) * ph.spectral_power() : ph.power();
     s[0] += p.x;
     s[1] += p.y;
     s[2] += p.z;

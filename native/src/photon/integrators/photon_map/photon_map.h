@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "photon/base/math.h"
+#include "photon/spectral/rgb_uplift.h"
 
 namespace photon {
 
@@ -26,9 +27,14 @@ enum PhotonFlags : uint8_t {
 // use 5 bits between them; the other 11 hold the normal of the surface the photon lies on
 // (octahedral map, 6 + 5 bits, within 6 degrees), so an estimate can leave out photons of
 // another surface (Jensen 2001, sec. 7.1) at no cost in memory.
+//
+// A spectral map's photons carry one wavelength each in the same 4 bytes: the wavelength in
+// 1/139 nm steps over 360..830 nm (uint16) and the power as a float's top 16 bits below the
+// sign (8 exponent and 8 mantissa bits, rounded: 0.2% steps). The power is the spectral flux
+// at the wavelength over the wavelength's sampling density (spectral_path.h, wavelength_rgb).
 struct Photon {
   float position[3];
-  uint8_t power_rgbe[4];
+  uint8_t power_rgbe[4];  // RGB maps: RGBE; spectral maps: wavelength, power
   uint8_t theta, phi;
   uint8_t flags;  // low 3 bits: PhotonFlags; high 5 bits: normal, octahedral v
   uint8_t axis;   // low 2 bits: kd-tree split axis; high 6 bits: normal, octahedral u
@@ -42,6 +48,13 @@ struct Photon {
   // `normal`: the surface's geometric normal on the side the photon arrived from.
   static Photon make(const Vec3& p, const Vec3& direction, const Vec3& power, uint8_t flags,
                      const Vec3& normal);
+
+  // A spectral map's photon.
+  static Photon make_spectral(const Vec3& p, const Vec3& direction, float lambda, float power,
+                              uint8_t flags, const Vec3& normal);
+  float wavelength() const;
+  float spectral_power() const;
+  void set_spectral_power(float power);
 };
 static_assert(sizeof(Photon) == 20, "the photon record is 20 bytes");
 
@@ -59,11 +72,17 @@ class PhotonMap {
   PhotonMap() = default;
   // Takes the photons and balances the tree (parallel, deterministic for a given input order).
   // When `cancel` is set during the build the map is left empty (within ~a millisecond).
-  explicit PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel = nullptr);
+  // `spectral`: the photons were made with Photon::make_spectral.
+  explicit PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel = nullptr,
+                     bool spectral = false);
   // A map of photons already in a PhotonMap's balanced order with their split axes (a saved
   // map's photons(), prepared_state_io.h): kept as they are. False (and `out` untouched) when a
   // split axis is not 0, 1 or 2.
-  static bool from_balanced(std::vector<Photon> photons, PhotonMap* out);
+  static bool from_balanced(std::vector<Photon> photons, bool spectral, PhotonMap* out);
+
+  bool spectral() const { return spectral_; }
+  // A photon's power in linear Rec.709 (a spectral photon's share of the XYZ estimate).
+  Vec3 power(const Photon& ph) const;
 
   size_t size() const { return photons_.size(); }
   bool empty() const { return photons_.empty(); }
@@ -86,6 +105,12 @@ class PhotonMap {
   // through walls (photon_on_surface). `scratch` avoids allocation per query.
   Vec3 radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
                          uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const;
+  // The same estimate for a surface of diffuse reflectance `albedo` (the estimate times it): a
+  // spectral map multiplies each photon by the reflectance at its own wavelength, so coloured
+  // light on coloured surfaces is reflected as spectra are, not as RGB products.
+  Vec3 reflected_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
+                          uint8_t flag_mask, const Vec3& albedo,
+                          std::vector<PhotonNeighbor>* scratch) const;
 
   // Median distance from a stored photon to its k-th nearest photon (itself included), over up
   // to `samples` photons spread through the map: the radius of the disc a k-nearest estimate
@@ -94,7 +119,13 @@ class PhotonMap {
 
  private:
   void build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel);
+  // The cone-filtered sum of the k nearest photons' `value(photon)` as radiance (the shared part
+  // of both estimates).
+  template <class Value>
+  Vec3 estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius, uint8_t flag_mask,
+                std::vector<PhotonNeighbor>* scratch, Value&& value) const;
   std::vector<Photon> photons_;
+  bool spectral_ = false;
 };
 
 // Whether a photon can belong to the surface through p with normal n (Jensen 2001, sec. 7.1:
@@ -117,7 +148,8 @@ constexpr float kSurfaceMinCos = 0.25f;
 constexpr float kSurfaceSlope = 0.1f;
 bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq, float distance);
 
-// Sum of the photons' power (used by tests and statistics).
-Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask = kPhotonAny);
+// Sum of the photons' power (used by tests and statistics), in linear Rec.709 for spectral ones.
+Vec3 total_power(const std::vector<Photon>& photons, uint8_t flag_mask = kPhotonAny,
+                 bool spectral = false);
 
 }  // namespace photon

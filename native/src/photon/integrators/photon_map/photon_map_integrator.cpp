@@ -6,13 +6,14 @@
 #include <chrono>
 #include <cstdio>
 
+#include "photon/base/sampling.h"
+#include "photon/integrators/photon_map/irradiance_cache_build.h"
+#include "photon/integrators/photon_map/irradiance_cache_points.h"
+#include "photon/integrators/photon_map/photon_memory.h"
+#include "photon/integrators/photon_map/photon_tracer.h"
+#include "photon/integrators/spectral_path.h"
 #include "photon/lights/direct_lighting.h"
 #include "photon/lights/emitter_set.h"
-#include "photon/integrators/photon_map/irradiance_cache_build.h"
-#include "photon/integrators/photon_map/photon_memory.h"
-#include "photon/integrators/photon_map/irradiance_cache_points.h"
-#include "photon/integrators/photon_map/photon_tracer.h"
-#include "photon/base/sampling.h"
 
 namespace photon {
 namespace {
@@ -80,7 +81,8 @@ uint64_t derived_stream(Sampler& sampler) {
 // under kPilotMinimum photons need no estimate (at worst a few hundred MB).
 constexpr uint64_t kPilotPhotons = 8192;
 constexpr uint64_t kPilotMinimum = 65536;
-constexpr uint64_t kPilotSeedTag = 0x9E3779B97F4A7C15ull;  // pilot streams differ from the real ones
+constexpr uint64_t kPilotSeedTag =
+    0x9E3779B97F4A7C15ull;  // pilot streams differ from the real ones
 
 std::string thousands(uint64_t n) {
   std::string digits = std::to_string(n), out;
@@ -116,7 +118,8 @@ void fit_photon_counts_to_memory(const RenderContext& context, const PhotonSourc
   request.global_photons = global;
   request.caustic_photons = caustic;
   if (traced.global_emitted) {
-    request.global_stored_per_emitted = static_cast<double>(traced.global.size()) / traced.global_emitted;
+    request.global_stored_per_emitted =
+        static_cast<double>(traced.global.size()) / traced.global_emitted;
     request.gather_points_per_emitted =
         static_cast<double>(traced.gather_points.size()) / traced.global_emitted;
   }
@@ -142,10 +145,9 @@ void fit_photon_counts_to_memory(const RenderContext& context, const PhotonSourc
     control.warn("Photon memory: " + thousands(global) + " global and " + thousands(caustic) +
                  " caustic photons would need about " + bytes_text(plan.requested_bytes) +
                  " at the peak, more than the memory limit (" + percent + " of the " +
-                 bytes_text(available) + " available); tracing " +
-                 thousands(plan.global_photons) + " and " + thousands(plan.caustic_photons) +
-                 " instead (" + scale + " of the request, about " +
-                 bytes_text(plan.planned_bytes) +
+                 bytes_text(available) + " available); tracing " + thousands(plan.global_photons) +
+                 " and " + thousands(plan.caustic_photons) + " instead (" + scale +
+                 " of the request, about " + bytes_text(plan.planned_bytes) +
                  "). Raise the memory limit or lower the photon counts to avoid this");
 }
 
@@ -185,6 +187,7 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
   trace.caustic_photons = s.caustic_photons;
   trace.time_budget = s.photon_time;
   trace.seed = s.seed;
+  trace.spectral = spectral_mode(context);
   fit_photon_counts_to_memory(context, sources, control, &trace, &stats_.photon_memory);
   if (control.cancelled()) return;
   PhotonTraceResult traced = trace_photons(context, sources, trace, control);
@@ -197,9 +200,9 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
   control.report("Building photon maps", 1.0f);
   auto t0 = Clock::now();
   const uint64_t global_stored = traced.global.size(), caustic_stored = traced.caustic.size();
-  state_.global = PhotonMap(std::move(traced.global), control.cancel);
+  state_.global = PhotonMap(std::move(traced.global), control.cancel, traced.spectral);
   if (control.cancelled()) return;
-  state_.caustic = PhotonMap(std::move(traced.caustic), control.cancel);
+  state_.caustic = PhotonMap(std::move(traced.caustic), control.cancel, traced.spectral);
   if (control.cancelled()) return;
   if (s.gather_radius > 0.0f) {
     std::string notes;
@@ -359,8 +362,8 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
       if (state.after_glossy) {
         float t_light;
         Vec3 lamp;
-        if (context.emitters->intersect_lamps(state.ray, found ? hit.t : state.ray.tmax,
-                                              state.mask, &t_light, &lamp)) {
+        if (context.emitters->intersect_lamps(state.ray, found ? hit.t : state.ray.tmax, state.mask,
+                                              &t_light, &lamp)) {
           sum = sum + state.throughput * lamp;
           return false;
         }
@@ -449,7 +452,8 @@ Vec3 PhotonMapIntegrator::photon_dots(const SurfaceInteraction& x) const {
     for (const PhotonNeighbor& nb : scratch)
       if (nb.distance_squared < best) best = nb.distance_squared, index = nb.index;
     if (best < 0.09f * spacing2) {
-      const Vec3 power = (*map)[index].power();
+      // A spectral photon shows its wavelength's colour (within the gamut).
+      const Vec3 power = max(map->power((*map)[index]), Vec3(0.0f));
       const float m = max_component(power);
       return m > 0.0f ? power / m : Vec3(0.0f);
     }
@@ -463,6 +467,7 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
   const SurfaceInteraction& x = *v.si;
   const Bsdf& bsdf = v.shading->bsdf;
   if (s.light_passes && v.depth == 0) result->photon_map = photon_dots(x);
+  if (v.spectral) return shade_diffuse_spectral(context, v, sampler, result);
   const Vec3 weight = v.throughput * bsdf.diffuse_reflectance();
   if (is_black(weight)) return;
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
@@ -491,6 +496,53 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
         weight * state_.global.radiance_estimate(x.p, bsdf.ng(),
                                                  static_cast<size_t>(std::max(s.gather_count, 1)),
                                                  state_.global_radius, kPhotonIndirect, &scratch);
+  }
+}
+
+// Spectral paths. The photon estimates reflect each spectral photon at its own wavelength and
+// return the reflected light in Rec.709; the final gather and its caches are RGB (the gather
+// rays and radiance records are not spectral: a tristimulus approximation of the indirect
+// light, uplifted as an illuminant where a camera path meets it).
+//  - Light reflected towards the camera's first hit is added as it is (the path's weight is 1
+//    at every wavelength there); deeper in the path (seen in a mirror, through glass) it is
+//    uplifted and weighted by the path at its wavelengths.
+//  - Incident light (albedo 1) is uplifted and weighted by the path and the reflectance.
+void PhotonMapIntegrator::shade_diffuse_spectral(const RenderContext& context, const PathVertex& v,
+                                                 Sampler& sampler, RadianceSample* result) const {
+  const RenderSettings& s = *context.settings;
+  const SurfaceInteraction& x = *v.si;
+  const Bsdf& bsdf = v.shading->bsdf;
+  const SpectralVertex& sv = *v.spectral;
+  const SampledWavelengths& wl = *sv.wl;
+  const SampledSpectrum weight = sv.beta * sv.bsdf->diffuse_reflectance();
+  if (is_black(weight)) return;
+  const Vec3 albedo = bsdf.diffuse_reflectance();
+  const auto add_reflected = [&](const Vec3& reflected, Vec3* pass, SpectralTally* tally) {
+    if (v.depth == 0)
+      *pass += reflected;
+    else if (!is_black(reflected))
+      tally->add(sv.beta * spectral::illuminant_at(reflected, wl), wl);
+  };
+  const auto add_incident = [&](const Vec3& incident, SpectralTally* tally) {
+    if (!is_black(incident)) tally->add(weight * spectral::illuminant_at(incident, wl), wl);
+  };
+  std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
+  if (!state_.caustic.empty())
+    add_reflected(state_.caustic.reflected_estimate(
+                      x.p, bsdf.ng(), static_cast<size_t>(std::max(s.caustic_gather_count, 1)),
+                      state_.caustic_radius, kPhotonCaustic, albedo, &scratch),
+                  &result->caustic, &sv.light->caustic);
+  const bool gather = s.final_gather_rays > 0 && (!v.after_glossy || !v.after_diffuse);
+  Vec3 cached;
+  if (gather && state_.irradiance.lookup(x.p, bsdf.frame().n, &cached)) {
+    add_incident(cached, &sv.light->indirect);
+  } else if (gather) {
+    add_incident(final_gather(context, x, bsdf, s.final_gather_rays, sampler), &sv.light->indirect);
+  } else if (!state_.global.empty()) {
+    add_reflected(
+        state_.global.reflected_estimate(x.p, bsdf.ng(), static_cast<size_t>(std::max(s.gather_count, 1)),
+                                   state_.global_radius, kPhotonIndirect, albedo, &scratch),
+        &result->indirect, &sv.light->indirect);
   }
 }
 

@@ -67,6 +67,8 @@ class PhotonMapIntegrator : public Integrator {
   // Caustics and indirect light of the diffuse lobes at a camera-path vertex.
   void shade_diffuse(const RenderContext& context, const PathVertex& vertex, Sampler& sampler,
                      RadianceSample* result) const;
+  void shade_diffuse_spectral(const RenderContext& context, const PathVertex& vertex,
+                              Sampler& sampler, RadianceSample* result) const;
   Vec3 photon_dots(const SurfaceInteraction& x) const;
 
   PhotonMapPrepared state_;          // what prepare() computes for the pixels

@@ -47,6 +47,7 @@ bool PhotonSources::emit_global(Sampler& sampler, EmittedPhoton* out) const {
   const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
   sources_[k]->emit(PhotonFrame{center_, radius_}, u_rest, u_pos, u_dir, out);
   out->power = out->power / global_.probability(k);
+  out->emitter = sources_[k];
   return is_finite(out->power) && !is_black(out->power);
 }
 
@@ -58,6 +59,7 @@ bool PhotonSources::emit_caustic(Sampler& sampler, EmittedPhoton* out) const {
                                  sampler, out))
     return false;
   out->power = out->power / caustic_.probability(k);
+  out->emitter = sources_[k];
   return is_finite(out->power) && !is_black(out->power);
 }
 

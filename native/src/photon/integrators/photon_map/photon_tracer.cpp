@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "photon/integrators/camera_path.h"
+#include "photon/integrators/spectral_path.h"
 
 namespace photon {
 namespace {
@@ -45,7 +46,16 @@ struct PhotonVisitor {
   const PathSetup& setup;
   uint64_t index;
   ChunkOutput* out;
+  float wavelength_pdf = 0.0f;  // spectral photons: the density their wavelength was drawn with
   ShadingPoint sp{};
+  SpectralBsdf sbsdf{};
+
+  Photon make(const PathState& state, const SurfaceInteraction& si, uint8_t kind) const {
+    const Vec3& dir = state.ray.direction;
+    if (!state.spectral) return Photon::make(si.p, dir, state.throughput, kind, sp.bsdf.ng());
+    return Photon::make_spectral(si.p, dir, state.wl.lambda(0), state.beta[0] / wavelength_pdf,
+                                 kind, sp.bsdf.ng());
+  }
 
   bool segment(const PathState&, bool found, const Hit&) {
     ++out->rays;
@@ -56,19 +66,19 @@ struct PhotonVisitor {
     const Bsdf& bsdf = sp.bsdf;
     if (bsdf.flags() & kLobeDiffuse) {
       const uint8_t kind = photon_kind(state);
-      const Vec3& dir = state.ray.direction;
       if (!setup.caustic_pass) {
-        out->photons.push_back(Photon::make(si.p, dir, state.throughput, kind, bsdf.ng()));
+        out->photons.push_back(make(state, si, kind));
         if (hash_combine(index, static_cast<uint64_t>(state.depth)) %
                 setup.settings->gather_point_stride ==
             0)
           out->gather_points.push_back({si.p, bsdf.ng()});
       } else if (kind == kPhotonCaustic) {
-        out->photons.push_back(
-            Photon::make(si.p, dir, state.throughput, kPhotonCaustic, bsdf.ng()));
+        out->photons.push_back(make(state, si, kPhotonCaustic));
       }
     }
-    return VertexStep::scatter(bsdf);
+    if (!state.spectral) return VertexStep::scatter(bsdf);
+    sbsdf = SpectralBsdf(bsdf, state.wl);
+    return VertexStep::scatter(bsdf, &sbsdf);
   }
   void scattered(const PathState&, bool) {}
 };
@@ -81,19 +91,29 @@ void trace_path(const PathSetup& setup, uint64_t index, const EmittedPhoton& emi
   state.ray = emitted.ray;
   state.throughput = emitted.power * setup.power_scale;
   state.mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
+  PhotonVisitor visitor{setup, index, out};
+  if (setup.settings->spectral) {
+    // One wavelength per photon, stratified over the pass's photons (no sampler dimension),
+    // carrying the emitter's spectral flux at it.
+    const float lambda = spectral::sample_visible_wavelength(sampler.stratified_1d(kWavelengthTag));
+    visitor.wavelength_pdf = spectral::visible_wavelength_pdf(lambda);
+    if (!(visitor.wavelength_pdf > 0.0f) || !emitted.emitter) return;
+    const SampledWavelengths wl = SampledWavelengths::single(lambda, visitor.wavelength_pdf);
+    state.start_spectral(wl, emitted.emitter->spectrum(emitted.power, wl) * setup.power_scale);
+    if (state.black()) return;
+  }
   // Caustic photons follow perfectly specular lobes only; global photons every lobe.
   const PathRules rules =
       power_rules(setup.settings->max_bounces - 1, setup.caustic_pass ? kLobeSpecular : kLobeAll);
-  PhotonVisitor visitor{setup, index, out};
   walk_path(*setup.context, rules, &state, sampler, visitor);
 }
 
 // Traces photons [begin, end) of one pass in parallel chunks; their results, in chunk order,
 // become one block of `blocks` (concatenated once at the end, so the big arrays are never
 // reallocated and copied while tracing). Chunks poll for cancellation.
-void trace_range(const PathSetup& setup, const PhotonSources& sources, uint64_t begin,
-                 uint64_t end, uint32_t stratify_count, const PrepareControl& control,
-                 PhotonTraceResult* result, std::vector<std::vector<Photon>>* blocks,
+void trace_range(const PathSetup& setup, const PhotonSources& sources, uint64_t begin, uint64_t end,
+                 uint32_t stratify_count, const PrepareControl& control, PhotonTraceResult* result,
+                 std::vector<std::vector<Photon>>* blocks,
                  std::vector<std::vector<GatherPoint>>* gather_blocks) {
   const uint64_t chunks = (end - begin + kChunk - 1) / kChunk;
   std::vector<ChunkOutput> outputs(chunks);
@@ -144,21 +164,28 @@ void concatenate(std::vector<std::vector<T>>* blocks, std::vector<T>* out,
   blocks->clear();
 }
 
-void rescale(std::vector<Photon>* photons, float scale, const PrepareControl& control) {
+void rescale(std::vector<Photon>* photons, float scale, bool spectral,
+             const PrepareControl& control) {
   tbb::parallel_for(tbb::blocked_range<size_t>(0, photons->size(), 8192), [&](const auto& r) {
     for (size_t i = r.begin(); i != r.end(); ++i) {
       if ((i & 0xFFFF) == 0 && control.cancelled()) return;
       Photon& ph = (*photons)[i];
-      encode_rgbe(ph.power() * scale, ph.power_rgbe);
+      if (spectral)
+        ph.set_spectral_power(ph.spectral_power() * scale);
+      else
+        encode_rgbe(ph.power() * scale, ph.power_rgbe);
     }
   });
 }
 
 std::string count_text(uint64_t n) {
   char buf[32];
-  if (n >= 1000000) std::snprintf(buf, sizeof buf, "%.2fM", n / 1e6);
-  else if (n >= 1000) std::snprintf(buf, sizeof buf, "%.0fk", n / 1e3);
-  else std::snprintf(buf, sizeof buf, "%llu", static_cast<unsigned long long>(n));
+  if (n >= 1000000)
+    std::snprintf(buf, sizeof buf, "%.2fM", n / 1e6);
+  else if (n >= 1000)
+    std::snprintf(buf, sizeof buf, "%.0fk", n / 1e3);
+  else
+    std::snprintf(buf, sizeof buf, "%llu", static_cast<unsigned long long>(n));
   return buf;
 }
 
@@ -168,6 +195,7 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
                                 const PhotonTraceSettings& settings,
                                 const PrepareControl& control) {
   PhotonTraceResult result;
+  result.spectral = settings.spectral;
   const auto t0 = Clock::now();
   const bool timed = settings.time_budget > 0.0;
   uint64_t want_global = sources.has_global() ? settings.global_photons : 0;
@@ -182,10 +210,14 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
   }
   if (want_global + want_caustic == 0) return result;
 
-  PathSetup global_setup{&context, &settings, false, timed ? 1.0f : 1.0f / std::max<uint64_t>(want_global, 1)};
-  PathSetup caustic_setup{&context, &settings, true, timed ? 1.0f : 1.0f / std::max<uint64_t>(want_caustic, 1)};
-  const uint32_t strat_global = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_global, UINT32_MAX));
-  const uint32_t strat_caustic = timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_caustic, UINT32_MAX));
+  PathSetup global_setup{&context, &settings, false,
+                         timed ? 1.0f : 1.0f / std::max<uint64_t>(want_global, 1)};
+  PathSetup caustic_setup{&context, &settings, true,
+                          timed ? 1.0f : 1.0f / std::max<uint64_t>(want_caustic, 1)};
+  const uint32_t strat_global =
+      timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_global, UINT32_MAX));
+  const uint32_t strat_caustic =
+      timed ? 0 : static_cast<uint32_t>(std::min<uint64_t>(want_caustic, UINT32_MAX));
   uint64_t stored = 0;
 
   std::vector<std::vector<Photon>> global_blocks, caustic_blocks;
@@ -223,9 +255,10 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
     result.global_emitted = g_end;
     result.caustic_emitted = c_end;
     const double t = std::chrono::duration<double>(Clock::now() - t0).count();
-    const float fraction = timed ? static_cast<float>(std::min(1.0, t / settings.time_budget))
-                                 : static_cast<float>(result.global_emitted + result.caustic_emitted) /
-                                       static_cast<float>(want_global + want_caustic);
+    const float fraction =
+        timed ? static_cast<float>(std::min(1.0, t / settings.time_budget))
+              : static_cast<float>(result.global_emitted + result.caustic_emitted) /
+                    static_cast<float>(want_global + want_caustic);
     control.report("Tracing photons " + count_text(result.global_emitted + result.caustic_emitted) +
                        (timed ? "" : " / " + count_text(want_global + want_caustic)) + " (" +
                        count_text(stored) + " stored)",
@@ -239,11 +272,13 @@ PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSource
   // (time budget, early stop) the stored powers are rescaled now.
   if ((timed || result.stopped_early) && !control.cancelled()) {
     if (result.global_emitted)
-      rescale(&result.global, (timed ? 1.0f : want_global) / static_cast<float>(result.global_emitted),
-              control);
+      rescale(&result.global,
+              (timed ? 1.0f : want_global) / static_cast<float>(result.global_emitted),
+              settings.spectral, control);
     if (result.caustic_emitted)
-      rescale(&result.caustic, (timed ? 1.0f : want_caustic) / static_cast<float>(result.caustic_emitted),
-              control);
+      rescale(&result.caustic,
+              (timed ? 1.0f : want_caustic) / static_cast<float>(result.caustic_emitted),
+              settings.spectral, control);
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   return result;

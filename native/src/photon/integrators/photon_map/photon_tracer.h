@@ -23,10 +23,13 @@ struct GatherPoint {
 struct PhotonTraceSettings {
   uint64_t global_photons = 200000;  // photon paths to emit (ignored when time_budget > 0)
   uint64_t caustic_photons = 100000;
-  double time_budget = 0.0;          // seconds; > 0 traces until the time is spent
+  double time_budget = 0.0;  // seconds; > 0 traces until the time is spent
   uint64_t seed = 0;
-  int max_bounces = 64;              // safety limit; Russian roulette ends paths before
-  int gather_point_stride = 4;       // every n-th global photon (by hash) becomes a GatherPoint
+  int max_bounces = 64;         // safety limit; Russian roulette ends paths before
+  int gather_point_stride = 4;  // every n-th global photon (by hash) becomes a GatherPoint
+  // Each photon carries one wavelength (stratified over the photons, visible-response density)
+  // and the maps hold spectral photons (Photon::make_spectral).
+  bool spectral = false;
 };
 
 struct PhotonTraceResult {
@@ -37,10 +40,10 @@ struct PhotonTraceResult {
   uint64_t rays = 0;
   double seconds = 0.0;
   bool stopped_early = false;  // Esc or the time budget ended tracing before the counts
+  bool spectral = false;       // the photons are spectral ones
 };
 
 PhotonTraceResult trace_photons(const RenderContext& context, const PhotonSources& sources,
-                                const PhotonTraceSettings& settings,
-                                const PrepareControl& control);
+                                const PhotonTraceSettings& settings, const PrepareControl& control);
 
 }  // namespace photon

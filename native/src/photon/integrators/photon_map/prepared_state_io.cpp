@@ -50,10 +50,20 @@ bool expect_tag(PreparedStateReader* in, uint32_t tag) {
   return found == tag || in->fail("a section of the payload is missing or out of place");
 }
 
+// A map: its tag, whether its photons are spectral (one wavelength each), its photons.
+void write_map(PreparedStateWriter* out, uint32_t tag, const PhotonMap& map) {
+  out->value(tag);
+  out->value<uint8_t>(map.spectral() ? 1 : 0);
+  out->vector(map.photons());
+}
+
 bool read_map(PreparedStateReader* in, uint32_t tag, PhotonMap* map) {
   std::vector<Photon> photons;
-  if (!expect_tag(in, tag) || !in->vector(&photons)) return false;
-  return PhotonMap::from_balanced(std::move(photons), map) ||
+  uint8_t spectral = 0;
+  if (!expect_tag(in, tag) || !in->value(&spectral)) return false;
+  if (spectral > 1) return in->fail("a photon map's spectral flag is neither 0 nor 1");
+  if (!in->vector(&photons)) return false;
+  return PhotonMap::from_balanced(std::move(photons), spectral == 1, map) ||
          in->fail("a photon has an invalid kd-tree split axis");
 }
 
@@ -61,10 +71,8 @@ bool read_map(PreparedStateReader* in, uint32_t tag, PhotonMap* map) {
 
 void write_photon_map_prepared(const PhotonMapPrepared& prepared, const PrepareStats& stats,
                                PreparedStateWriter* out) {
-  out->value(kTagGlobal);
-  out->vector(prepared.global.photons());
-  out->value(kTagCaustic);
-  out->vector(prepared.caustic.photons());
+  write_map(out, kTagGlobal, prepared.global);
+  write_map(out, kTagCaustic, prepared.caustic);
   out->value(kTagRadiance);
   out->value(prepared.radiance.cell_size());
   out->vector(prepared.radiance.records());

@@ -60,8 +60,9 @@ struct Frame {
   int tiles = 0;
 };
 
-Frame render(const RenderSettings& s, const PreparedStateFiles& files = {}) {
-  RenderSession session(caustic_box(), s);
+Frame render(const RenderSettings& s, const PreparedStateFiles& files = {},
+             std::shared_ptr<const Scene> scene = caustic_box()) {
+  RenderSession session(std::move(scene), s);
   session.set_prepared_state(files);
   session.start();
   Frame f;
@@ -159,6 +160,30 @@ TEST(PreparedState, LoadedStateRendersTheSameBitsAsPreparing) {
     EXPECT_TRUE(band.stats.prepared_state.loaded) << joined(band.warnings);
     expect_same_region(prepared, band, border);
   }
+}
+
+// Spectral photons (one wavelength each, through a dispersive glass ball) load as spectral
+// photons; an RGB render refuses the spectral render's file.
+TEST(PreparedState, SpectralStateRendersTheSameBitsAndIsRefusedInRgbMode) {
+  TempFile file("spectral.bin");
+  Scene dispersive = make_caustic_box();
+  dispersive.materials[3].closures[0].abbe = 25.0f;  // the glass ball
+  const auto scene = std::make_shared<const Scene>(std::move(dispersive));
+  RenderSettings s = caustic_settings();
+  s.spectral = true;
+  const Frame prepared = render(s, {"", file.path(), false}, scene);
+  ASSERT_TRUE(prepared.stats.prepared_state.saved) << joined(prepared.warnings);
+  RenderSettings band = s;
+  band.y0 = 9, band.y1 = 17;
+  const Frame loaded = render(band, {file.path(), "", false}, scene);
+  EXPECT_TRUE(loaded.stats.prepared_state.loaded) << joined(loaded.warnings);
+  expect_same_region(prepared, loaded, band);
+
+  RenderSettings rgb = band;
+  rgb.spectral = false;
+  const Frame refused = render(rgb, {file.path(), "", false}, scene);
+  EXPECT_FALSE(refused.stats.prepared_state.loaded);
+  EXPECT_FALSE(refused.warnings.empty());
 }
 
 TEST(PreparedState, PrepareOnlySavesWithoutRendering) {

@@ -33,8 +33,10 @@ struct SppmCameraSample {
 };
 
 // Traces the camera ray through a pixel and gathers the iteration's `photons` within `radius` of
-// its visible point.
+// its visible point; a spectral path at the iteration's wavelengths `wl` when given (those of
+// its photons), whose light arrives converted to Rec.709.
 SppmCameraSample trace_sppm_camera(const RenderContext& context, const Ray& camera_ray,
-                                   Sampler& sampler, const PhotonKdTree& photons, float radius);
+                                   Sampler& sampler, const PhotonKdTree& photons, float radius,
+                                   const SampledWavelengths* wl = nullptr);
 
 }  // namespace photon

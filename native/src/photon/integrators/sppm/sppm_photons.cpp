@@ -26,7 +26,9 @@ struct ChunkOutput {
 struct SppmPhotonVisitor {
   const RenderContext& context;
   ChunkOutput* out;
+  int wavelengths = 0;  // spectral photons: the iteration's wavelengths in use
   ShadingPoint sp{};
+  SpectralBsdf sbsdf{};
 
   bool segment(const PathState&, bool found, const Hit&) {
     ++out->rays;
@@ -36,9 +38,16 @@ struct SppmPhotonVisitor {
     sp = shade(context, si, -state.ray.direction);
     const Bsdf& bsdf = sp.bsdf;
     // A non-finite position would break the kd-tree's ordering; such a photon is dropped.
-    if (state.depth > 0 && is_visible_point(bsdf) && is_finite(si.p) && is_finite(state.throughput))
-      out->photons.push_back({si.p, -state.ray.direction, state.throughput});
-    return VertexStep::scatter(bsdf);
+    if (state.depth > 0 && is_visible_point(bsdf) && is_finite(si.p)) {
+      if (!state.spectral && is_finite(state.throughput))
+        out->photons.push_back({si.p, -state.ray.direction, state.throughput});
+      else if (state.spectral && is_finite(state.beta))
+        out->photons.push_back(SppmPhoton::spectral(si.p, -state.ray.direction, state.beta,
+                                                    state.wl.active_count() < wavelengths));
+    }
+    if (!state.spectral) return VertexStep::scatter(bsdf);
+    sbsdf = SpectralBsdf(bsdf, state.wl);
+    return VertexStep::scatter(bsdf, &sbsdf);
   }
   void scattered(const PathState&, bool) {}
 };
@@ -47,7 +56,7 @@ struct SppmPhotonVisitor {
 
 SppmPhotonPass trace_sppm_photons(const RenderContext& context, const PhotonSources& sources,
                                   uint32_t iteration, uint64_t count,
-                                  const std::atomic<bool>& cancel) {
+                                  const std::atomic<bool>& cancel, const SampledWavelengths* wl) {
   SppmPhotonPass pass;
   if (!sources.has_global() || count == 0) return pass;
   const uint64_t chunks = (count + kChunk - 1) / kChunk;
@@ -70,6 +79,11 @@ SppmPhotonPass trace_sppm_photons(const RenderContext& context, const PhotonSour
         state.throughput = e.power;
         state.mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
         SppmPhotonVisitor visitor{context, &out};
+        if (wl) {
+          state.start_spectral(*wl, e.emitter->spectrum(e.power, *wl));
+          visitor.wavelengths = wl->active_count();
+          if (state.black()) continue;
+        }
         walk_path(context, rules, &state, sampler, visitor);
       }
     }

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 
 #include "photon/integrators/photon_map/photon_memory.h"
+#include "photon/integrators/spectral_path.h"
 #include "photon/integrators/sppm/photon_kdtree.h"
 #include "photon/integrators/sppm/sppm_camera.h"
 #include "photon/integrators/sppm/sppm_photons.h"
@@ -19,7 +21,8 @@ namespace photon {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr uint64_t kCameraStream = 0x5350504D43414D;  // "SPPMCAM"
+constexpr uint64_t kCameraStream = 0x5350504D43414D;      // "SPPMCAM"
+constexpr uint64_t kWavelengthStream = 0x5350504D57564C;  // "SPPMWVL"
 // Automatic initial radius, in pixel footprints at the pixel's surface: wide enough that the
 // first iterations find photons, narrow enough to blur little before R shrinks.
 constexpr float kAutoRadiusPixels = 2.0f;
@@ -138,9 +141,17 @@ bool SppmRenderer::iterate(const std::atomic<bool>& cancel) {
   }
   const auto iteration = static_cast<uint32_t>(stats_.iterations);
 
+  // Spectral mode: one set of wavelengths for the iteration's photons and camera paths, so a
+  // visible point meets photons at its own wavelengths; stratified over the iterations.
+  std::optional<SampledWavelengths> wavelengths;
+  if (spectral_mode(context_))
+    wavelengths = sample_wavelengths(
+        s, Sampler(s.seed, kWavelengthStream, iteration, static_cast<uint32_t>(s.sppm_iterations)));
+  const SampledWavelengths* wl = wavelengths ? &*wavelengths : nullptr;
+
   auto t0 = Clock::now();
   SppmPhotonPass pass =
-      trace_sppm_photons(context_, sources_, iteration, photons_per_iteration_, cancel);
+      trace_sppm_photons(context_, sources_, iteration, photons_per_iteration_, cancel, wl);
   if (pass.cancelled) return false;
   stats_.rays += pass.rays;
   stats_.photons_recorded = pass.photons.size();
@@ -165,7 +176,8 @@ bool SppmRenderer::iterate(const std::atomic<bool>& cancel) {
                         static_cast<uint32_t>(s.sppm_iterations));
         const Ray ray =
             camera_sample_ray(filter, camera, s.full_width, s.full_height, px, py, sampler);
-        const SppmCameraSample c = trace_sppm_camera(context_, ray, sampler, photons, pixel.radius);
+        const SppmCameraSample c =
+            trace_sppm_camera(context_, ray, sampler, photons, pixel.radius, wl);
         if (!is_finite(c.direct) || !is_finite(c.phi)) {
           non_finite.fetch_add(1, std::memory_order_relaxed);
           continue;

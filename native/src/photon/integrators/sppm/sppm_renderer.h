@@ -9,7 +9,7 @@
 //   L = (direct light summed over iterations) / k + tau / (k P pi R^2),
 // which converges as R shrinks (alpha in (0, 1)).
 //
-// Memory: kBytesPerPixel of pixel state, plus the current iteration's photons (36 bytes per
+// Memory: kBytesPerPixel of pixel state, plus the current iteration's photons (40 bytes per
 // recorded bounce) and their kd-tree's split axes (1 byte per photon), freed before the next
 // iteration's photons are traced.
 //
@@ -34,7 +34,7 @@
 namespace photon {
 
 // Peak bytes per photon recorded in an iteration: the chunks' records and their concatenation
-// (2 x 36 bytes) exist together for a moment; the kd-tree then takes the array and adds 1 byte.
+// (2 x 40 bytes) exist together for a moment; the kd-tree then takes the array and adds 1 byte.
 constexpr double kSppmPeakBytesPerRecord = 2.0 * sizeof(SppmPhoton) + 1.0;
 // Share of the memory available at the start that one iteration's photons may use.
 constexpr double kSppmMemoryFraction = 0.5;

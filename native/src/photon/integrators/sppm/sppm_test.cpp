@@ -260,9 +260,10 @@ TEST(Sppm, VisiblePointsAreDiffuseOrGlossyFromRoughness03) {
 }
 
 TEST(Sppm, PhotonsPerIterationAreScaledDownToTheMemoryBudget) {
-  // 2 records per photon of kSppmPeakBytesPerRecord (73 bytes): 1e6 photons need 146 MB.
+  // 2 records per photon of kSppmPeakBytesPerRecord (81 bytes): 1e6 photons need 162 MB.
+  EXPECT_EQ(kSppmPeakBytesPerRecord, 81.0);
   EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 1e9), 1000000u);
-  EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 73e6), 500000u);
+  EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 81e6), 500000u);
   EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 1.0), 1u);        // never none
   EXPECT_EQ(sppm_photons_that_fit(1000000, 2.0, 0.0), 1000000u);  // unknown memory
   EXPECT_EQ(sppm_photons_that_fit(1000000, 0.0, 1.0), 1000000u);  // no photon is recorded

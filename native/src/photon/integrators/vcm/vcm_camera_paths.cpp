@@ -11,7 +11,9 @@ namespace {
 
 // The camera subpath at a vertex.
 struct CameraState {
-  Vec3 throughput{1.0f};
+  SampledSpectrum throughput{0.0f};
+  SampledWavelengths wl;  // spectral: the iteration's, terminated by a dispersive refraction
+  bool terminated = false;
   float dvcm = 0.0f, dvc = 0.0f, dvm = 0.0f;
   int path_length = 1;
   bool specular_path = true;  // only delta lobes since the camera
@@ -25,33 +27,42 @@ float emission_weight(const CameraState& c, float direct_pdf, float emission_pdf
   return 1.0f / (1.0f + direct_pdf * dvcm + emission_pdf * dvc);
 }
 
-// A light subpath's vertex shaded again for connections.
+// A light subpath's vertex shaded again for connections (at its subpath's wavelengths).
 struct ShadedLightVertex {
   ShadingPoint sp;
+  VcmBsdf bsdf;  // refers to sp.bsdf: the vertex is not moved once shaded
   float continuation = 0.0f;
 };
 
 class CameraPath {
  public:
   CameraPath(const RenderContext& context, const VcmLights& lights, const VcmMis& mis,
-             const VcmLightPass& pass, uint64_t light_path, const VcmGrid& grid, Sampler& sampler)
-      : context_(context), lights_(lights), mis_(mis), pass_(pass), grid_(grid), sampler_(sampler) {
+             const VcmColours& colours, const VcmLightPass& pass, uint64_t light_path,
+             const VcmGrid& grid, Sampler& sampler)
+      : context_(context),
+        lights_(lights),
+        mis_(mis),
+        colours_(colours),
+        pass_(pass),
+        grid_(grid),
+        sampler_(sampler) {
     begin_ = pass.path_begin(light_path);
     end_ = pass.path_end.empty() ? 0 : pass.path_end[light_path];
   }
 
-  Vec3 next_event(const CameraState& c, const Vec3& p, const Vec3& ng, const Vec3& wo,
-                  const Bsdf& bsdf, float continuation) {
+  SampledSpectrum next_event(const CameraState& c, const Vec3& p, const Vec3& ng, const Vec3& wo,
+                             const VcmBsdf& bsdf, float continuation) {
+    const SampledSpectrum black(0.0f);
     const float u_pick = sampler_.get_1d();
     const Vec2 u = sampler_.get_2d();
-    if (lights_.empty() || c.path_length + 1 > mis_.max_path_length) return Vec3(0.0f);
+    if (lights_.empty() || c.path_length + 1 > mis_.max_path_length) return black;
     float u_rest;
     const size_t k = lights_.pick(u_pick, &u_rest);
     Illumination il;
-    if (!lights_.emitter(k).illuminate_vcm(lights_.frame(), p, u_rest, u, &il)) return Vec3(0.0f);
+    if (!lights_.emitter(k).illuminate_vcm(lights_.frame(), p, u_rest, u, &il)) return black;
     const float pick = lights_.pick_probability(k);
-    const Vec3 f = bsdf.eval(wo, il.wi);
-    if (is_black(f) || !(il.direct_pdf > 0.0f)) return Vec3(0.0f);
+    const SampledSpectrum f = bsdf.eval(wo, il.wi);
+    if (is_black(f) || !(il.direct_pdf > 0.0f)) return black;
     const float cos_shading = std::fabs(dot(bsdf.frame().n, il.wi));
     const float cos_geometric = std::fabs(dot(ng, il.wi));
     const bool delta = (lights_.flags(k) & (kVcmDeltaPosition | kVcmDeltaDirection)) != 0;
@@ -62,18 +73,19 @@ class CameraPath {
     const float w_camera = il.emission_pdf * cos_geometric / (il.direct_pdf * il.cos_light) *
                            (mis_.vm_factor + c.dvcm + c.dvc * rev_pdf);
     const float weight = 1.0f / (w_light + 1.0f + w_camera);
-    const Vec3 value = il.radiance * f * (weight * cos_shading / (pick * il.direct_pdf));
-    if (is_black(value) || !is_finite(value)) return Vec3(0.0f);
+    const SampledSpectrum value = colours_.emitted(lights_.emitter(k), il.radiance) * f *
+                                  (weight * cos_shading / (pick * il.direct_pdf));
+    if (is_black(value) || !is_finite(value)) return black;
     const bool visible =
         std::isfinite(il.distance)
             ? vcm_visible(*context_.accel, p, ng, p + il.wi * il.distance, il.surface_normal)
             : vcm_visible_at_infinity(*context_.accel, p, ng, il.wi);
-    return visible ? value : Vec3(0.0f);
+    return visible ? value : black;
   }
 
-  Vec3 connect(const CameraState& c, const Vec3& p, const Vec3& ng, const Vec3& wo,
-               const Bsdf& bsdf, float continuation) {
-    Vec3 sum(0.0f);
+  SampledSpectrum connect(const CameraState& c, const Vec3& p, const Vec3& ng, const Vec3& wo,
+                          const VcmBsdf& bsdf, float continuation) {
+    SampledSpectrum sum(0.0f);
     if (begin_ == end_) return sum;
     if (shaded_.empty()) {
       shaded_.resize(end_ - begin_);
@@ -82,20 +94,24 @@ class CameraPath {
         ShadedLightVertex& s = shaded_[i - begin_];
         s.sp = shade(context_, context_.accel->interaction(v.hit), v.wo);
         s.continuation = vcm_continuation(s.sp.bsdf, v.wo);
+        // The light subpath's wavelengths as they were at the vertex.
+        SampledWavelengths light_wl = colours_.wl ? *colours_.wl : SampledWavelengths();
+        if (v.terminated) light_wl.terminate_secondary();
+        s.bsdf = VcmBsdf(s.sp.bsdf, colours_.wl ? &light_wl : nullptr);
       }
     }
     for (size_t i = begin_; i < end_; ++i) {
       const VcmLightVertex& v = pass_.vertices[i];
       if (v.path_length + c.path_length + 1 > mis_.max_path_length) break;
-      const Bsdf& lb = shaded_[i - begin_].sp.bsdf;
+      const VcmBsdf& lb = shaded_[i - begin_].bsdf;
       const Vec3 d = v.p - p;
       const float dist2 = length_squared(d);
       if (!(dist2 > 0.0f)) continue;
       const float dist = std::sqrt(dist2);
       const Vec3 dir = d / dist;
-      const Vec3 fc = bsdf.eval(wo, dir);
+      const SampledSpectrum fc = bsdf.eval(wo, dir);
       if (is_black(fc)) continue;
-      const Vec3 fl = lb.eval(v.wo, -dir);
+      const SampledSpectrum fl = lb.eval(v.wo, -dir);
       if (is_black(fl)) continue;
       const float cos_c = std::fabs(dot(ng, dir)), cos_l = std::fabs(dot(v.ng, dir));
       const float ng_wo = std::fabs(dot(v.ng, v.wo));
@@ -112,8 +128,11 @@ class CameraPath {
       const float w_camera =
           light_dir_pdf * cos_c / dist2 * (mis_.vm_factor + c.dvcm + c.dvc * cam_rev_pdf);
       const float weight = 1.0f / (w_light + 1.0f + w_camera);
-      const Vec3 value = v.throughput * fc * fl *
-                         (weight * std::fabs(dot(bsdf.frame().n, dir)) * adjoint * cos_l / dist2);
+      SampledSpectrum value =
+          v.throughput * fc * fl *
+          (weight * std::fabs(dot(bsdf.frame().n, dir)) * adjoint * cos_l / dist2);
+      const float join = colours_.join(c.terminated, v.terminated);
+      if (join != 1.0f) value *= join;
       if (is_black(value) || !is_finite(value)) continue;
       if (!vcm_visible(*context_.accel, p, ng, v.p, v.ng)) continue;
       sum += value;
@@ -121,16 +140,16 @@ class CameraPath {
     return sum;
   }
 
-  Vec3 merge(const CameraState& c, const Vec3& p, const Vec3& ng, const Vec3& wo, const Bsdf& bsdf,
-             float continuation) const {
-    Vec3 sum(0.0f);
+  SampledSpectrum merge(const CameraState& c, const Vec3& p, const Vec3& ng, const Vec3& wo,
+                        const VcmBsdf& bsdf, float continuation) const {
+    SampledSpectrum sum(0.0f);
     const Vec3 ns = bsdf.frame().n;
     grid_.for_each_within(p, [&](const VcmLightVertex& v) {
       if (v.path_length + c.path_length > mis_.max_path_length) return;
       // Light from the other side of the camera vertex's surface does not reflect here
       // (vertices on a wall meeting this one at an edge do count, as in SPPM's gathering).
       if (dot(v.wo, ng) <= 0.0f) return;
-      const Vec3 f = bsdf.eval(wo, v.wo);
+      const SampledSpectrum f = bsdf.eval(wo, v.wo);
       if (is_black(f)) return;
       const float ng_wi = std::fabs(dot(ng, v.wo));
       if (!(ng_wi > 1e-9f)) return;
@@ -144,7 +163,11 @@ class CameraPath {
         weight = 1.0f / (w_light + 1.0f + w_camera);
       }
       // The flux arrived through the geometric cosine; the BSDF's shading cosine replaces it.
-      sum += v.throughput * f * (weight * std::fabs(dot(ns, v.wo)) / ng_wi);
+      const float join = colours_.join(c.terminated, v.terminated);
+      if (join == 1.0f)
+        sum += v.throughput * f * (weight * std::fabs(dot(ns, v.wo)) / ng_wi);
+      else
+        sum += v.throughput * f * (weight * std::fabs(dot(ns, v.wo)) / ng_wi * join);
     });
     return sum * mis_.vm_normalization;
   }
@@ -153,6 +176,7 @@ class CameraPath {
   const RenderContext& context_;
   const VcmLights& lights_;
   const VcmMis& mis_;
+  const VcmColours& colours_;
   const VcmLightPass& pass_;
   const VcmGrid& grid_;
   Sampler& sampler_;
@@ -165,7 +189,8 @@ class CameraPath {
 VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLights& lights,
                                       const VcmCamera& camera, const VcmMis& mis,
                                       const VcmLightPass& pass, uint64_t light_path,
-                                      const VcmGrid& grid, int px, int py, Sampler& sampler) {
+                                      const VcmGrid& grid, int px, int py, Sampler& sampler,
+                                      const VcmColours& colours) {
   const RenderSettings& s = *context.settings;
   VcmCameraSample out;
   const Vec2 jitter = camera.filter().sample(sampler.get_2d());
@@ -178,12 +203,19 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
   if (!(filter_pdf > 0.0f) || !(cos_axis > 0.0f)) return out;
   const float camera_pdf = filter_pdf * camera.raster_to_solid_angle(cos_axis);
   CameraState c;
+  if (colours.wl) {
+    c.wl = *colours.wl;
+    for (int i = 0; i < spectral::kSpectrumSamples; ++i)
+      c.throughput[i] = c.wl.active(i) ? 1.0f : 0.0f;
+  } else {
+    c.throughput = rgb_lanes(Vec3(1.0f));
+  }
   // Tech. report eq. 31 for the camera: N light subpaths against the one camera sample.
   c.dvcm = static_cast<float>(mis.light_paths) / camera_pdf;
-  CameraPath path(context, lights, mis, pass, light_path, grid, sampler);
+  CameraPath path(context, lights, mis, colours, pass, light_path, grid, sampler);
   uint32_t mask = kVisibleCamera;
   const float length_scale = context.accel->length_scale();
-  Vec3 l(0.0f);
+  SampledSpectrum l(0.0f);  // VcmColours::add's sum
   for (;; ++c.path_length) {
     Hit hit;
     const bool found = context.accel->intersect(ray, mask, &hit);
@@ -198,8 +230,10 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
         const float pick = lights.pick_probability(k);
         const float dvcm = c.dvcm * h.distance * h.distance / h.cos_light;
         const float dvc = c.dvc / h.cos_light;
-        l += c.throughput * h.radiance *
-             emission_weight(c, h.direct_pdf * pick, h.emission_pdf * pick, dvcm, dvc);
+        colours.add(&l,
+                    c.throughput * colours.emitted(lights.emitter(k), h.radiance) *
+                        emission_weight(c, h.direct_pdf * pick, h.emission_pdf * pick, dvcm, dvc),
+                    c.wl);
       }
     }
     if (!found) {
@@ -208,8 +242,11 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
           EmitterHit h;
           if (!lights.emitter(k).hit_vcm(lights.frame(), ray, INFINITY, &h)) continue;
           const float pick = lights.pick_probability(k);
-          l += c.throughput * h.radiance *
-               emission_weight(c, h.direct_pdf * pick, h.emission_pdf * pick, c.dvcm, c.dvc);
+          colours.add(
+              &l,
+              c.throughput * colours.emitted(lights.emitter(k), h.radiance) *
+                  emission_weight(c, h.direct_pdf * pick, h.emission_pdf * pick, c.dvcm, c.dvc),
+              c.wl);
         }
       break;
     }
@@ -232,27 +269,26 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
         const float pick = lights.pick_probability(lights.surface());
         weight = emission_weight(c, h.direct_pdf * pick, h.emission_pdf * pick, c.dvcm, c.dvc);
       }
-      l += c.throughput * sp.emission * weight;
+      colours.add(&l, c.throughput * colours.surface(sp.emission) * weight, c.wl);
     }
-    const Bsdf& bsdf = sp.bsdf;
-    if (bsdf.empty() || c.path_length >= mis.max_path_length) break;
-    const float continuation = vcm_continuation(bsdf, wo);
-    if (vcm_connectible(bsdf)) {
+    if (sp.bsdf.empty() || c.path_length >= mis.max_path_length) break;
+    const VcmBsdf bsdf(sp.bsdf, colours.wl ? &c.wl : nullptr);
+    const float continuation = vcm_continuation(sp.bsdf, wo);
+    if (vcm_connectible(sp.bsdf)) {
       if (mis.use_vc) {
-        l += c.throughput * path.next_event(c, si.p, ng, wo, bsdf, continuation);
-        l += c.throughput * path.connect(c, si.p, ng, wo, bsdf, continuation);
+        colours.add(&l, c.throughput * path.next_event(c, si.p, ng, wo, bsdf, continuation), c.wl);
+        colours.add(&l, c.throughput * path.connect(c, si.p, ng, wo, bsdf, continuation), c.wl);
       }
       if (mis.use_vm) {
-        l += c.throughput * path.merge(c, si.p, ng, wo, bsdf, continuation);
+        colours.add(&l, c.throughput * path.merge(c, si.p, ng, wo, bsdf, continuation), c.wl);
         if (mis.mode == VcmMode::kPpm) break;  // merging at the first connectible vertex only
       }
     }
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     const float u_survive = sampler.get_1d();
-    BsdfSample bs;
-    if (!bsdf.sample(wo, u_lobe, u, kLobeAll, &bs) || is_black(bs.weight) || !(bs.pdf > 0.0f))
-      break;
+    VcmBsdfSample bs;
+    if (!bsdf.sample(wo, u_lobe, u, &bs) || is_black(bs.weight) || !(bs.pdf > 0.0f)) break;
     if (!(u_survive < continuation)) break;
     const float cos_out = std::fabs(dot(ng, bs.wi));
     const float dir_pdf = bs.pdf * continuation;
@@ -268,11 +304,15 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
       c.specular_path = false;
     }
     c.throughput = c.throughput * bs.weight / continuation;
+    if (bs.terminate) {
+      c.wl.terminate_secondary();  // the weight is the hero's alone
+      c.terminated = true;
+    }
     if (is_black(c.throughput)) break;
     mask = visibility_after(bs.flags);
     spawn_ray(si, bs.wi, length_scale, &ray);
   }
-  out.radiance = l;
+  out.radiance = colours.rgb(l);
   return out;
 }
 

@@ -17,10 +17,12 @@ struct VcmCameraSample {
   float alpha = 0.0f;  // 1 when the camera ray met a surface
 };
 
-// The sample of pixel (px, py) of the full frame. `light_path` is the subpath it connects to.
+// The sample of pixel (px, py) of the full frame. `light_path` is the subpath it connects to;
+// `colours` the iteration's wavelengths in spectral mode (those of the light subpaths).
 VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLights& lights,
                                       const VcmCamera& camera, const VcmMis& mis,
                                       const VcmLightPass& pass, uint64_t light_path,
-                                      const VcmGrid& grid, int px, int py, Sampler& sampler);
+                                      const VcmGrid& grid, int px, int py, Sampler& sampler,
+                                      const VcmColours& colours = VcmColours{});
 
 }  // namespace photon

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "photon/base/ray_offset.h"
+#include "photon/integrators/spectral_path.h"
 #include "photon/lights/emitter_set.h"
 
 namespace photon {
@@ -50,6 +51,26 @@ VcmLights::VcmLights(const RenderContext& context, const PhotonFrame& frame,
     }
   }
   pick_ = Distribution1D(weights);
+}
+
+Vec3 VcmColours::rgb(const SampledSpectrum& sum) const {
+  if (!wl) return Vec3(sum[0], sum[1], sum[2]);
+  SpectralTally tally;
+  tally.sum = sum;
+  return tally.rgb(*wl);
+}
+
+bool VcmBsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, VcmBsdfSample* out) const {
+  if (spectral_) {
+    SpectralBsdfSample s;
+    if (!spectral_->sample(wo, u_lobe, u, kLobeAll, &s)) return false;
+    *out = {s.wi, s.weight, s.pdf, s.flags, s.terminate};
+    return true;
+  }
+  BsdfSample s;
+  if (!rgb_->sample(wo, u_lobe, u, kLobeAll, &s)) return false;
+  *out = {s.wi, rgb_lanes(s.weight), s.pdf, s.flags, false};
+  return true;
 }
 
 bool vcm_visible(const Accel& accel, const Vec3& p, const Vec3& ng, const Vec3& q, const Vec3& nq) {

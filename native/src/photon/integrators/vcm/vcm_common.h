@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,7 @@
 #include "photon/lights/emitter.h"
 #include "photon/render/accel.h"
 #include "photon/render/bsdf.h"
+#include "photon/render/spectral_bsdf.h"
 
 namespace photon {
 
@@ -44,6 +46,79 @@ struct VcmMis {
 inline float vcm_continuation(const Bsdf& bsdf, const Vec3& wo) {
   return std::clamp(max_component(bsdf.albedo(wo)), 0.0f, 1.0f);
 }
+
+// Colours along VCM's subpaths are SampledSpectrum: in RGB mode R, G, B in lanes 0-2 and 0 in
+// lane 3 (the arithmetic is RGB's, lane by lane, so the image is the RGB renderer's), in
+// spectral mode the iteration's wavelengths, shared by every subpath of the iteration so that
+// light and camera subpaths meet at the same wavelengths. A subpath through a dispersive
+// refraction keeps only the hero (lane 0): its wavelengths' pdfs are terminated
+// (SampledWavelengths), and a light vertex remembers it (VcmLightVertex::terminated).
+inline SampledSpectrum rgb_lanes(const Vec3& c) {
+  SampledSpectrum s(0.0f);
+  s[0] = c.x, s[1] = c.y, s[2] = c.z;
+  return s;
+}
+
+struct VcmColours {
+  const SampledWavelengths* wl = nullptr;  // the iteration's; null in RGB mode
+
+  SampledSpectrum emitted(const Emitter& e, const Vec3& rgb) const {
+    return wl ? e.spectrum(rgb, *wl) : rgb_lanes(rgb);
+  }
+  SampledSpectrum surface(const Vec3& rgb) const {
+    return wl ? spectral::illuminant_at(rgb, *wl) : rgb_lanes(rgb);
+  }
+  // Adds light `l` a subpath gathered to `sum`: in RGB mode as it is, in spectral mode over
+  // the subpath's wavelength pdfs (`path_wl`: a copy of wl, maybe terminated since).
+  void add(SampledSpectrum* sum, const SampledSpectrum& l,
+           const SampledWavelengths& path_wl) const {
+    if (wl)
+      *sum += l.safe_div(path_wl.pdf());
+    else
+      *sum += l;
+  }
+  // Such a sum in Rec.709.
+  Vec3 rgb(const SampledSpectrum& sum) const;
+  // The factor of a connection or merge between a camera subpath and a light vertex: a light
+  // subpath that kept only the hero weighs it by the wavelengths in use, unless the camera
+  // subpath (whose pdfs convert the result) terminated too.
+  float join(bool camera_terminated, bool light_terminated) const {
+    return wl && light_terminated && !camera_terminated ? static_cast<float>(wl->active_count())
+                                                        : 1.0f;
+  }
+};
+
+struct VcmBsdfSample {
+  Vec3 wi;
+  SampledSpectrum weight{0.0f};
+  float pdf = 0.0f;
+  uint8_t flags = 0;
+  bool terminate = false;
+  bool is_delta() const { return (flags & kLobeSpecular) != 0; }
+};
+
+// A vertex's BSDF in VCM's colours: the RGB BSDF in lanes, or the BSDF at the wavelengths.
+class VcmBsdf {
+ public:
+  VcmBsdf() = default;
+  // `bsdf` must outlive this object.
+  VcmBsdf(const Bsdf& bsdf, const SampledWavelengths* wl) : rgb_(&bsdf) {
+    if (wl) spectral_.emplace(bsdf, *wl);
+  }
+  const Bsdf& rgb() const { return *rgb_; }
+  const Frame& frame() const { return rgb_->frame(); }
+  SampledSpectrum eval(const Vec3& wo, const Vec3& wi) const {
+    return spectral_ ? spectral_->eval(wo, wi) : rgb_lanes(rgb_->eval(wo, wi));
+  }
+  float pdf(const Vec3& wo, const Vec3& wi) const {
+    return spectral_ ? spectral_->pdf(wo, wi) : rgb_->pdf(wo, wi);
+  }
+  bool sample(const Vec3& wo, float u_lobe, Vec2 u, VcmBsdfSample* out) const;
+
+ private:
+  const Bsdf* rgb_ = nullptr;
+  std::optional<SpectralBsdf> spectral_;
+};
 
 // Whether a BSDF has a lobe that connections and merging can evaluate.
 inline bool vcm_connectible(const Bsdf& bsdf) {
@@ -91,10 +166,11 @@ class VcmLights {
 struct VcmLightVertex {
   Hit hit;  // to shade the point again for connections
   Vec3 p, ng;
-  Vec3 wo;          // towards the previous vertex (the light)
-  Vec3 throughput;  // emitted radiance over the subpath's density, to this point
+  Vec3 wo;                     // towards the previous vertex (the light)
+  SampledSpectrum throughput;  // emitted radiance over the subpath's density, to this point
   float dvcm = 0.0f, dvc = 0.0f, dvm = 0.0f;
-  int path_length = 0;  // segments from the light
+  int path_length = 0;      // segments from the light
+  bool terminated = false;  // spectral: a dispersive refraction left only the hero wavelength
 };
 
 // A ray from `p` (geometric normal ng) to `q` (normal nq, zero for a point off the surfaces)

@@ -25,13 +25,14 @@ struct ChunkOutput {
 // seen by the pinhole, with the camera's density relative to this strategy (tech. report eq.
 // 44 with the pixel filter's density left to the splat).
 void connect_to_camera(const RenderContext& context, const VcmCamera& camera, const VcmMis& mis,
-                       const VcmLightVertex& v, const Bsdf& bsdf, float continuation,
+                       const VcmColours& colours, const SampledWavelengths& path_wl,
+                       const VcmLightVertex& v, const VcmBsdf& bsdf, float continuation,
                        ChunkOutput* out) {
   Vec2 raster;
   float cos_axis, distance;
   if (!camera.project(v.p, &raster, &cos_axis, &distance)) return;
   const Vec3 to_camera = (camera.position() - v.p) / distance;
-  const Vec3 f = bsdf.eval(v.wo, to_camera);
+  const SampledSpectrum f = bsdf.eval(v.wo, to_camera);
   if (is_black(f)) return;
   const float cos_surface = std::fabs(dot(v.ng, to_camera));
   // The adjoint BSDF with the shading normal (Veach eq. 5.17): the geometric cosine towards
@@ -45,7 +46,9 @@ void connect_to_camera(const RenderContext& context, const VcmCamera& camera, co
   VcmSplat s;
   s.x = raster.x;
   s.y = raster.y;
-  s.value = v.throughput * f * (ns_wo / ng_wo * image_to_surface / n);
+  SampledSpectrum value(0.0f);
+  colours.add(&value, v.throughput * f * (ns_wo / ng_wo * image_to_surface / n), path_wl);
+  s.value = colours.rgb(value);
   s.a = image_to_surface / n * (mis.vm_factor + v.dvcm + v.dvc * rev_pdf);
   if (!is_finite(s.value) || !std::isfinite(s.a)) return;
   if (!vcm_visible(*context.accel, v.p, v.ng, camera.position(), Vec3(0.0f))) return;
@@ -53,7 +56,7 @@ void connect_to_camera(const RenderContext& context, const VcmCamera& camera, co
 }
 
 void trace_one(const RenderContext& context, const VcmLights& lights, const VcmCamera& camera,
-               const VcmMis& mis, Sampler& sampler, ChunkOutput* out) {
+               const VcmMis& mis, const VcmColours& colours, Sampler& sampler, ChunkOutput* out) {
   float u_rest;
   const size_t k = lights.pick(sampler.get_1d(), &u_rest);
   const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
@@ -64,7 +67,9 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
   const float emission_pdf = e.pdf_pos * e.pdf_dir * pick;
   if (!(emission_pdf > 0.0f)) return;
   // Tech. report eqs. 31-33: the subpath's first vertex.
-  Vec3 throughput = e.radiance * (e.cos_light / emission_pdf);
+  SampledSpectrum throughput =
+      colours.emitted(lights.emitter(k), e.radiance) * (e.cos_light / emission_pdf);
+  SampledWavelengths path_wl = colours.wl ? *colours.wl : SampledWavelengths();
   float dvcm = e.direct_pdf * pick / emission_pdf;
   float dvc = (flags & (kVcmDeltaPosition | kVcmDeltaDirection))
                   ? 0.0f
@@ -81,8 +86,8 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
     const SurfaceInteraction si = context.accel->interaction(hit);
     const Vec3 wo = -ray.direction;
     const ShadingPoint sp = shade(context, si, wo);
-    const Bsdf& bsdf = sp.bsdf;
-    if (bsdf.empty()) return;
+    if (sp.bsdf.empty()) return;
+    const VcmBsdf bsdf(sp.bsdf, colours.wl ? &path_wl : nullptr);
     const Vec3 ng = dot(si.ng, wo) >= 0.0f ? si.ng : -si.ng;
     const float cos_in = std::fabs(dot(ng, wo));
     if (!(cos_in > 1e-7f)) return;
@@ -91,8 +96,8 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
     dvcm /= cos_in;
     dvc /= cos_in;
     dvm /= cos_in;
-    const float continuation = vcm_continuation(bsdf, wo);
-    if (vcm_connectible(bsdf)) {
+    const float continuation = vcm_continuation(sp.bsdf, wo);
+    if (vcm_connectible(sp.bsdf)) {
       VcmLightVertex v;
       v.hit = hit;
       v.p = si.p;
@@ -103,18 +108,19 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
       v.dvc = dvc;
       v.dvm = dvm;
       v.path_length = path_length;
+      v.terminated = colours.wl && path_wl.active_count() < colours.wl->active_count();
       if (!is_finite(throughput) || !is_finite(si.p)) return;
       out->vertices.push_back(v);
       if (mis.use_vc && path_length + 1 <= mis.max_path_length)
-        connect_to_camera(context, camera, mis, v, bsdf, continuation, out);
+        connect_to_camera(context, camera, mis, colours, path_wl, v, bsdf, continuation, out);
     }
     if (path_length + 2 > mis.max_path_length) return;
     // Scattering with Russian roulette by the BSDF's albedo (both densities carry it).
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     const float u_survive = sampler.get_1d();
-    BsdfSample s;
-    if (!bsdf.sample(wo, u_lobe, u, kLobeAll, &s) || is_black(s.weight) || !(s.pdf > 0.0f)) return;
+    VcmBsdfSample s;
+    if (!bsdf.sample(wo, u_lobe, u, &s) || is_black(s.weight) || !(s.pdf > 0.0f)) return;
     if (!(u_survive < continuation)) return;
     const float cos_out = std::fabs(dot(ng, s.wi));
     const float dir_pdf = s.pdf * continuation;
@@ -130,6 +136,7 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
     }
     throughput =
         throughput * s.weight * (adjoint_correction(bsdf.frame().n, ng, wo, s.wi) / continuation);
+    if (s.terminate) path_wl.terminate_secondary();  // the weight is the hero's alone
     if (is_black(throughput)) return;
     mask = visibility_after(s.flags);
     spawn_ray(si, s.wi, length_scale, &ray);
@@ -140,7 +147,7 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
 
 VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights& lights,
                                    const VcmCamera& camera, const VcmMis& mis, uint32_t iteration,
-                                   const std::atomic<bool>& cancel) {
+                                   const std::atomic<bool>& cancel, const VcmColours& colours) {
   VcmLightPass pass;
   const uint64_t count = mis.light_paths;
   pass.path_end.assign(count, 0);
@@ -158,7 +165,7 @@ VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights
       for (uint64_t i = lo; i < hi; ++i) {
         Sampler sampler(seed, stream, static_cast<uint32_t>(i), stratify);
         const size_t before = out.vertices.size();
-        trace_one(context, lights, camera, mis, sampler, &out);
+        trace_one(context, lights, camera, mis, colours, sampler, &out);
         out.path_size.push_back(out.vertices.size() - before);
       }
     }

@@ -38,9 +38,11 @@ struct VcmLightPass {
   size_t path_begin(uint64_t i) const { return i == 0 ? 0 : path_end[i - 1]; }
 };
 
+// `colours`: the iteration's wavelengths in spectral mode (vcm_common.h).
 VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights& lights,
                                    const VcmCamera& camera, const VcmMis& mis, uint32_t iteration,
-                                   const std::atomic<bool>& cancel);
+                                   const std::atomic<bool>& cancel,
+                                   const VcmColours& colours = VcmColours{});
 
 // Adds the splats to `image` (RGB per pixel of the region x0, y0 .. x1, y1 of the full frame)
 // in order.

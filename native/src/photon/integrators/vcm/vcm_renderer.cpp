@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "photon/integrators/photon_map/photon_sources.h"
+#include "photon/integrators/spectral_path.h"
 #include "photon/integrators/vcm/vcm_camera_paths.h"
 #include "photon/integrators/vcm/vcm_grid.h"
 #include "photon/integrators/vcm/vcm_light_paths.h"
@@ -18,7 +19,8 @@ namespace photon {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr uint64_t kCameraStream = 0x56434D43414D;  // "VCMCAM"
+constexpr uint64_t kCameraStream = 0x56434D43414D;      // "VCMCAM"
+constexpr uint64_t kWavelengthStream = 0x56434D57564C;  // "VCMWVL"
 // Russian roulette ends paths long before this; it bounds chains between perfect mirrors.
 constexpr int kMaxPathLength = 64;
 // Automatic initial radius, in pixel footprints at the median depth the camera sees.
@@ -93,9 +95,18 @@ bool VcmRenderer::iterate(const std::atomic<bool>& cancel) {
   const VcmMis mis =
       VcmMis::make(s.vcm_mode, radius(stats_.iterations),
                    std::max<uint64_t>(s.sppm_photons_per_iteration, 1), kMaxPathLength);
+  // Spectral mode: one set of wavelengths for the iteration's light and camera subpaths, so
+  // connections and merges join them at the same wavelengths; stratified over the iterations.
+  SampledWavelengths wavelengths;
+  VcmColours colours;
+  if (spectral_mode(context_)) {
+    wavelengths = sample_wavelengths(
+        s, Sampler(s.seed, kWavelengthStream, iteration, static_cast<uint32_t>(s.sppm_iterations)));
+    colours.wl = &wavelengths;
+  }
   auto t0 = Clock::now();
   const VcmLightPass pass =
-      trace_vcm_light_paths(context_, *lights_, camera_, mis, iteration, cancel);
+      trace_vcm_light_paths(context_, *lights_, camera_, mis, iteration, cancel, colours);
   if (pass.cancelled) return false;
   stats_.rays += pass.rays;
   stats_.photons_recorded = pass.vertices.size();
@@ -120,7 +131,7 @@ bool VcmRenderer::iterate(const std::atomic<bool>& cancel) {
                         static_cast<uint32_t>(s.sppm_iterations));
         const VcmCameraSample c =
             trace_vcm_camera_path(context_, *lights_, camera_, mis, pass,
-                                  pixel_index % mis.light_paths, grid, px, py, sampler);
+                                  pixel_index % mis.light_paths, grid, px, py, sampler, colours);
         const Vec3 estimate = c.radiance + light_image[i];
         if (!is_finite(estimate)) {
           non_finite.fetch_add(1, std::memory_order_relaxed);

@@ -1,0 +1,354 @@
+// The lobes of a BSDF one by one: their f, pdf and sampling, shared by Bsdf (RGB) and
+// SpectralBsdf (sampled wavelengths). Colours are a template parameter C: Vec3 for RGB, a
+// SampledSpectrum for all wavelengths of a path at once, or a float for one wavelength (a
+// dispersive lobe, whose index of refraction differs per wavelength). The Vec3 instantiation
+// computes exactly what the RGB renderer always did. Internal to render/: include it only from
+// the BSDF's own sources.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "photon/base/microfacet.h"
+#include "photon/base/optics.h"
+#include "photon/base/sampling.h"
+#include "photon/render/bsdf.h"
+
+namespace photon::bsdf_lobes {
+
+// Below this distance from 1 a relative index of refraction leaves directions unchanged: the
+// glass and refraction lobes are then delta lobes whatever their roughness (a rough interface
+// with equal indices refracts every microfacet straight through).
+constexpr float kUnitEtaEpsilon = 1e-4f;
+
+inline bool is_unit_direction(const Vec3& w) {
+  const float l2 = length_squared(w);
+  return std::isfinite(l2) && l2 > 1e-12f;
+}
+
+// Normalises only when needed, so a direction that sample() returned maps to bit-identical
+// local coordinates in pdf() and eval() (near total internal reflection 1 - F is steep enough
+// for an ulp to show).
+inline Vec3 unit(const Vec3& w) {
+  const float l2 = length_squared(w);
+  return std::fabs(l2 - 1.0f) < 4e-7f ? w : w / std::sqrt(l2);
+}
+
+// The largest GGX alpha of a lobe (both axes of an anisotropic one).
+inline float max_alpha(const Lobe& l) {
+  return l.anisotropic() ? std::max(l.alpha, l.alpha_y) : l.alpha;
+}
+
+inline bool is_delta(const Lobe& l) {
+  switch (l.type) {
+    case LobeType::kGgxReflection:
+      return max_alpha(l) < kDeltaAlpha;
+    case LobeType::kGgxGlass:
+    case LobeType::kGgxRefraction:
+      return l.alpha < kDeltaAlpha || std::fabs(l.ior - 1.0f) < kUnitEtaEpsilon;
+    case LobeType::kTransparent:
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The GGX functions of a lobe: anisotropic ones with both alphas (the isotropic path keeps the
+// isotropic functions, so isotropic lobes are unchanged to the bit).
+inline float lobe_d(const Lobe& l, const Vec3& h) {
+  return l.anisotropic() ? ggx_d(h, l.alpha, l.alpha_y) : ggx_d(h, l.alpha);
+}
+inline float lobe_g2(const Lobe& l, const Vec3& wo, const Vec3& wi, const Vec3& h) {
+  if (!l.anisotropic()) return ggx_g2(wo, wi, h, l.alpha);
+  return ggx_g1(wo, h, l.alpha, l.alpha_y) * ggx_g1(wi, h, l.alpha, l.alpha_y);
+}
+inline float lobe_visible_normal_pdf(const Lobe& l, const Vec3& wo, const Vec3& h) {
+  return l.anisotropic() ? ggx_visible_normal_pdf(wo, h, l.alpha, l.alpha_y)
+                         : ggx_visible_normal_pdf(wo, h, l.alpha);
+}
+inline Vec3 lobe_sample_visible_normal(const Lobe& l, const Vec3& wo, Vec2 u) {
+  return l.anisotropic() ? ggx_sample_visible_normal(wo, l.alpha, l.alpha_y, u)
+                         : ggx_sample_visible_normal(wo, l.alpha, u);
+}
+
+// Fresnel of a kGgxReflection lobe at the microfacet cosine `cos_oh`.
+// `f0` is the lobe's f0 in the colour type C (Vec3, a SampledSpectrum or one wavelength's float).
+template <class C>
+C reflection_fresnel(const Lobe& l, const C& f0, float cos_oh, float eta) {
+  switch (l.fresnel) {
+    case FresnelMode::kDielectric:
+      return C(fresnel_dielectric(cos_oh, eta));
+    case FresnelMode::kSchlick:
+      return f0 + (C(1.0f) - f0) * schlick_weight(cos_oh);  // fresnel_schlick
+    case FresnelMode::kInterpolated: {
+      const float f_normal = fresnel_dielectric(1.0f, eta);
+      const float fh =
+          f_normal < 1.0f ? (fresnel_dielectric(cos_oh, eta) - f_normal) / (1.0f - f_normal) : 1.0f;
+      return f0 + (C(1.0f) - f0) * fh;
+    }
+    default:
+      return C(1.0f);
+  }
+}
+
+// Where the generalized half vector of a refraction (Walter 2007, eq. 16) is valid: wo above,
+// wi below, both on the front of the microfacet h (oriented to +z). `eta` = n_wi / n_wo.
+struct RefractionGeometry {
+  Vec3 h;
+  float cos_oh = 0.0f, cos_ih = 0.0f;
+  float denom2 = 0.0f;  // (wo.h + eta wi.h)^2
+  bool valid = false;
+};
+
+inline RefractionGeometry refraction_geometry(const Vec3& wo, const Vec3& wi, float eta) {
+  RefractionGeometry g;
+  Vec3 h = wo + wi * eta;
+  const float l2 = length_squared(h);
+  if (!(l2 > 1e-12f)) return g;
+  h = h / std::sqrt(l2);
+  if (h.z < 0.0f) h = -h;
+  g.h = h;
+  g.cos_oh = dot(wo, h);
+  g.cos_ih = dot(wi, h);
+  if (g.cos_oh <= 0.0f || g.cos_ih >= 0.0f) return g;
+  const float d = g.cos_oh + eta * g.cos_ih;
+  g.denom2 = d * d;
+  g.valid = g.denom2 > 1e-20f;
+  return g;
+}
+
+template <class C>
+struct LobeEval {
+  C f{0.0f};         // f(wo, wi) without the cosine
+  float pdf = 0.0f;  // solid-angle density of this lobe's sampling routine
+};
+
+// The share of a glass lobe that reflects: Cycles 3.4's Glass BSDF (svm/closure.h) weights
+// its GGX reflection closure by the dielectric Fresnel of the shading normal, F(wo.z), and its
+// GGX refraction closure by 1 - F(wo.z); neither applies a Fresnel term per microfacet.
+inline float glass_fresnel(const Vec3& wo, float eta) {
+  return fresnel_dielectric(wo.z, eta);
+}
+
+// Microfacet reflection (Walter 2007, eq. 20) of a GGX reflection or glass lobe, wo.z and wi.z
+// > 0, with the pdf of visible-normal sampling (Heitz 2018, eq. 17 and the reflection
+// Jacobian 1 / (4 wo.h)). Glass picks reflection with probability F(wo.z).
+template <class C>
+LobeEval<C> ggx_reflection(const Lobe& l, const C& weight, const C& f0, const Vec3& wo,
+                           const Vec3& wi, float eta) {
+  LobeEval<C> r;
+  const Vec3 h = normalize(wo + wi);
+  const float cos_oh = dot(wo, h);
+  if (cos_oh <= 0.0f) return r;
+  const float d = lobe_d(l, h);
+  const float g = lobe_g2(l, wo, wi, h);
+  const bool glass = l.type == LobeType::kGgxGlass;
+  const float fg = glass ? glass_fresnel(wo, eta) : 1.0f;
+  const C fr = glass ? C(fg) : reflection_fresnel(l, f0, cos_oh, eta);
+  r.f = weight * fr * (d * g / (4.0f * wo.z * wi.z));
+  r.pdf = lobe_visible_normal_pdf(l, wo, h) / (4.0f * cos_oh) * fg;
+  return r;
+}
+
+// Microfacet refraction (Walter 2007, eq. 21) without the radiance scaling 1/eta^2 (see
+// bsdf.h), wo.z > 0 > wi.z; the pdf uses the refraction Jacobian (eq. 17). Glass weights it by
+// 1 - F(wo.z) (and picks it with that probability); the Refraction lobe refracts everything.
+// Where the sampled microfacet reflects totally, neither returns light (as in Cycles 3.4).
+template <class C>
+LobeEval<C> ggx_transmission(const Lobe& l, const C& weight, const Vec3& wo, const Vec3& wi,
+                             float eta) {
+  LobeEval<C> r;
+  const RefractionGeometry geo = refraction_geometry(wo, wi, eta);
+  if (!geo.valid) return r;
+  const float d = lobe_d(l, geo.h);
+  const float g = lobe_g2(l, wo, wi, geo.h);
+  const float t = l.type == LobeType::kGgxGlass ? 1.0f - glass_fresnel(wo, eta) : 1.0f;
+  const float jacobian = eta * eta * std::fabs(geo.cos_ih) / geo.denom2;  // d(h) / d(wi)
+  r.f = weight * (t * d * g * jacobian * geo.cos_oh / (wo.z * std::fabs(wi.z)));
+  r.pdf = t * lobe_visible_normal_pdf(l, wo, geo.h) * jacobian;
+  return r;
+}
+
+// Chiang, Li & Burley 2019, "Taming the Shadow Terminator", eq. 4 with its smooth cubic
+// (eq. 5): G = min(1, (Ns.wi) / ((Nb.wi)(Ns.Nb))) for the smooth normal Ns and the bumped
+// normal Nb, smoothed as -G^3 + G^2 + G; 0 when wi is below the smooth surface.
+inline float bump_shadowing(const Vec3& smooth_n, const Vec3& bumped_n, const Vec3& wi) {
+  const float denominator = dot(bumped_n, wi) * dot(smooth_n, bumped_n);
+  const float g = denominator != 0.0f ? dot(smooth_n, wi) / denominator : 0.0f;
+  if (!(g < 1.0f)) return g >= 1.0f ? 1.0f : 0.0f;  // NaN: black
+  if (g < 0.0f) return 0.0f;
+  return g * (1.0f + g - g * g);
+}
+
+// The lobes Cycles counts as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE).
+inline bool is_diffuse_type(const Lobe& l) {
+  return l.type == LobeType::kLambert || l.type == LobeType::kBurleyDiffuse ||
+         l.type == LobeType::kTranslucent;
+}
+
+// f and pdf of one non-delta lobe, in the local frame (wo.z > 0). `reflect` is the geometric
+// classification of the pair; a lobe only contributes where the shading frame agrees with it.
+// `weight` and `f0` are the lobe's colours in the colour type C.
+template <class C>
+LobeEval<C> eval_lobe(const Lobe& l, const C& weight, const C& f0, const Vec3& wo, const Vec3& wi,
+                      bool reflect, float eta) {
+  LobeEval<C> r;
+  const bool shading_reflect = reflect && wi.z > 0.0f;
+  const bool shading_transmit = !reflect && wi.z < 0.0f;
+  switch (l.type) {
+    case LobeType::kLambert:
+      if (!shading_reflect) break;
+      r.f = weight * kInvPi;
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    case LobeType::kBurleyDiffuse: {
+      if (!shading_reflect) break;
+      // Burley 2012, "Physically-Based Shading at Disney", sec. 5.3, as in Cycles' Principled
+      // v1 diffuse (no retro-reflection term split off).
+      const Vec3 h = normalize(wo + wi);
+      const float cos_d = dot(wi, h);
+      const float f90 = 0.5f + 2.0f * l.roughness * cos_d * cos_d;
+      const float fl = schlick_weight(wi.z), fv = schlick_weight(wo.z);
+      r.f = weight * (kInvPi * (1.0f + (f90 - 1.0f) * fl) * (1.0f + (f90 - 1.0f) * fv));
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    }
+    case LobeType::kTranslucent:
+      if (!shading_transmit) break;
+      r.f = weight * kInvPi;
+      r.pdf = cosine_hemisphere_pdf(-wi.z);
+      break;
+    case LobeType::kOrenNayar: {
+      if (!shading_reflect) break;
+      // Cycles 3.4 bsdf_oren_nayar: f = A + B t with s = wi.wo - cos_i cos_o, t = s / max(cos_i,
+      // cos_o) where s > 0 (else s), A = 1 / (pi + (3 pi - 4) / 6 sigma), B = sigma A.
+      const float sigma = l.roughness;
+      const float a = 1.0f / (kPi + ((3.0f * kPi - 4.0f) / 6.0f) * sigma);
+      const float b = sigma * a;
+      float t = dot(wi, wo) - wi.z * wo.z;
+      if (t > 0.0f) t /= std::max(wi.z, wo.z);
+      r.f = weight * std::max(a + b * t, 0.0f);
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    }
+    case LobeType::kSheen: {
+      if (!shading_reflect) break;
+      const Vec3 h = normalize(wo + wi);
+      r.f = weight * schlick_weight(dot(wi, h));
+      r.pdf = cosine_hemisphere_pdf(wi.z);
+      break;
+    }
+    case LobeType::kGgxReflection:
+      if (shading_reflect) r = ggx_reflection(l, weight, f0, wo, wi, eta);
+      break;
+    case LobeType::kGgxGlass:
+      if (shading_reflect) r = ggx_reflection(l, weight, f0, wo, wi, eta);
+      if (shading_transmit) r = ggx_transmission(l, weight, wo, wi, eta);
+      break;
+    case LobeType::kGgxRefraction:
+      if (shading_transmit) r = ggx_transmission(l, weight, wo, wi, eta);
+      break;
+    case LobeType::kTransparent:
+      break;
+  }
+  return r;
+}
+
+// Samples a direction from one non-delta lobe (local frame, wo.z > 0) and says whether it is a
+// reflection. `u_choice` picks reflection or transmission for glass. Returns false when no
+// direction comes out (refraction lobe at total internal reflection).
+inline bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice, Vec2 u, Vec3* wi,
+                        bool* reflection) {
+  *reflection = true;
+  switch (l.type) {
+    case LobeType::kLambert:
+    case LobeType::kBurleyDiffuse:
+    case LobeType::kOrenNayar:
+    case LobeType::kSheen:
+      *wi = sample_cosine_hemisphere(u);
+      return true;
+    case LobeType::kTranslucent:
+      *wi = -sample_cosine_hemisphere(u);
+      *reflection = false;
+      return true;
+    case LobeType::kGgxReflection: {
+      const Vec3 h = lobe_sample_visible_normal(l, wo, u);
+      *wi = reflect(wo, h);
+      return true;
+    }
+    case LobeType::kGgxGlass:
+    case LobeType::kGgxRefraction: {
+      const Vec3 h = lobe_sample_visible_normal(l, wo, u);
+      const float f = l.type == LobeType::kGgxGlass ? glass_fresnel(wo, eta) : 0.0f;
+      if (u_choice < f) {
+        *wi = reflect(wo, h);
+        return true;
+      }
+      *reflection = false;
+      return refract(wo, h, eta, wi);
+    }
+    case LobeType::kTransparent:
+      return false;
+  }
+  return false;
+}
+
+template <class C>
+struct DeltaSample {
+  Vec3 wi;
+  C f{0.0f};          // throughput f |cos| integrated over the delta, for this event
+  float prob = 1.0f;  // probability of this event within the lobe
+  uint8_t flags = 0;
+};
+
+// Samples a delta lobe (local frame, wo.z > 0).
+template <class C>
+bool sample_delta_lobe(const Lobe& l, const C& weight, const C& f0, const Vec3& wo, float eta,
+                       float u_choice, DeltaSample<C>* s) {
+  const Vec3 n(0.0f, 0.0f, 1.0f);
+  switch (l.type) {
+    case LobeType::kGgxReflection:
+      s->wi = reflect(wo, n);
+      s->f = weight * reflection_fresnel(l, f0, wo.z, eta);
+      s->flags = kLobeReflection | kLobeSpecular;
+      return true;
+    case LobeType::kGgxGlass: {
+      const float f = fresnel_dielectric(wo.z, eta);  // 1 on total internal reflection
+      if (u_choice < f) {
+        s->wi = reflect(wo, n);
+        s->f = weight * f;
+        s->prob = f;
+        s->flags = kLobeReflection | kLobeSpecular;
+        return true;
+      }
+      if (!refract(wo, n, eta, &s->wi)) return false;
+      s->f = weight * (1.0f - f);
+      s->prob = 1.0f - f;
+      s->flags = kLobeTransmission | kLobeSpecular;
+      return true;
+    }
+    case LobeType::kGgxRefraction:
+      if (!refract(wo, n, eta, &s->wi)) return false;
+      s->f = weight;
+      s->flags = kLobeTransmission | kLobeSpecular;
+      return true;
+    case LobeType::kTransparent:
+      s->wi = -wo;
+      s->f = weight;
+      s->flags = kLobeTransmission | kLobeSpecular;
+      return true;
+    default:
+      return false;
+  }
+}
+
+// The albedo estimate of one lobe at wo (local), used for lobe selection.
+inline Vec3 lobe_albedo(const Lobe& l, const Vec3& wo, float eta) {
+  if (l.type == LobeType::kGgxReflection) return l.weight * reflection_fresnel(l, l.f0, wo.z, eta);
+  // Sheen grows towards grazing; Cycles picks it by (1 - cos_o)^5 (its avg_value). A floor
+  // keeps it selectable at normal incidence, where it still reflects light.
+  if (l.type == LobeType::kSheen) return l.weight * std::max(schlick_weight(wo.z), 0.02f);
+  return l.weight;
+}
+
+}  // namespace photon::bsdf_lobes
