@@ -23,7 +23,8 @@ sys.path.insert(0, HERE)
 import builders  # noqa: E402
 import library  # noqa: E402
 
-SIZE = 96  # references and tests: SIZE x SIZE pixels (tests render SIZE / 2 and compare 2 x 2 means)
+# References: SIZE x SIZE pixels (the native tests render SIZE / 2 and compare 2 x 2 means).
+SIZE = 96
 
 # The pool's waves: (amplitude, kx, ky, phase), as kWaves in sds_scenes.cpp.
 WAVES = ((0.004, 22.0, 8.0, 0.3), (0.003, -12.0, 27.0, 1.1), (0.0025, 30.0, -18.0, 2.0))

@@ -81,6 +81,13 @@ double relative_rmse(const Rgb& a, const Rgb& b) {
   return std::sqrt(sum / static_cast<double>(std::max<size_t>(b.rgb.size(), 1))) / mean_value(b);
 }
 
+double relative_mae(const Rgb& a, const Rgb& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.rgb.size() && i < b.rgb.size(); ++i)
+    sum += std::fabs(static_cast<double>(a.rgb[i]) - b.rgb[i]);
+  return sum / static_cast<double>(std::max<size_t>(b.rgb.size(), 1)) / mean_value(b);
+}
+
 double relative_mean_difference(const Rgb& a, const Rgb& b) {
   return mean_value(a) / mean_value(b) - 1.0;
 }

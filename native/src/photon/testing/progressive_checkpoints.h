@@ -34,6 +34,9 @@ Rgb rgb_of(const std::vector<float>& rgba, int width, int height);
 Rgb downsample(const Rgb& image, int factor);
 // sqrt(mean((a - b)^2)) / mean(b), over every channel of every pixel.
 double relative_rmse(const Rgb& a, const Rgb& b);
+// mean(|a - b|) / mean(b), over every channel of every pixel: unlike the RMSE, not made by the
+// few pixels that see a small light through glass now and then.
+double relative_mae(const Rgb& a, const Rgb& b);
 // mean(a) / mean(b) - 1 over every channel.
 double relative_mean_difference(const Rgb& a, const Rgb& b);
 double mean_value(const Rgb& image);
