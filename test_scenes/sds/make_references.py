@@ -18,8 +18,9 @@ For each scene of native/src/photon/testing/sds_scenes.h (96 x 96):
               then bounds the reference's: sqrt(e^2 - n^2) is its noise plus the change of
               SPPM's bias between the two iteration counts (--noise-only adds this to existing
               references).
-Each comparison gives the image mean's relative difference and the relative RMSE (per pixel,
-every channel) against the reference. The reference is accepted when VCM's mean is within
+Each comparison gives the image mean's relative difference, the relative RMSE and MAE (per
+pixel, every channel) and the largest and RMS relative difference of the means of 8 x 8 tiles
+against the reference. The reference is accepted when VCM's mean is within
 --mean-tolerance of it.
 
     /usr/bin/python3 test_scenes/sds/make_references.py --build build [--blender blender]
@@ -60,9 +61,24 @@ def write_rgb(path, rgb):
         raise SystemExit(f"cannot write {path}: {out.geterror()}")
 
 
+TILE = 12  # pixels: 8 x 8 tiles of a 96 x 96 image
+
+
 def compare(image, reference):
+    """Image mean and per-pixel RMSE relative to the reference's mean, and how far the means of
+    the 64 tiles of 12 x 12 pixels are from the reference's (relative to each tile's mean):
+    the largest and the root mean square."""
+    h, w = reference.shape[0] // TILE, reference.shape[1] // TILE
+
+    def tiles(x):
+        return x[:h * TILE, :w * TILE].reshape(h, TILE, w, TILE, -1).mean(axis=(1, 3, 4))
+
+    tile_rel = tiles(image) / np.maximum(tiles(reference), 1e-9) - 1.0
     return {"mean_rel": float(image.mean() / reference.mean() - 1.0),
-            "rel_rmse": float(np.sqrt(np.mean((image - reference) ** 2)) / reference.mean())}
+            "rel_rmse": float(np.sqrt(np.mean((image - reference) ** 2)) / reference.mean()),
+            "rel_mae": float(np.mean(np.abs(image - reference)) / reference.mean()),
+            "tile_rel_max": float(np.abs(tile_rel).max()),
+            "tile_rel_rms": float(np.sqrt(np.mean(tile_rel ** 2)))}
 
 
 def photon_cli(build, scene, out, *options):
@@ -129,6 +145,9 @@ def main():
     parser.add_argument("--mean-tolerance", type=float, default=0.01)
     parser.add_argument("--noise-only", action="store_true",
                         help="only estimate the stored references' noise")
+    parser.add_argument("--checks-only", action="store_true",
+                        help="check the stored references again (VCM, photon mapping, Cycles, "
+                        "Blender) without rendering them")
     args = parser.parse_args()
     build = args.build.resolve()
     addon_dir = build / "stage"
@@ -149,9 +168,13 @@ def main():
         for name in args.only:
             print(f"{name}:", flush=True)
             common = ["--sppm-photons-per-iteration", args.photons]
-            reference, ref_seconds = photon_cli(
-                build, name, tmp / f"{name}_sppm.exr", "--integrator", "sppm",
-                "--sppm-iterations", args.sppm_iterations, "--seed", 1, *common)
+            if args.checks_only:
+                reference = read_rgb(HERE / f"{name}.exr")
+                ref_seconds = record[name]["reference"]["seconds"]
+            else:
+                reference, ref_seconds = photon_cli(
+                    build, name, tmp / f"{name}_sppm.exr", "--integrator", "sppm",
+                    "--sppm-iterations", args.sppm_iterations, "--seed", 1, *common)
             vcm, vcm_seconds = photon_cli(
                 build, name, tmp / f"{name}_vcm.exr", "--integrator", "vcm", "--vcm-mode", "vcm",
                 "--sppm-iterations", args.vcm_iterations, "--seed", 2, *common)
@@ -170,9 +193,10 @@ def main():
                                    "--sppm-iterations", 32, "--seed", 1, *common)
             entry = {
                 "size": [SIZE, SIZE],
-                "reference": {"integrator": "SPPM", "iterations": args.sppm_iterations,
-                              "photons_per_iteration": args.photons, "seed": 1,
-                              "seconds": round(ref_seconds, 1), "mean": float(reference.mean())},
+                "reference": record[name]["reference"] if args.checks_only else {
+                    "integrator": "SPPM", "iterations": args.sppm_iterations,
+                    "photons_per_iteration": args.photons, "seed": 1,
+                    "seconds": round(ref_seconds, 1), "mean": float(reference.mean())},
                 "checks": {
                     "VCM": {"iterations": args.vcm_iterations, "seconds": round(vcm_seconds, 1),
                             **compare(vcm, reference)},
@@ -186,14 +210,20 @@ def main():
             checks = entry["checks"]
             for check, values in checks.items():
                 print(f"  {check}: mean {values['mean_rel']:+.4f}, relative RMSE "
-                      f"{values['rel_rmse']:.4f}", flush=True)
+                      f"{values['rel_rmse']:.4f}, MAE {values['rel_mae']:.4f}, tiles "
+                      f"{values['tile_rel_rms']:.4f} RMS, {values['tile_rel_max']:.4f} max",
+                      flush=True)
             if abs(checks["VCM"]["mean_rel"]) > args.mean_tolerance:
                 failed.append(name)
                 print(f"  {name}: VCM's mean is off the reference by more than "
                       f"{args.mean_tolerance:.0%}: not written", flush=True)
                 continue
-            write_rgb(HERE / f"{name}.exr", reference)
-            entry["noise"] = reference_noise(build, name, tmp, args.sppm_iterations, args.photons)
+            if args.checks_only:
+                entry["noise"] = record[name].get("noise")
+            else:
+                write_rgb(HERE / f"{name}.exr", reference)
+                entry["noise"] = reference_noise(build, name, tmp, args.sppm_iterations,
+                                                 args.photons)
             print(f"  noise: {entry['noise']}", flush=True)
             record[name] = entry
             record_path.write_text(json.dumps(record, indent=2) + "\n")
