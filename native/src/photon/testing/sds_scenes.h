@@ -41,7 +41,8 @@ const std::vector<std::string>& sds_scene_names();
 // bottom and sides. Faces point out.
 Mesh make_wavy_slab(float half, float bottom, float top, int cells);
 
-// A UV sphere of emission `radiance` as a light (two-sided emission, as Cycles' mesh lights).
+// A 24 x 12 UV sphere whose material is an Emission closure of `radiance`: a small light that
+// every integrator (and Cycles) samples as emissive triangles.
 void add_emissive_sphere(Scene* scene, const Vec3& center, float radius, float radiance);
 
 }  // namespace photon
