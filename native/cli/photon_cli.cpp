@@ -15,6 +15,7 @@
 #include "photon/session/image_io.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
+#include "photon/testing/sds_scenes.h"
 #include "photon/testing/test_scenes.h"
 
 using namespace photon;
@@ -40,7 +41,8 @@ const std::map<std::string, std::string> kAliases = {
 
 void usage(FILE* out) {
   std::fprintf(out,
-               "usage: photon_cli [--scene cornell|caustic] [--width N] [--height N]\n"
+               "usage: photon_cli [--scene cornell|caustic|glass_light|mirror_caustic|pool]\n"
+               "                  [--width N] [--height N]\n"
                "                  [--passes PREFIX (writes PREFIX_direct.exr, ...)]\n"
                "                  [--print-schema | --write-schema FILE (the parameter schema\n"
                "                   as JSON, on stdout or into FILE)]\n"
@@ -160,14 +162,21 @@ int main(int argc, char** argv) {
       }
     }
   }
-  if (out.empty() || (scene_name != "cornell" && scene_name != "caustic")) {
+  // The built-in scenes: the Cornell and caustic boxes and the SDS scenes (sds_scenes.h).
+  auto scene = std::make_shared<Scene>();
+  bool known = true;
+  if (scene_name == "cornell")
+    *scene = make_cornell_box();
+  else if (scene_name == "caustic")
+    *scene = make_caustic_box();
+  else
+    known = make_sds_scene(scene_name, scene.get());
+  if (out.empty() || !known) {
     usage(stderr);
     return 2;
   }
   settings.x1 = settings.full_width;
   settings.y1 = settings.full_height;
-  auto scene =
-      std::make_shared<Scene>(scene_name == "caustic" ? make_caustic_box() : make_cornell_box());
   const float aspect = static_cast<float>(settings.full_width) / settings.full_height;
   scene->camera.window_min_x = scene->camera.window_min_y * aspect;
   scene->camera.window_max_x = scene->camera.window_max_y * aspect;
@@ -189,11 +198,12 @@ int main(int argc, char** argv) {
   const PrepareStats& prepared = stats.integrator;
   using ull = unsigned long long;
   if (const auto& pm = prepared.photon_map)
-    std::printf("  photons: %llu global and %llu caustic emitted, %llu and %llu stored in %.3f s; "
-                "gather radius %g (caustic %g)\n",
-                ull(pm->photons_emitted), ull(pm->caustic_photons_emitted),
-                ull(pm->global_photons_stored), ull(pm->caustic_photons_stored),
-                pm->photon_trace_seconds, pm->global_gather_radius, pm->caustic_gather_radius);
+    std::printf(
+        "  photons: %llu global and %llu caustic emitted, %llu and %llu stored in %.3f s; "
+        "gather radius %g (caustic %g)\n",
+        ull(pm->photons_emitted), ull(pm->caustic_photons_emitted), ull(pm->global_photons_stored),
+        ull(pm->caustic_photons_stored), pm->photon_trace_seconds, pm->global_gather_radius,
+        pm->caustic_gather_radius);
   if (const auto& cache = prepared.irradiance_cache)
     std::printf("  irradiance cache: %llu records, %llu gather rays in %.3f s\n",
                 ull(cache->records), ull(cache->gather_rays), cache->seconds);

@@ -26,9 +26,10 @@ from pathlib import Path
 import numpy as np
 import OpenImageIO as oiio
 
+from loglog_plot import plot
+
 ROOT = Path(__file__).resolve().parents[2]
 SCENE = ROOT / "test_scenes" / "validation" / "cornell_radiosity.blend"
-FONT = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf"
 STATS = re.compile(r"radiosity: ([\d,]+) patches .*?, ([\d,]+) rays in ([\d.]+) s "
                    r"\(([\d.]+) M rays/s\)")
 
@@ -54,79 +55,6 @@ def render(blender, addon_dir, kilo_rays, out):
     return {"kilo_rays": kilo_rays, "rays": int(rays.replace(",", "")),
             "patches": int(patches.replace(",", "")), "seconds": float(seconds),
             "mrays_per_s": float(mrays), "image": read_rgb(f"{out}_0001.exr")}
-
-
-# ---- A small log-log plot drawn with numpy ----
-
-def draw_text(canvas, x, y, text, size=15, color=(0, 0, 0)):
-    buf = oiio.ImageBuf(oiio.ImageSpec(canvas.shape[1], canvas.shape[0], 3, oiio.FLOAT))
-    buf.set_pixels(oiio.ROI(), canvas.astype(np.float32))
-    oiio.ImageBufAlgo.render_text(buf, int(x), int(y), text, size, FONT, color)
-    canvas[:] = buf.get_pixels(oiio.FLOAT)
-
-
-def draw_line(canvas, p0, p1, color, width=2, dash=0):
-    n = int(max(abs(p1[0] - p0[0]), abs(p1[1] - p0[1]))) + 1
-    for i in range(n):
-        if dash and (i // dash) % 2:
-            continue
-        t = i / max(n - 1, 1)
-        x, y = p0[0] + (p1[0] - p0[0]) * t, p0[1] + (p1[1] - p0[1]) * t
-        x0, y0 = int(round(x)) - width // 2, int(round(y)) - width // 2
-        canvas[max(y0, 0):y0 + width, max(x0, 0):x0 + width] = color
-
-
-def plot(path, series, x_label, y_label, title):
-    w, h, left, right, top, bottom = 860, 560, 90, 30, 50, 70
-    canvas = np.ones((h, w, 3))
-    xs = [x for _, _, pts in series for x, _ in pts]
-    ys = [y for _, _, pts in series for _, y in pts]
-    x_lo, x_hi = math.floor(math.log10(min(xs))), math.ceil(math.log10(max(xs)))
-    y_lo, y_hi = math.floor(math.log10(min(ys))), math.ceil(math.log10(max(ys)))
-
-    def to_px(x, y):
-        u = (math.log10(x) - x_lo) / (x_hi - x_lo)
-        v = (math.log10(y) - y_lo) / (y_hi - y_lo)
-        return left + u * (w - left - right), h - bottom - v * (h - top - bottom)
-
-    grey, dark = (0.85, 0.85, 0.85), (0.2, 0.2, 0.2)
-    for e in range(x_lo, x_hi + 1):
-        for m in range(1, 10):
-            if e == x_hi and m > 1:
-                break
-            x, _ = to_px(m * 10.0 ** e, 10.0 ** y_lo)
-            draw_line(canvas, (x, top), (x, h - bottom), grey if m > 1 else (0.7, 0.7, 0.7), 1)
-        x, _ = to_px(10.0 ** e, 10.0 ** y_lo)
-        draw_text(canvas, x - 16, h - bottom + 22, f"1e{e}", 14, dark)
-    for e in range(y_lo, y_hi + 1):
-        for m in range(1, 10):
-            if e == y_hi and m > 1:
-                break
-            _, y = to_px(10.0 ** x_lo, m * 10.0 ** e)
-            draw_line(canvas, (left, y), (w - right, y), grey if m > 1 else (0.7, 0.7, 0.7), 1)
-        _, y = to_px(10.0 ** x_lo, 10.0 ** e)
-        draw_text(canvas, 30, y + 5, f"1e{e}", 14, dark)
-    draw_line(canvas, (left, top), (left, h - bottom), dark, 2)
-    draw_line(canvas, (left, h - bottom), (w - right, h - bottom), dark, 2)
-    draw_text(canvas, left + (w - left - right) / 2 - 60, h - 15, x_label, 16, dark)
-    draw_text(canvas, 8, top - 18, y_label, 16, dark)
-    draw_text(canvas, left + 120, 28, title, 17, dark)
-    for i, (label, color, pts) in enumerate(series):
-        px = [to_px(x, y) for x, y in pts]
-        dashed = label.startswith("1 /")
-        for a, b in zip(px, px[1:]):
-            draw_line(canvas, a, b, color, 2, dash=8 if dashed else 0)
-        if not dashed:
-            for x, y in px:
-                canvas[int(y) - 4:int(y) + 5, int(x) - 4:int(x) + 5] = color
-        ly = top + 20 + 24 * i
-        draw_line(canvas, (w - right - 330, ly), (w - right - 290, ly), color, 3,
-                  dash=8 if dashed else 0)
-        draw_text(canvas, w - right - 280, ly + 5, label, 14, dark)
-    out = oiio.ImageBuf(oiio.ImageSpec(w, h, 3, oiio.UINT8))
-    out.set_pixels(oiio.ROI(), np.clip(canvas, 0, 1).astype(np.float32))
-    if not out.write(str(path)):
-        raise SystemExit(f"cannot write {path}: {out.geterror()}")
 
 
 def main():

@@ -146,9 +146,9 @@ class CameraPath {
     const Vec3 ns = bsdf.frame().n;
     grid_.for_each_within(p, [&](const VcmLightVertex& v) {
       if (v.path_length + c.path_length > mis_.max_path_length) return;
-      // Light from the other side of the camera vertex's surface does not reflect here
-      // (vertices on a wall meeting this one at an edge do count, as in SPPM's gathering).
-      if (dot(v.wo, ng) <= 0.0f) return;
+      // Light from either side, as in SPPM's gathering: the BSDF says what reaches `wo` (a
+      // translucent or refractive lobe carries what arrives from behind, a diffuse one does
+      // not).
       const SampledSpectrum f = bsdf.eval(wo, v.wo);
       if (is_black(f)) return;
       const float ng_wi = std::fabs(dot(ng, v.wo));

@@ -135,6 +135,35 @@ TEST(Vcm, CausticBoxMeanAgreesWithSppm) {
   }
 }
 
+// A translucent sheet lit only from behind: every light vertex merged at the sheet's lit side
+// arrives through it, from the other side of the surface the camera sees. Merging must count
+// it as SPPM's gathering does (the BSDF says what crosses), or PPM mode renders the sheet black
+// and VCM loses merging's share of the weights.
+TEST(Vcm, LightMergedThroughATranslucentSheetAgreesWithConnectionsAndSppm) {
+  Scene scene;
+  Closure translucent;
+  translucent.type = ClosureType::kTranslucent;
+  translucent[Param::kColor] = Input::constant(Vec3(0.8f));
+  Material sheet;
+  sheet.name = "sheet";
+  sheet.closures = {translucent};
+  scene.materials.push_back(sheet);
+  add_mesh_instance(&scene, make_quad({-1, -1, 1}, {2, 0, 0}, {0, 2, 0}), 0);
+  // An emissive square under the sheet, facing up; the camera looks down at the sheet.
+  scene.materials.push_back(Material::emission(Vec3(4.0f)));
+  add_mesh_instance(&scene, make_quad({-0.5f, -0.5f, 0}, {1, 0, 0}, {0, 1, 0}), 1);
+  scene.camera = make_look_at_camera({0, -0.3f, 3}, {0, 0, 1}, 0.6f, 1.0f);
+  RenderSettings reference = vcm_settings(24, 8, 20000, VcmMode::kBpt);
+  const double bpt = mean_channel(render(scene, reference).rgba, 0);
+  ASSERT_GT(bpt, 0.05);
+  reference.integrator = IntegratorType::kSppm;
+  EXPECT_NEAR(mean_channel(render(scene, reference).rgba, 0), bpt, 0.03 * bpt) << "SPPM";
+  for (VcmMode mode : {VcmMode::kVcm, VcmMode::kPpm}) {
+    const Rendered r = render(scene, vcm_settings(24, 8, 20000, mode));
+    EXPECT_NEAR(mean_channel(r.rgba, 0), bpt, 0.03 * bpt) << name(mode);
+  }
+}
+
 // A camera VCM cannot connect to renders with SPPM, and says so.
 TEST(Vcm, OrthographicCameraFallsBackToSppmWithAWarning) {
   Scene scene = make_cornell_box();
