@@ -1,8 +1,14 @@
 // Blender lamps for bidirectional estimators (emission_pdf.h): the densities of an emitted ray
 // and of a light sample, in the units LightSet::sample uses, so the strategies of a
 // bidirectional path tracer estimate the same light as direct lighting does:
-//  - point (and sphere lamps, as points): a uniform direction, intensity I (W/sr);
-//  - spot: a uniform direction in the cone, I times Cycles' cone attenuation;
+//  - point of radius 0: a uniform direction, intensity I (W/sr);
+//  - spot of radius 0: a uniform direction in the cone, I times Cycles' cone attenuation;
+//  - point or spot with a radius r: a Lambertian sphere of radiance L = I / (pi r^2) (times the
+//    spot's attenuation along the direction of travel), which has the intensity I of the point
+//    in every direction and which camera rays meet, as LightSet::intersect_one sees it. An
+//    emitted ray takes its direction first (uniform, or uniform in the cone) and then a uniform
+//    point on the hemisphere facing it (1 / (2 pi r^2)); a light sample takes a uniform point on
+//    the whole sphere (1 / (4 pi r^2)), of which the half facing the receiver lights it;
 //  - area: a uniform point (1 / A) and a cosine-distributed direction (cos / pi), radiance L;
 //  - sun: a point uniform on the scene's disc (1 / (pi R^2)) and a direction uniform in the
 //    sun's cone, radiance E / (solid angle of the cone) so the disc gives irradiance E; a sun
@@ -26,12 +32,26 @@ float disc_pdf(float scene_radius) {
 
 }  // namespace
 
+bool LightSet::sphere_lamp(const Prepared& l) {
+  return (l.type == LightType::kPoint || l.type == LightType::kSpot) && l.radius > 0.0f &&
+         l.area > 0.0f;
+}
+
+float LightSet::lamp_direction_pdf(const Prepared& l, const Vec3& d) {
+  if (l.type == LightType::kPoint) return kInv4Pi;
+  return dot(d, l.axis) >= l.cos_half_spot ? uniform_cone_pdf(l.cos_half_spot) : 0.0f;
+}
+
+Vec3 LightSet::sphere_radiance(const Prepared& l, const Vec3& d) {
+  return l.type == LightType::kSpot ? l.radiance * spot_attenuation(l, d) : l.radiance;
+}
+
 uint8_t LightSet::vcm_flags(size_t index) const {
   const Prepared& l = lights_[index];
   switch (l.type) {
     case LightType::kPoint:
     case LightType::kSpot:
-      return kVcmSupported | kVcmDeltaPosition;
+      return kVcmSupported | (sphere_lamp(l) ? 0 : kVcmDeltaPosition);
     case LightType::kArea:
       return kVcmSupported;
     case LightType::kSun:
@@ -43,6 +63,20 @@ uint8_t LightSet::vcm_flags(size_t index) const {
 bool LightSet::emit_vcm(size_t index, const Vec3& scene_center, float scene_radius, Vec2 u_pos,
                         Vec2 u_dir, EmissionSample* out) const {
   const Prepared& l = lights_[index];
+  if (sphere_lamp(l)) {
+    const Vec3 d = l.type == LightType::kPoint
+                       ? sample_uniform_sphere(u_dir)
+                       : Frame(l.axis).to_world(sample_uniform_cone(u_dir, l.cos_half_spot));
+    // The hemisphere facing d: a uniform point of it, d itself at the pole.
+    const Vec3 n = Frame(d).to_world(sample_uniform_cone(u_pos, 0.0f));
+    set_ray(l.position + n * l.radius, d, &out->ray);
+    out->radiance = sphere_radiance(l, d);
+    out->pdf_pos = 1.0f / (2.0f * l.area);  // the hemisphere's area is 2 pi r^2
+    out->pdf_dir = lamp_direction_pdf(l, d);
+    out->direct_pdf = 1.0f / (4.0f * l.area);
+    out->cos_light = dot(n, d);
+    return out->cos_light > 0.0f && !is_black(out->radiance);
+  }
   switch (l.type) {
     case LightType::kPoint: {
       set_ray(l.position, sample_uniform_sphere(u_dir), &out->ray);
@@ -99,6 +133,21 @@ bool LightSet::illuminate_vcm(size_t index, float scene_radius, const Vec3& p, V
                               Illumination* out) const {
   const Prepared& l = lights_[index];
   out->surface_normal = Vec3(0.0f);
+  if (sphere_lamp(l)) {
+    const Vec3 n = sample_uniform_sphere(u);
+    const Vec3 to_light = l.position + n * l.radius - p;
+    const float dist2 = length_squared(to_light);
+    if (!(dist2 > 0.0f)) return false;
+    out->distance = std::sqrt(dist2);
+    out->wi = to_light / out->distance;
+    // Points on the far side of the sphere (and all of it, seen from inside) face away.
+    out->cos_light = dot(-out->wi, n);
+    if (!(out->cos_light > 1e-7f)) return false;
+    out->radiance = sphere_radiance(l, -out->wi);
+    out->direct_pdf = dist2 / (out->cos_light * 4.0f * l.area);
+    out->emission_pdf = lamp_direction_pdf(l, -out->wi) / (2.0f * l.area);
+    return !is_black(out->radiance) && std::isfinite(out->direct_pdf);
+  }
   switch (l.type) {
     case LightType::kPoint:
     case LightType::kSpot: {
@@ -166,6 +215,23 @@ bool LightSet::hit_vcm(size_t index, float scene_radius, const Ray& ray, float t
     out->direct_pdf = cone;
     out->emission_pdf = cone * disc_pdf(scene_radius);
     return true;
+  }
+  if (sphere_lamp(l)) {
+    const Vec3 oc = ray.origin - l.position;
+    const float b = dot(oc, ray.direction);
+    const float c = length_squared(oc) - l.radius * l.radius;
+    const float disc = b * b - c;
+    if (!(disc >= 0.0f) || !(c > 0.0f)) return false;  // missed, or from inside the sphere
+    const float t = -b - std::sqrt(disc);
+    if (!(t > ray.tmin) || !(t < tmax)) return false;
+    const Vec3 n = (ray.origin + ray.direction * t - l.position) / l.radius;
+    out->cos_light = dot(-ray.direction, n);
+    if (!(out->cos_light > 1e-7f)) return false;
+    out->radiance = sphere_radiance(l, -ray.direction);
+    out->distance = t;
+    out->direct_pdf = 1.0f / (4.0f * l.area);
+    out->emission_pdf = lamp_direction_pdf(l, -ray.direction) / (2.0f * l.area);
+    return !is_black(out->radiance);
   }
   if (l.type != LightType::kArea) return false;  // points: never met
   const float denom = dot(ray.direction, l.axis);

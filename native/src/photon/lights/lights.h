@@ -102,8 +102,9 @@ class LightSet {
                  float scene_radius) const;
 
   // Bidirectional estimators (emitter.h, EmissionSample; lamp_vcm.cpp). Lamps with a radius
-  // are points there (their discs are sampled towards each receiver, a density the emitted
-  // rays cannot match); a sun of angle 0 is a parallel beam.
+  // are Lambertian spheres there (their emitted rays and light samples both start on the
+  // sphere, so every strategy has a density for every path); a sun of angle 0 is a parallel
+  // beam.
   uint8_t vcm_flags(size_t index) const;
   bool emit_vcm(size_t index, const Vec3& scene_center, float scene_radius, Vec2 u_pos, Vec2 u_dir,
                 EmissionSample* out) const;
@@ -132,6 +133,11 @@ class LightSet {
     float spot_smooth;
     float sun_cos_max;  // cos of half the sun's angular diameter
   };
+  // A point or spot with a radius, which bidirectional estimators treat as a sphere; the
+  // direction density of its emitted rays, and its radiance along a direction of travel d.
+  static bool sphere_lamp(const Prepared& l);
+  static float lamp_direction_pdf(const Prepared& l, const Vec3& d);
+  static Vec3 sphere_radiance(const Prepared& l, const Vec3& d);
   // A light's spectrum: a tabulated shape of luminance 1, or its colour uplifted once.
   struct Spectrum {
     const spectral::TabulatedSpectrum* shape = nullptr;
