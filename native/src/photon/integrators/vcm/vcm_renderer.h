@@ -22,7 +22,7 @@
 // measured over the whole frame, pixel streams and light-path pairing use full-frame indices).
 //
 // Supported: pinhole perspective cameras (the session renders other cameras with SPPM and says
-// so), every emitter kind of emission_pdf.h (lamps with a radius as points). The data passes
+// so), every emitter kind of emission_pdf.h (lamps with a radius as spheres). The data passes
 // (Depth, Normal, Cryptomatte, ...) come from the render session, which renders them once from
 // the camera rays before the first iteration, as for SPPM (session/iterative_render.cpp). Not
 // rendered: the light passes (left black, with a warning), holdouts, shadow catchers and
