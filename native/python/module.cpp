@@ -14,6 +14,7 @@
 #include "photon/scene/mesh_attribute.h"
 #include "photon/scene/mesh_import.h"
 #include "photon/scene/scene.h"
+#include "photon/scene/vertex_normals.h"
 #include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
 #include "photon/shading/program_eval.h"
@@ -188,7 +189,8 @@ PYBIND11_MODULE(_photon, m) {
           "add_loop_mesh",
           [](Scene& scene, const std::string& name, const FloatArray& positions,
              const IntArray& corner_loops, const IntArray& loop_vertices, py::object vertex_normals,
-             py::object loop_normals, py::object loop_uvs, py::object material_slots) {
+             py::object loop_normals, py::object loop_uvs, py::object material_slots,
+             py::object poly_loop_starts, py::object poly_loop_totals, py::object poly_smooth) {
             Mesh mesh;
             mesh.name = name;
             copy_rows(positions, 3, &mesh.positions, "positions");
@@ -205,8 +207,43 @@ PYBIND11_MODULE(_photon, m) {
             view.loop_normals =
                 optional_data(loop_normals, &ln, 3, view.loop_count, "loop_normals");
             view.loop_uvs = optional_data(loop_uvs, &uv, 2, view.loop_count, "loop_uvs");
+            if (poly_loop_starts.is_none() != poly_loop_totals.is_none())
+              throw std::invalid_argument("poly_loop_starts and poly_loop_totals go together");
+            IntArray starts, totals;
+            using FlagArray = py::array_t<uint8_t, py::array::c_style | py::array::forcecast>;
+            FlagArray smooth;
+            if (!poly_loop_starts.is_none()) {
+              starts = poly_loop_starts.cast<IntArray>();
+              totals = poly_loop_totals.cast<IntArray>();
+              if (starts.size() != totals.size())
+                throw std::invalid_argument("poly_loop_starts and poly_loop_totals differ in size");
+              if (!poly_smooth.is_none()) {
+                smooth = poly_smooth.cast<FlagArray>();
+                if (smooth.size() != starts.size())
+                  throw std::invalid_argument("poly_smooth: one flag per polygon");
+              }
+            }
+            std::vector<Vec3> vertex_normals_here, loop_normals_here;
             {
               py::gil_scoped_release release;
+              // Shading normals from the polygons when Blender's own normals are not given.
+              if (!view.vertex_normals && !view.loop_normals && starts.size()) {
+                PolygonMeshView polygons{mesh.positions.data(),
+                                         mesh.positions.size(),
+                                         view.loop_vertices,
+                                         view.loop_count,
+                                         starts.data(),
+                                         totals.data(),
+                                         static_cast<size_t>(starts.size())};
+                vertex_normals_here = angle_weighted_vertex_normals(polygons);
+                if (smooth.size()) {
+                  loop_normals_here =
+                      smooth_and_flat_loop_normals(polygons, smooth.data(), vertex_normals_here);
+                  view.loop_normals = reinterpret_cast<const float*>(loop_normals_here.data());
+                } else {
+                  view.vertex_normals = reinterpret_cast<const float*>(vertex_normals_here.data());
+                }
+              }
               gather_loop_mesh(view, &mesh);
             }
             if (!material_slots.is_none())
@@ -216,8 +253,13 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("name"), py::arg("positions"), py::arg("corner_loops"), py::arg("loop_vertices"),
           py::arg("vertex_normals") = py::none(), py::arg("loop_normals") = py::none(),
           py::arg("loop_uvs") = py::none(), py::arg("material_slots") = py::none(),
+          py::arg("poly_loop_starts") = py::none(), py::arg("poly_loop_totals") = py::none(),
+          py::arg("poly_smooth") = py::none(),
           "Adds a mesh given as Blender stores it: three loop indices per triangle, the vertex "
-          "of each loop, and per-vertex or per-loop normals and per-loop UVs.")
+          "of each loop, and per-vertex or per-loop normals and per-loop UVs. With the polygons "
+          "(each one's first loop and loop count) and no normals, the mesh is smooth shaded "
+          "with angle-weighted vertex normals computed here, the same on every run; with "
+          "poly_smooth too, polygons whose flag is 0 are flat shaded.")
       .def(
           "add_instance",
           [](Scene& scene, uint32_t mesh, const FloatArray& matrix,
@@ -499,11 +541,24 @@ PYBIND11_MODULE(_photon, m) {
       .def_property_readonly("light_count", [](const Scene& s) { return s.lights.size(); })
       .def_property_readonly("material_count", [](const Scene& s) { return s.materials.size(); })
       .def_property_readonly("texture_count", [](const Scene& s) { return s.textures.size(); })
-      .def_property_readonly("triangle_count", [](const Scene& s) {
-        size_t n = 0;
-        for (const Mesh& mesh : s.meshes) n += mesh.triangle_count();
-        return n;
-      });
+      .def_property_readonly("triangle_count",
+                             [](const Scene& s) {
+                               size_t n = 0;
+                               for (const Mesh& mesh : s.meshes) n += mesh.triangle_count();
+                               return n;
+                             })
+      .def(
+          "mesh_corner_normals",
+          [](const Scene& s, size_t mesh) {
+            if (mesh >= s.meshes.size()) throw std::out_of_range("no such mesh");
+            const std::vector<Vec3>& normals = s.meshes[mesh].corner_normals;
+            py::array_t<float> out({static_cast<py::ssize_t>(normals.size()), py::ssize_t{3}});
+            if (!normals.empty())
+              std::memcpy(out.mutable_data(), normals.data(), normals.size() * sizeof(Vec3));
+            return out;
+          },
+          py::arg("mesh"),
+          "A mesh's shading normals, three rows per triangle (none without shading normals).");
 
   py::enum_<IntegratorType>(m, "Integrator")
       .value("RAY_TRACE", IntegratorType::kRayTrace)

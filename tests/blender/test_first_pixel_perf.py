@@ -12,8 +12,9 @@ def test_fast_mesh_path_matches_the_copy(blender):
     # Plain meshes, with or without modifiers, skip the copy ...
     assert result["smooth_uv"]["fast_path"]
     assert result["flat_subsurf"]["fast_path"]
-    # ... meshes whose split normals must be computed keep it (the depsgraph's data is not
-    # written).
-    assert not result["mixed"]["fast_path"]
+    # (smooth and flat polygons mixed: their normals are computed natively from the polygons)
+    assert result["mixed"]["fast_path"]
+    # ... meshes whose split normals Blender must compute keep it (the depsgraph's data is
+    # not written).
     assert not result["auto_smooth_two_materials"]["fast_path"]
     assert result["auto_smooth_two_materials"]["method"] == "add_loop_mesh"

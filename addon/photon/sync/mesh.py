@@ -32,12 +32,12 @@ def _get(collection, attribute, dtype, count, components=1):
 
 
 def _shading(mesh):
-    """(all faces smooth, split normals needed). Shading normals: none for all-flat meshes (the
-    geometric normal is exact), vertex normals for all-smooth meshes, split (per-loop) normals
-    for auto smooth, custom normals or a mix."""
+    """(per-polygon smooth flags, split normals needed). Shading normals: none for all-flat
+    meshes (the geometric normal is exact), Blender's split (per-loop) normals for auto smooth
+    and custom normals, else computed natively from the polygons (vertex normals where smooth)."""
     smooth = _get(mesh.polygons, "use_smooth", bool, len(mesh.polygons))
-    split = mesh.has_custom_normals or (smooth.any() and (mesh.use_auto_smooth or not smooth.all()))
-    return bool(smooth.all()), bool(split)
+    split = mesh.has_custom_normals or (smooth.any() and mesh.use_auto_smooth)
+    return smooth, bool(split)
 
 
 def _evaluated_mesh(obj):
@@ -169,38 +169,39 @@ def _mesh_arrays(mesh):
     if len(mesh.materials) > 1:
         material_slots = _get(mesh.loop_triangles, "material_index", np.int32, tri_count)
 
-    all_smooth, split = _shading(mesh)
-    vertex_normals = None
-    if all_smooth and not split:
-        vertex_normals = _get(mesh.vertices, "normal", np.float32, vertex_count, 3)
+    poly_smooth, split = _shading(mesh)
+    # Smooth polygons without split normals: the vertex normals are computed natively from the
+    # polygons, not read from Blender, whose threads sum them in no fixed order (the same mesh
+    # then differs in the last bits from one render to the next). Blender's split normals
+    # (Auto Smooth, custom normals) are summed fan by fan in a fixed order and are read as is.
+    smooth = not split and bool(poly_smooth.any())
 
     # Image textures without a UV Map node read the layer marked for render (the camera icon
     # in Object Data > UV Maps), as in Cycles; it is usually also the active one.
     uv_layer = next((layer for layer in mesh.uv_layers if layer.active_render),
                     mesh.uv_layers.active)
     has_uvs = uv_layer is not None and len(uv_layer.data) == loop_count
-    if not has_uvs and not split:
+    if not has_uvs and not split and not smooth:
         triangles = _get(mesh.loop_triangles, "vertices", np.int32, tri_count, 3)
-        if vertex_normals is not None:
-            # Vertex indices stand in for loops, with the identity as the loop -> vertex map.
-            return "add_loop_mesh", {
-                "positions": positions, "corner_loops": triangles,
-                "loop_vertices": np.arange(vertex_count, dtype=np.int32),
-                "vertex_normals": vertex_normals, "material_slots": material_slots}
         return "add_mesh", {"positions": positions, "triangles": triangles,
                             "material_slots": material_slots}
 
     corner_loops = _get(mesh.loop_triangles, "loops", np.int32, tri_count, 3)
     loop_vertices = _get(mesh.loops, "vertex_index", np.int32, loop_count)
-    loop_normals = None
+    kwargs = {"positions": positions, "corner_loops": corner_loops,
+              "loop_vertices": loop_vertices, "material_slots": material_slots}
     if split:
         mesh.calc_normals_split()
-        loop_normals = _get(mesh.loops, "normal", np.float32, loop_count, 3)
-    loop_uvs = _get(uv_layer.data, "uv", np.float32, loop_count, 2) if has_uvs else None
-    return "add_loop_mesh", {
-        "positions": positions, "corner_loops": corner_loops, "loop_vertices": loop_vertices,
-        "vertex_normals": vertex_normals, "loop_normals": loop_normals, "loop_uvs": loop_uvs,
-        "material_slots": material_slots}
+        kwargs["loop_normals"] = _get(mesh.loops, "normal", np.float32, loop_count, 3)
+    elif smooth:
+        poly_count = len(mesh.polygons)
+        kwargs["poly_loop_starts"] = _get(mesh.polygons, "loop_start", np.int32, poly_count)
+        kwargs["poly_loop_totals"] = _get(mesh.polygons, "loop_total", np.int32, poly_count)
+        if not poly_smooth.all():
+            kwargs["poly_smooth"] = poly_smooth.view(np.uint8)
+    if has_uvs:
+        kwargs["loop_uvs"] = _get(uv_layer.data, "uv", np.float32, loop_count, 2)
+    return "add_loop_mesh", kwargs
 
 
 def export_object_mesh(native_scene, obj, reporter, attributes=(), on_missing=None):

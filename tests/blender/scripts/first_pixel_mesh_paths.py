@@ -44,6 +44,24 @@ def arrays_of(mesh):
     return method, {k: (None if v is None else np.asarray(v).tolist()) for k, v in kwargs.items()}
 
 
+def same_but_for_quad_splits(got, expected):
+    """Equal arrays, except that a quad may be split along its other diagonal: Blender decides
+    a nearly folded quad's split from its normal, which the depsgraph's mesh and a to_mesh()
+    copy compute apart (one or two quads of Suzanne differ). At most 1% of the triangles may
+    differ, all other arrays not at all."""
+    (method, a), (method_b, b) = got, expected
+    if method != method_b or a.keys() != b.keys():
+        return False
+    if any(a[k] != b[k] for k in a if k not in ("corner_loops", "triangles")):
+        return False
+    key = "corner_loops" if "corner_loops" in a else "triangles"
+    ta, tb = np.array(a[key]).reshape(-1, 3), np.array(b[key]).reshape(-1, 3)
+    if ta.shape != tb.shape:
+        return False
+    differ = np.nonzero((np.sort(ta, axis=1) != np.sort(tb, axis=1)).any(axis=1))[0]
+    return len(differ) <= len(ta) // 100
+
+
 def main():
     from photon.sync import mesh as sync_mesh
     objects = make_objects()
@@ -58,8 +76,8 @@ def main():
             evaluated.to_mesh_clear()
         direct = sync_mesh._evaluated_mesh(evaluated)
         got = arrays_of(direct) if direct is not None else expected
-        result[label] = {"fast_path": direct is not None, "same": got == expected,
-                         "method": got[0]}
+        result[label] = {"fast_path": direct is not None, "method": got[0],
+                         "same": same_but_for_quad_splits(got, expected)}
         # The int32 view of a uint32 foreach_get equals an int32 foreach_get.
         mesh = evaluated.data
         mesh.calc_loop_triangles()

@@ -25,10 +25,11 @@ struct LoopMeshView {
 // indices, which clean_mesh() drops.
 void gather_loop_mesh(const LoopMeshView& view, Mesh* mesh);
 
-// Rounds corner normals to multiples of 2^-16. Blender 3.4 accumulates vertex normals across
-// threads in no fixed order, so the same mesh can arrive with normals differing in the last
-// bit from run to run; snapping makes such inputs identical (a tie at a rounding boundary is
-// still possible but rare), and 1.5e-5 is far finer than shading needs.
+// Rounds corner normals to multiples of 2^-16 (1.5e-5 is far finer than shading needs), so
+// normals that differ only in their last bits become identical, but for a tie at a rounding
+// boundary. Vertex normals, which Blender 3.4 sums across threads in no fixed order, are no
+// longer read from it (vertex_normals.h computes them); this still evens out normals handed in
+// by other callers.
 void snap_normals(Mesh* mesh);
 
 }  // namespace photon
