@@ -83,8 +83,12 @@ std::vector<Vec3> angle_weighted_vertex_normals(const PolygonMeshView& mesh) {
                     [&](const tbb::blocked_range<size_t>& range) {
                       for (size_t v = range.begin(); v < range.end(); ++v) {
                         const float l = length(normals[v]);
-                        normals[v] = l > 0.0f && std::isfinite(l) ? normals[v] / l
-                                                                  : normalize(mesh.positions[v]);
+                        if (l > 0.0f && std::isfinite(l)) {
+                          normals[v] = normals[v] / l;
+                        } else {  // loose: the position's direction, or none when not finite
+                          const Vec3 p = normalize(mesh.positions[v]);
+                          normals[v] = is_finite(p) ? p : Vec3(0.0f);
+                        }
                       }
                     });
   return normals;

@@ -25,7 +25,8 @@ struct PolygonMeshView {
 // The normal of each vertex: the sum over the polygons around it of the polygon's normal
 // weighted by the polygon's angle at that vertex (Thürmer and Wüthrich, "Computing vertex
 // normals from polygonal facets", JGT 1998), normalized. A vertex no polygon weighs on gets its
-// position's direction, as in Blender. Polygons reaching outside the arrays are skipped.
+// position's direction, as in Blender (zero if that is not finite). Polygons reaching outside
+// the arrays, or with a degenerate or non-finite normal, are skipped.
 std::vector<Vec3> angle_weighted_vertex_normals(const PolygonMeshView& mesh);
 
 // Per-loop normals of a mesh mixing smooth and flat polygons (Blender without Auto Smooth or

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <random>
 
 namespace photon {
 namespace {
@@ -151,6 +152,48 @@ TEST(VertexNormals, FlatPolygonsKeepTheirNormalAndStillBendTheirNeighbours) {
   EXPECT_NEAR(loops[0].z, h, 1e-6f);
   EXPECT_NEAR(loops[2].z, 1.0f, 1e-6f);  // vertex 2 touches the top only
   for (int l = 4; l < 8; ++l) EXPECT_NEAR(loops[l].y, -1.0f, 1e-6f) << l;
+}
+
+TEST(VertexNormals, RandomBrokenPolygonArraysNeverReachOutside) {
+  // Loop starts and counts anywhere (negative, past the end, overflowing int32 when added),
+  // vertex indices out of range, NaN and infinite positions: the arrays are only read inside
+  // their bounds (the sanitizer build checks), and every normal is unit length or zero.
+  std::mt19937 rng(7);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int round = 0; round < 200; ++round) {
+    PolygonMesh m;
+    const int vertices = 1 + static_cast<int>(rng() % 20);
+    for (int v = 0; v < vertices; ++v) {
+      const uint32_t pick = rng() % 20;
+      const float special = pick == 0 ? nan : pick == 1 ? inf : pick == 2 ? 0.0f : 1.0f;
+      m.positions.push_back(Vec3(std::uniform_real_distribution<float>(-1, 1)(rng) * special,
+                                 std::uniform_real_distribution<float>(-1, 1)(rng),
+                                 std::uniform_real_distribution<float>(-1, 1)(rng)));
+    }
+    const int loops = static_cast<int>(rng() % 40);
+    for (int l = 0; l < loops; ++l)
+      m.loop_vertices.push_back(static_cast<int32_t>(rng() % (vertices + 3)) - 1);
+    const int polys = static_cast<int>(rng() % 12);
+    for (int p = 0; p < polys; ++p) {
+      const uint32_t pick = rng() % 10;
+      m.starts.push_back(pick == 0   ? -5
+                         : pick == 1 ? std::numeric_limits<int32_t>::max()
+                                     : static_cast<int32_t>(rng() % (loops + 2)));
+      m.totals.push_back(pick == 2 ? std::numeric_limits<int32_t>::max()
+                                   : static_cast<int32_t>(rng() % 7) - 1);
+    }
+    const std::vector<Vec3> normals = angle_weighted_vertex_normals(m.view());
+    std::vector<uint8_t> smooth(m.starts.size());
+    for (uint8_t& f : smooth) f = rng() % 2;
+    const std::vector<Vec3> loop_normals =
+        smooth_and_flat_loop_normals(m.view(), smooth.data(), normals);
+    ASSERT_EQ(loop_normals.size(), m.loop_vertices.size());
+    for (const Vec3& n : loop_normals) {
+      const float l = length(n);
+      EXPECT_TRUE(l == 0.0f || std::fabs(l - 1.0f) < 1e-5f) << l;
+    }
+  }
 }
 
 }  // namespace
