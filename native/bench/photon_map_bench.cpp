@@ -7,7 +7,7 @@
 
 #include <random>
 
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/integrators/photon_map/photon_map.h"
 #include "photon/integrators/photon_map/photon_tracer.h"
 #include "photon/integrators/photon_map/radiance_cache.h"

@@ -7,10 +7,10 @@
 #include <atomic>
 #include <memory>
 
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/render/accel.h"
 #include "photon/scene/camera.h"
-#include "photon/session/pixel_renderer.h"
+#include "photon/film/film.h"
 #include "photon/integrators/ray_trace/ray_trace_integrator.h"
 #include "photon/testing/test_scenes.h"
 
@@ -98,16 +98,20 @@ void BM_CameraRays_EmbreeStream(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * f.rays.size());
 }
 
-// One sample per pixel of the whole frame through render_pixels, exactly as the renderer runs it.
+// One sample per pixel of the whole frame through the pixel loop, exactly as the renderer runs it.
 void render_frame(benchmark::State& state, bool with_lights) {
   Fixture f(with_lights);
   RayTraceIntegrator integrator;
-  const RenderContext& ctx = f.context();
-  std::vector<float> rgba(kSize * kSize * 4);
+  RenderContext ctx = f.context();
+  ctx.settings = &f.settings;
+  Film film(film_frame(f.scene.camera, kSize, kSize, 0, 0, kSize, kSize), film_options(f.settings));
   std::atomic<bool> cancel{false};
-  uint64_t bad = 0;
-  for (auto _ : state) render_pixels(ctx, integrator, 0, 0, kSize, kSize, rgba.data(), cancel, &bad);
-  benchmark::DoNotOptimize(rgba.data());
+  RenderControl control;
+  control.end_pass = 1;
+  control.cancel = &cancel;
+  control.tile_size = kSize;  // one tile: a single thread, as the loop this measures used to be
+  for (auto _ : state) integrator.render(ctx, film, control);
+  benchmark::DoNotOptimize(film.non_finite());
   state.SetItemsProcessed(state.iterations() * kSize * kSize);
 }
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "photon/render/material_eval.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/scene/camera.h"
 #include "photon/shading/program_eval.h"
 #include "photon/testing/test_scenes.h"

@@ -13,7 +13,6 @@
 
 #include "photon/integrators/render_params.h"
 #include "photon/session/image_io.h"
-#include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/sds_scenes.h"
 #include "photon/testing/test_scenes.h"
@@ -222,14 +221,16 @@ int main(int argc, char** argv) {
     const int w = session.region_width(), h = session.region_height();
     const char* names[kPassCount] = {"direct", "indirect", "caustics", "photon_map"};
     std::vector<std::vector<float>> images(kPassCount, std::vector<float>(size_t(w) * h * 4, 1.0f));
-    for (const Tile& t : tiles) {
-      for (int row = 0; row < t.height; ++row)
-        for (int col = 0; col < t.width; ++col)
-          for (int k = 0; k < kPassCount; ++k)
+    for (const Tile& t : tiles)
+      for (int k = 0; k < kPassCount; ++k) {
+        const PassImage* pass = t.pass(light_pass_names()[k]);
+        if (!pass) continue;
+        for (int row = 0; row < t.height; ++row)
+          for (int col = 0; col < t.width; ++col)
             for (int c = 0; c < 3; ++c)
               images[k][(size_t(t.y + row) * w + t.x + col) * 4 + c] =
-                  t.passes[(size_t(row) * t.width + col) * kPassFloats + 3 * k + c];
-    }
+                  pass->pixels[(size_t(row) * t.width + col) * 3 + c];
+      }
     for (int k = 0; k < kPassCount; ++k) {
       const std::string path = passes_prefix + "_" + names[k] + ".exr";
       if (!write_rgba_image(path, images[k], w, h, &error)) {

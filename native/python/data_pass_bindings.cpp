@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <memory>
 
-#include "photon/session/data_passes.h"
+#include "photon/integrators/data_passes.h"
 
 namespace py = pybind11;
 using namespace photon;
@@ -58,18 +58,14 @@ void register_data_pass_classes(py::module_& m) {
       "included, in the order take_tiles' data holds them.");
 }
 
-py::object data_passes_to_dict(std::vector<float>&& data, const DataPassSettings& settings,
-                               int height, int width) {
-  const int floats = data_pass_pixel_floats(settings);
-  if (data.empty() || floats == 0) return py::none();
-  auto* heap = new std::vector<float>(std::move(data));
-  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
-  const py::ssize_t h = height, w = width, f = sizeof(float);
+py::object passes_to_dict(std::vector<photon::PassImage>&& passes, int height, int width) {
+  if (passes.empty()) return py::none();
   py::dict out;
-  for (const DataPassSlot& slot : data_pass_slots(settings)) {
-    std::vector<py::ssize_t> shape{h, w, slot.channels};
-    std::vector<py::ssize_t> strides{w * floats * f, floats * f, f};
-    out[py::str(slot.name)] = py::array_t<float>(shape, strides, heap->data() + slot.offset, owner);
+  for (photon::PassImage& pass : passes) {
+    auto* heap = new std::vector<float>(std::move(pass.pixels));
+    py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+    out[py::str(pass.name)] =
+        py::array_t<float>({height, width, pass.channels}, heap->data(), owner);
   }
   return std::move(out);
 }

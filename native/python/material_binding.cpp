@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "photon/render/texture_convert.h"
+#include "photon/shading/texture_convert.h"
 #include "photon/scene/material_params.h"
 #include "photon/session/image_io.h"
 #include "program_binding.h"

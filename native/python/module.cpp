@@ -9,13 +9,13 @@
 
 #include "data_pass_bindings.h"
 #include "material_binding.h"
+#include "photon/integrators/registry.h"
 #include "photon/integrators/render_params.h"
-#include "photon/render/texture_convert.h"
+#include "photon/shading/texture_convert.h"
 #include "photon/scene/mesh_attribute.h"
 #include "photon/scene/mesh_import.h"
 #include "photon/scene/scene.h"
 #include "photon/scene/vertex_normals.h"
-#include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
 #include "photon/shading/program_eval.h"
 #include "program_binding.h"
@@ -97,15 +97,6 @@ py::array_t<float> to_numpy(std::vector<float>&& data, int height, int width) {
   return py::array_t<float>({height, width, 4}, heap->data(), owner);
 }
 
-// Light passes of a tile as [pass, h, w, 3]: Direct, Indirect, Caustics, Photon Map.
-py::array_t<float> passes_to_numpy(std::vector<float>&& data, int height, int width) {
-  auto* heap = new std::vector<float>(std::move(data));
-  py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
-  const py::ssize_t h = height, w = width, f = sizeof(float);
-  std::vector<py::ssize_t> shape{kPassCount, h, w, 3};
-  std::vector<py::ssize_t> strides{3 * f, w * kPassFloats * f, kPassFloats * f, f};
-  return py::array_t<float>(shape, strides, heap->data(), owner);
-}
 
 // Every schema'd parameter as a property of RenderSettings, typed as in the schema: ints, floats,
 // bools, and the Integrator enum (set from the enum or from an item id such as "RADIOSITY").
@@ -560,12 +551,10 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("mesh"),
           "A mesh's shading normals, three rows per triangle (none without shading normals).");
 
-  py::enum_<IntegratorType>(m, "Integrator")
-      .value("RAY_TRACE", IntegratorType::kRayTrace)
-      .value("PHOTON_MAP", IntegratorType::kPhotonMap)
-      .value("RADIOSITY", IntegratorType::kRadiosity)
-      .value("SPPM", IntegratorType::kSppm)
-      .value("VCM", IntegratorType::kVcm);
+  // The integrators as the registry lists them.
+  py::enum_<IntegratorType> integrator_enum(m, "Integrator");
+  for (const IntegratorInfo& info : integrator_registry())
+    integrator_enum.value(info.capabilities.name, info.type);
 
   m.def(
       "integrator_capabilities",
@@ -588,8 +577,7 @@ PYBIND11_MODULE(_photon, m) {
       "no_bake_reason otherwise), stop_early (Esc ends its preparation while the status starts "
       "with stop_early_status, and the render goes on as stop_early_effect says), "
       "shares_preparation (RenderSession.set_prepared_state saves and loads its preparation).");
-  m.attr("PASS_NAMES") =
-      py::make_tuple("Photon Direct", "Photon Indirect", "Photon Caustics", "Photon Map");
+  m.attr("PASS_NAMES") = py::tuple(py::cast(light_pass_names()));
 
   photon_python::register_data_pass_classes(m);  // before RenderSettings.data_passes
   py::class_<RenderSettings> settings_class(m, "RenderSettings");
@@ -664,7 +652,6 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "take_tiles",
           [](RenderSession& s, double timeout) {
-            const DataPassSettings data_settings = s.settings().data_passes;
             std::vector<Tile> tiles;
             {
               py::gil_scoped_release release;
@@ -673,20 +660,16 @@ PYBIND11_MODULE(_photon, m) {
             py::list out;
             for (Tile& t : tiles) {
               const int w = t.width, h = t.height, x = t.x, y = t.y;
-              py::object passes = py::none();
-              if (!t.passes.empty()) passes = passes_to_numpy(std::move(t.passes), h, w);
-              py::object data =
-                  photon_python::data_passes_to_dict(std::move(t.data), data_settings, h, w);
-              out.append(
-                  py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w), passes, data));
+              py::object passes = photon_python::passes_to_dict(std::move(t.passes), h, w);
+              out.append(py::make_tuple(x, y, w, h, to_numpy(std::move(t.rgba), h, w), passes));
             }
             return out;
           },
           py::arg("timeout") = 0.1,
-          "Finished tiles as (x, y, width, height, rgba[h, w, 4], passes, data) with y "
-          "downwards; passes is [4, h, w, 3] (PASS_NAMES order) when light_passes is set, "
-          "else None; data is {name: [h, w, channels]} for the data_passes (DATA_PASSES), "
-          "else None.")
+          "Finished tiles as (x, y, width, height, rgba[h, w, 4], passes) with y downwards; "
+          "passes is {name: [h, w, channels]} holding every other pass of the render by the "
+          "name Blender gives it (the light passes of PASS_NAMES when light_passes is set, the "
+          "data and Cryptomatte passes of data_passes), or None when there are none.")
       .def_property_readonly("finished", &RenderSession::finished)
       .def_property_readonly("cancelled", &RenderSession::cancelled)
       .def_property_readonly("progress", &RenderSession::progress)

@@ -92,7 +92,7 @@ void register_stats_classes(py::module_& m) {
       .def_readonly("threads", &RenderStats::threads)
       .def_readonly("integrator", &RenderStats::integrator)
       .def_readonly("prepared_state", &RenderStats::prepared_state)
-      .def_readonly("sppm", &RenderStats::sppm);
+      .def_readonly("iterations", &RenderStats::iterations);
   py::class_<BakeStats>(m, "BakeStats", "A bake's statistics (the result's 'stats').")
       .def_readonly("build_seconds", &BakeStats::build_seconds)
       .def_readonly("prepare_seconds", &BakeStats::prepare_seconds)

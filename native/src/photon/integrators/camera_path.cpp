@@ -2,7 +2,7 @@
 
 #include "photon/lights/direct_lighting.h"
 #include "photon/lights/emitter_set.h"
-#include "photon/render/matte.h"
+#include "photon/integrators/matte.h"
 #include "photon/render/world_shader.h"
 #include "photon/spectral/rgb_uplift.h"
 

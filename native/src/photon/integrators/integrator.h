@@ -1,5 +1,8 @@
-// The interface every rendering algorithm implements (after Nori): prepare once per render,
-// then answer radiance queries for camera rays from any thread.
+// The interface every rendering algorithm implements (pbrt-v4's Integrator): prepare once per
+// render, then render passes of the frame into a film. Most integrators answer one camera sample
+// at a time and inherit the one pixel loop from PixelIntegrator (pixel_integrator.h); those that
+// refine whole frames in iterations (SPPM, VCM) render on their own. Sessions only call these
+// methods and never ask which integrator runs.
 #pragma once
 
 #include <atomic>
@@ -10,15 +13,15 @@
 #include <vector>
 
 #include "photon/base/math.h"
+#include "photon/base/prepare_control.h"
 #include "photon/base/rng.h"
-#include "photon/integrators/data_pass_settings.h"
-#include "photon/integrators/photon_map/photon_map_params.h"
+#include "photon/film/film.h"
+#include "photon/integrators/iteration_stats.h"
 #include "photon/integrators/prepare_stats.h"
-#include "photon/integrators/radiosity/radiosity_params.h"
-#include "photon/integrators/sampling_params.h"
-#include "photon/integrators/sppm/sppm_params.h"
+#include "photon/integrators/render_settings.h"
 #include "photon/lights/lights.h"
 #include "photon/render/accel.h"
+#include "photon/render/render_context.h"
 #include "photon/scene/scene.h"
 
 namespace photon {
@@ -29,69 +32,38 @@ class PreparedStateReader;
 class PreparedStateWriter;
 class TextureSet;
 
-// What a render is asked to do: the frame, and each algorithm's parameters (declared once in
-// their schemas; render_params.h lists them all and clamps them). The parameter structs are
-// bases so every field keeps its flat name (settings.photons), which is also its name in the
-// schema, the Blender property and the command line.
-struct RenderSettings : SamplingParams,
-                        FilmParams,
-                        PerformanceParams,
-                        PhotonMapParams,
-                        RadiosityParams,
-                        SppmParams,
-                        SpectralParams {
-  int full_width = 64, full_height = 64;  // whole frame in pixels
-  // Pixel rectangle to render (Blender's render border), [x0, x1) x [y0, y1), y downwards.
-  int x0 = 0, y0 = 0, x1 = 64, y1 = 64;
-  bool transparent_background = false;  // from the scene's Film > Transparent
-  bool light_passes = false;     // also write the Direct / Indirect / Caustics / Photon Map passes
-  DataPassSettings data_passes;  // Depth, Mist, Normal, ... (session/data_passes.h)
-};
-
-// Read-only state shared by all threads during a render.
-struct RenderContext {
-  const Scene* scene = nullptr;
-  const Accel* accel = nullptr;
-  const LightSet* lights = nullptr;
-  const RenderSettings* settings = nullptr;
-  const EmissiveMeshes* emissive = nullptr;  // emissive triangles as lights (may be empty)
-  const TextureSet* textures = nullptr;      // the scene's image textures (may be null)
-  const EmitterSet* emitters = nullptr;      // lamps, emissive triangles and world as emitters
-};
-
-// What one camera sample sees, split into light passes whose sum is the Combined image.
-struct RadianceSample {
-  Vec3 direct;         // emission, direct light, and lights / world seen through specular paths
-  Vec3 indirect;       // light that bounced off at least one diffuse surface
-  Vec3 caustic;        // light that reached a diffuse surface through specular paths only
-  Vec3 photon_map;     // a view of the stored photons (not light; not part of Combined)
-  float alpha = 0.0f;  // 1 when the camera ray hit something that is not background
-  // Share of the sample taken out by holdouts (the path's throughput into them): the pixel's
-  // alpha is reduced by it whether or not the film is transparent, as in Cycles.
-  float holdout = 0.0f;
-  Vec3 radiance() const { return direct + indirect + caustic; }
-};
-
-// Reports and controls a long preparation (photon tracing, a radiosity solve).
-struct PrepareControl {
-  const std::atomic<bool>* cancel = nullptr;      // abandon the render
-  const std::atomic<bool>* stop_early = nullptr;  // finish this phase now, keep what is done
-  std::function<void(const std::string& status, float fraction)> progress;
+// What one render() call is to do and whom it tells.
+struct RenderControl {
+  // The passes to render: samples per pixel [first_pass, end_pass) for pixel integrators,
+  // iterations for iterative ones. A pass's random numbers depend on its index only, so passes
+  // rendered in several calls equal the same passes rendered in one, bit for bit.
+  int first_pass = 0;
+  int end_pass = 1;
+  const std::atomic<bool>* cancel = nullptr;
+  // Another reason to stop at once (the viewport's view changed); may be empty.
+  std::function<bool()> interrupted;
+  // Film pixels that are final after `passes` passes: a tile's rows, or the whole film after an
+  // iteration (`last`: no more will follow in this call). May be empty. Called from the
+  // rendering threads, one call at a time per rectangle.
+  std::function<void(const FilmRect& rect, int passes, bool last)> update;
+  // The fraction of this call's work done; may be empty.
+  std::function<void(float fraction)> progress;
+  // What the integrator does now and what the user should know; may be empty.
+  std::function<void(const std::string& status)> status;
   std::function<void(const std::string& warning)> warn;
+  int tile_size = 64;  // film pixels per tile side, for integrators that render in tiles
+  // A time budget for this call (0: none), for integrators that stop between iterations.
+  double time_limit = 0.0;
 
-  bool cancelled() const { return cancel && cancel->load(std::memory_order_relaxed); }
-  bool should_stop() const {
-    return cancelled() || (stop_early && stop_early->load(std::memory_order_relaxed));
+  bool stopped() const {
+    return (cancel && cancel->load(std::memory_order_relaxed)) || (interrupted && interrupted());
   }
-  void report(const std::string& status, float fraction) const {
-    if (progress) progress(status, fraction);
+  void report_status(const std::string& s) const {
+    if (status) status(s);
   }
-};
-
-// The first intersection of a camera ray, traced beforehand together with its neighbours.
-struct CameraHit {
-  bool found = false;
-  Hit hit;
+  void report_warning(const std::string& w) const {
+    if (warn) warn(w);
+  }
 };
 
 // The points of a lighting bake, on the side each is baked: what Integrator::prepare_bake sees.
@@ -126,10 +98,28 @@ class Integrator {
     if (error) *error = "this integrator does not load a prepared state";
     return false;
   }
-  // Radiance arriving along a camera ray whose first hit is already known (the renderer traces
-  // camera rays in coherent batches). Must be thread-safe and deterministic in `sampler`.
-  virtual RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
-                                           const CameraHit& first, Sampler& sampler) const = 0;
+  // A lower bound of the rays a render of `settings` traces besides `camera_samples` camera
+  // rays (final gathers, photons, a radiosity solve), which decides how much a BVH build may
+  // cost (session/scene_resources.h).
+  virtual uint64_t extra_rays(const RenderSettings& settings, uint64_t camera_samples) const {
+    (void)settings, (void)camera_samples;
+    return 0;
+  }
+  // The passes a final render of `settings` takes: samples per pixel, or iterations.
+  virtual int passes(const RenderSettings& settings) const { return settings.samples; }
+  // Renders passes [control.first_pass, control.end_pass) of `film`, which holds the earlier
+  // ones (a call with first_pass 0 starts the film afresh). Returns the passes every pixel of
+  // the film then holds: end_pass, fewer when an iterative integrator stopped early (cancel,
+  // its time limit), or first_pass when a pass was left incomplete. Polls `control`.
+  virtual int render(const RenderContext& context, Film& film, const RenderControl& control) = 0;
+  // Statistics of the last render(), for the UI and logs (the iterations of SPPM and VCM).
+  virtual IterationStats render_stats() const { return {}; }
+  // The settings of a quick first look at this integrator's image while its full preparation
+  // runs (a photon map of a sixteenth of the photons), or false when it has none.
+  virtual bool coarse_settings(const RenderSettings& settings, RenderSettings* coarse) const {
+    (void)settings, (void)coarse;
+    return false;
+  }
   // View-independent radiance leaving a diffuse surface point (emission plus reflected light,
   // averaged over outgoing directions as a Lambertian surface would), for baking lighting into
   // Blender data. `hit` is the point on the scene, `si` its interaction. Integrators without a
@@ -152,32 +142,5 @@ class Integrator {
     (void)context, (void)points, (void)control;
   }
 };
-
-std::unique_ptr<Integrator> make_integrator(IntegratorType type);
-
-// What an integrator type can do, asked of the factory by the sessions and the add-on instead of
-// testing for particular types.
-struct IntegratorCapabilities {
-  const char* name = "";  // as the Python enum names it: "PHOTON_MAP"
-  // prepare() does work of its own before the first pixel (photon maps, a radiosity solve).
-  bool prepares = false;
-  // baked_radiance gives a view-independent solution that lighting bakes read.
-  bool bake = false;
-  const char* no_bake_reason = "";  // for the user, when bake is false
-  // prepare() ends early on PrepareControl::stop_early and the render goes on with what was
-  // prepared, while the preparation's status starts with stop_early_status ("" = all of it).
-  bool stop_early = false;
-  const char* stop_early_status = "";
-  const char* stop_early_effect = "";  // for the user: what the render goes on with
-  // prepare()'s result can be saved and loaded (save_prepared / load_prepared), so renders of
-  // bands of one frame share one preparation.
-  bool shares_preparation = false;
-  // Renders whole frames in iterations (SPPM) instead of answering radiance queries: the render
-  // session runs it through session/iterative_render.cpp, refining the image after each
-  // iteration. Per-sample sessions (viewport, previews) use make_integrator's stand-in.
-  bool iterative = false;
-};
-
-IntegratorCapabilities integrator_capabilities(IntegratorType type);
 
 }  // namespace photon

@@ -9,7 +9,7 @@
 #include "photon/base/sampling.h"
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/path_walker.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

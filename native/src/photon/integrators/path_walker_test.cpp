@@ -12,7 +12,7 @@
 #include "photon/base/sampling.h"
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/photon_map/irradiance_cache_build.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/scene/camera.h"
 #include "photon/testing/test_scenes.h"
 

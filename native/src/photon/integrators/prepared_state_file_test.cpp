@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "photon/integrators/prepared_state_fingerprint.h"
-#include "photon/render/textures.h"
+#include "photon/shading/textures.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

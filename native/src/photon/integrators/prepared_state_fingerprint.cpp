@@ -8,7 +8,7 @@
 
 #include "photon/integrators/prepared_state_file.h"
 #include "photon/integrators/render_params.h"
-#include "photon/render/textures.h"
+#include "photon/shading/textures.h"
 
 namespace photon {
 namespace {

@@ -99,7 +99,7 @@ std::string spec_json(const ParamSpec& s) {
 const std::vector<RenderParamGroup>& render_param_groups() {
   static const std::vector<RenderParamGroup> groups{
       make_group(sampling_schema()),   make_group(film_schema()), make_group(photon_map_schema()),
-      make_group(radiosity_schema()),  make_group(sppm_schema()), make_group(spectral_schema()),
+      make_group(radiosity_schema()),  make_group(sppm_schema()), make_group(vcm_schema()), make_group(spectral_schema()),
       make_group(performance_schema())};
   return groups;
 }
@@ -118,6 +118,7 @@ void clamp_render_params(RenderSettings* settings, std::vector<std::string>* war
   clamp_params<PhotonMapParams>(*settings, photon_map_schema(), warnings);
   clamp_params<RadiosityParams>(*settings, radiosity_schema(), warnings);
   clamp_params<SppmParams>(*settings, sppm_schema(), warnings);
+  clamp_params<VcmParams>(*settings, vcm_schema(), warnings);
   clamp_params<SpectralParams>(*settings, spectral_schema(), warnings);
 }
 

@@ -23,7 +23,10 @@ void expect_covers_every_field(const ParamSchema<S>& schema) {
     const ParamSpec& spec = schema.params[i].spec;
     const double changed = spec.default_value != spec.max ? spec.max : spec.min;
     schema.params[i].set(s, changed);
-    EXPECT_EQ(schema.params[i].get(s), changed) << spec.name;
+    // A float field holds the value rounded to float.
+    const double stored =
+        spec.type == ParamType::kFloat ? static_cast<double>(static_cast<float>(changed)) : changed;
+    EXPECT_EQ(schema.params[i].get(s), stored) << spec.name;
     for (size_t j = 0; j < schema.params.size(); ++j)
       if (j != i)
         EXPECT_EQ(schema.params[j].get(s), schema.params[j].spec.default_value)
@@ -38,6 +41,8 @@ TEST(RenderParams, SchemasCoverEveryField) {
   expect_covers_every_field(photon_map_schema());
   expect_covers_every_field(radiosity_schema());
   expect_covers_every_field(spectral_schema());
+  expect_covers_every_field(sppm_schema());
+  expect_covers_every_field(vcm_schema());
 }
 
 TEST(RenderParams, NamesAreUniqueAndDefaultsInRange) {
@@ -55,7 +60,7 @@ TEST(RenderParams, NamesAreUniqueAndDefaultsInRange) {
       EXPECT_EQ(find_render_param(spec.name), &p);
     }
   // RenderSettings holds the parameters plus the frame (size, border, film, passes) only.
-  EXPECT_EQ(names.size(), 31u);
+  EXPECT_EQ(names.size(), 36u);
 }
 
 // Every numeric entry: a value just beyond each end of its hard range comes back at that end

@@ -1,5 +1,9 @@
 #include "photon/integrators/sampling_params.h"
 
+#include <algorithm>
+#include <vector>
+
+#include "photon/integrators/registry.h"
 #include "photon/spectral/sampled_spectrum.h"
 
 // Schema entries name only the fields they set (designated initializers); the rest keep
@@ -10,39 +14,25 @@ namespace photon {
 
 const ParamSchema<SamplingParams>& sampling_schema() {
   using S = SamplingParams;
+  // The integrators' items come from the registry, in the order the user sees them.
+  std::vector<ParamEnumItem> integrators;
+  int max_integrator = 0;
+  for (const IntegratorInfo& info : integrator_registry()) {
+    const int value = static_cast<int>(info.type);
+    integrators.push_back({info.capabilities.name, info.label, info.description, value});
+    max_integrator = std::max(max_integrator, value);
+  }
   static const ParamSchema<S> schema{
       "sampling",
       "Sampling",
       "",
       {
-          param(&S::integrator,
-                {.name = "integrator",
-                 .label = "Integrator",
-                 .description = "Rendering algorithm",
-                 .min = 0,
-                 .max = 4,
-                 .items = {{"PHOTON_MAP", "Photon Mapping",
-                            "Global illumination and caustics from global and caustic photon "
-                            "maps, with final gathering",
-                            static_cast<int>(IntegratorType::kPhotonMap)},
-                           {"RAY_TRACE", "Ray Tracing",
-                            "Whitted ray tracing: direct light, perfect mirrors and glass",
-                            static_cast<int>(IntegratorType::kRayTrace)},
-                           {"RADIOSITY", "Radiosity",
-                            "Diffuse global illumination solved once on a mesh of patches "
-                            "(stochastic Jacobi radiosity) and viewed from anywhere; mirrors and "
-                            "glass are ray traced",
-                            static_cast<int>(IntegratorType::kRadiosity)},
-                           {"SPPM", "Progressive Photon Mapping",
-                            "Stochastic progressive photon mapping (Hachisuka & Jensen 2009): "
-                            "camera and photon passes repeated with a shrinking radius, so the "
-                            "image converges, caustics included; refines as it renders",
-                            static_cast<int>(IntegratorType::kSppm)},
-                           {"VCM", "Vertex Connection and Merging",
-                            "Bidirectional path tracing and photon merging under one multiple "
-                            "importance sampling (Georgiev et al. 2012); refines as it renders "
-                            "with the progressive photon mapping settings",
-                            static_cast<int>(IntegratorType::kVcm)}}}),
+          param(&S::integrator, {.name = "integrator",
+                                 .label = "Integrator",
+                                 .description = "Rendering algorithm",
+                                 .min = 0,
+                                 .max = max_integrator,
+                                 .items = integrators}),
           param(&S::samples, {.name = "samples",
                               .label = "Samples",
                               .description = "Camera samples per pixel",

@@ -55,6 +55,7 @@ TEST_P(SdsConvergence, ErrorFallsAndTheMeanApproachesTheReference) {
   s.seed = 11;
   s.integrator = c.integrator;
   s.sppm_photons_per_iteration = c.photons;
+  s.vcm_light_paths = c.photons;
   const int counts[] = {4, 16, 64};
   const std::vector<Checkpoint> renders = render_checkpoints(scene, s, {4, 16, 64});
   ASSERT_EQ(renders.size(), 3u);

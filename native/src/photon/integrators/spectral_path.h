@@ -10,13 +10,16 @@
 
 #include "photon/base/rng.h"
 #include "photon/integrators/integrator.h"
+#include "photon/integrators/registry.h"
 #include "photon/spectral/sampled_spectrum.h"
 
 namespace photon {
 
-// Radiosity renders in RGB whatever the setting (its patches store RGB radiosity).
+// Whether paths carry wavelengths: with the setting on, for integrators that render spectrally
+// (radiosity renders in RGB whatever the setting: its patches store RGB radiosity; the sessions
+// say so when they sanitize the settings).
 inline bool spectral_mode(const RenderSettings& s) {
-  return s.spectral && s.integrator != IntegratorType::kRadiosity;
+  return s.spectral && integrator_info(s.integrator).capabilities.spectral;
 }
 inline bool spectral_mode(const RenderContext& context) {
   return context.settings && spectral_mode(*context.settings);

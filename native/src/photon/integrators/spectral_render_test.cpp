@@ -29,7 +29,9 @@ RenderSettings settings_for(IntegratorType integrator, int size, int spp, bool s
   s.caustic_photons = 20000;
   s.final_gather_rays = 16;
   s.sppm_iterations = spp;
+  s.vcm_iterations = spp;
   s.sppm_photons_per_iteration = 20000;
+  s.vcm_light_paths = 20000;
   return s;
 }
 
@@ -116,6 +118,7 @@ TEST(SpectralRender, GreyCornellBoxMatchesRgbForEveryIntegrator) {
     const bool iterative = type == IntegratorType::kSppm || type == IntegratorType::kVcm;
     RenderSettings s = settings_for(type, 16, iterative ? 48 : 16, false);
     s.sppm_photons_per_iteration = 5000;
+    s.vcm_light_paths = 5000;
     s.photons = 30000;
     s.final_gather_rays = 8;
     const Vec3 rgb = mean_rgb(render(scene, s));
@@ -174,6 +177,7 @@ TEST(SpectralRender, DispersionKeepsTheCausticBoxsLight) {
     Scene scene = make_caustic_box();
     RenderSettings s = settings_for(type, 16, type == IntegratorType::kPhotonMap ? 8 : 32, true);
     s.sppm_photons_per_iteration = 15000;
+    s.vcm_light_paths = 15000;
     s.final_gather_rays = 8;
     const Vec3 plain = mean_rgb(render(scene, s));
     scene.materials[3].closures[0].abbe = 20.0f;

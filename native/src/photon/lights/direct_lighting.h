@@ -5,7 +5,9 @@
 // reach lights by ray tracing.
 #pragma once
 
-#include "photon/integrators/integrator.h"
+#include "photon/base/rng.h"
+#include "photon/render/accel.h"
+#include "photon/render/render_context.h"
 #include "photon/render/bsdf.h"
 #include "photon/render/spectral_bsdf.h"
 
@@ -25,7 +27,7 @@ SampledSpectrum direct_radiance(const RenderContext& context, const SurfaceInter
 // Two estimates of direct_radiance from the same samples, one with shadow rays and one without
 // (`*unshadowed`); returns the shadowed one. Light sampling only (plus a BSDF sample of a
 // uniform world), no MIS, so the estimates differ exactly by the occluders' share: their ratio is
-// what a shadow catcher shows (matte.h).
+// what a shadow catcher shows (integrators/matte.h).
 Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
                                               const SurfaceInteraction& si, const Bsdf& bsdf,
                                               const Vec3& wo, Sampler& sampler, Vec3* unshadowed);

@@ -9,7 +9,7 @@
 #include "photon/base/distribution.h"
 #include "photon/lights/lights.h"
 #include "photon/render/accel.h"
-#include "photon/render/textures.h"
+#include "photon/shading/textures.h"
 
 namespace photon {
 

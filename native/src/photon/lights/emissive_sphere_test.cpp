@@ -26,7 +26,7 @@
 
 #include "photon/lights/direct_lighting.h"
 #include "photon/session/render_session.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "photon/base/sampling.h"
-#include "photon/integrators/photon_map/caustic_targets.h"
+#include "photon/lights/photon_aim.h"
 
 namespace photon {
 namespace {

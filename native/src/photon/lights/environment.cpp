@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "photon/base/sampling.h"
-#include "photon/integrators/photon_map/caustic_targets.h"
+#include "photon/lights/photon_aim.h"
 #include "photon/lights/emitters.h"
 
 namespace photon {

@@ -17,7 +17,7 @@
 #include "photon/integrators/photon_map/photon_sources.h"
 #include "photon/lights/direct_lighting.h"
 #include "photon/lights/emitters.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"
 

@@ -9,7 +9,7 @@
 // Caustic photons (emit_towards) go only where the light's emission and a specular target's
 // cone overlap: spot cone ∩ target cone, an area light's hemisphere ∩ target cone, the side of
 // a sphere light facing the target, the sun's disc of directions times the target's footprint.
-#include "photon/integrators/photon_map/caustic_targets.h"
+#include "photon/lights/photon_aim.h"
 #include "photon/lights/lights.h"
 #include "photon/base/sampling.h"
 #include "photon/base/spherical_caps.h"

@@ -12,7 +12,7 @@
 
 #include "photon/lights/direct_lighting.h"
 #include "photon/lights/emitter_set.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

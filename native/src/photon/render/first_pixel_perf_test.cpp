@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "photon/render/accel.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/scene/mesh_import.h"
 #include "photon/testing/test_scenes.h"
 

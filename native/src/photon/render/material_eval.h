@@ -6,7 +6,7 @@
 #include "photon/render/bsdf.h"
 #include "photon/render/shader_globals.h"
 #include "photon/scene/material.h"
-#include "photon/render/textures.h"
+#include "photon/shading/textures.h"
 
 namespace photon {
 

@@ -6,6 +6,7 @@
 
 #include "photon/base/math.h"
 #include "photon/scene/scene.h"
+#include "photon/shading/program.h"
 
 namespace photon {
 

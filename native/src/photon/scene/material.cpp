@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "photon/scene/material_params.h"
-#include "photon/shading/program_eval.h"
+#include "photon/scene/shader_program.h"
 
 namespace photon {
 namespace {

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "photon/base/math.h"
-#include "photon/shading/program.h"
+#include "photon/scene/shader_program.h"
 
 namespace photon {
 

@@ -88,7 +88,7 @@ std::vector<ClosureSpec> make_table() {
        "EMISSION",
        {color(1.0f, kEmissive),
         {Param::kStrength, "strength", {"Strength", nullptr}, S, 1.0f, kEmissive}}},
-      // Cuts a hole in the image where camera rays meet it (render/matte.h); no inputs.
+      // Cuts a hole in the image where camera rays meet it (integrators/matte.h); no inputs.
       {ClosureType::kHoldout, "HOLDOUT", "HOLDOUT", {}},
       // Anisotropy in [-1, 1] (Cycles clamps it to +-0.99).
       {ClosureType::kAnisotropic,

@@ -11,7 +11,7 @@
 
 #include "photon/render/accel.h"
 #include "photon/render/material_eval.h"
-#include "photon/render/textures.h"
+#include "photon/shading/textures.h"
 #include "photon/scene/material_params.h"
 #include "photon/testing/test_scenes.h"
 

@@ -369,13 +369,15 @@ void run_case(uint64_t seed) {
     RenderSession session(scene, settings);
     session.start();
     std::vector<float> passes;
+    const auto keep_passes = [&passes](const Tile& t) {
+      for (const PassImage& pass : t.passes)
+        passes.insert(passes.end(), pass.pixels.begin(), pass.pixels.end());
+    };
     while (!session.finished()) {
-      for (Tile& t : session.take_tiles(0.05))
-        passes.insert(passes.end(), t.passes.begin(), t.passes.end());
+      for (Tile& t : session.take_tiles(0.05)) keep_passes(t);
     }
     session.wait();
-    for (Tile& t : session.take_tiles(0.0))
-      passes.insert(passes.end(), t.passes.begin(), t.passes.end());
+    for (Tile& t : session.take_tiles(0.0)) keep_passes(t);
     for (const std::string& w : session.warnings())
       EXPECT_EQ(w.rfind("Render failed", 0), std::string::npos) << w;
     EXPECT_FALSE(session.cancelled());

@@ -1,3 +1,4 @@
+#include "photon/integrators/registry.h"
 #include "photon/session/bake.h"
 
 #include <tbb/blocked_range.h>
@@ -5,7 +6,7 @@
 
 #include <chrono>
 
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/session/render_session.h"
 
 namespace photon {

@@ -35,7 +35,9 @@ RenderSettings iterative_settings(IntegratorType integrator, VcmMode mode) {
   s.full_width = kWidth, s.full_height = kHeight;
   s.x0 = 0, s.y0 = 0, s.x1 = kWidth, s.y1 = kHeight;
   s.sppm_iterations = 3;
+  s.vcm_iterations = 3;
   s.sppm_photons_per_iteration = 4000;
+  s.vcm_light_paths = 4000;
   s.seed = 11;
   s.threads = 2;
   return s;
@@ -46,7 +48,7 @@ std::vector<float> render(const std::shared_ptr<const Scene>& scene, const Rende
   session.start();
   session.wait();
   EXPECT_EQ(session.status(), "Done");
-  EXPECT_EQ(session.stats().sppm.iterations, 3);
+  EXPECT_EQ(session.stats().iterations.iterations, 3);
   return session.image();
 }
 

@@ -1,6 +1,7 @@
 // The Job base that runs renders and bakes: cancellation latency, an exception in the work
 // becoming an error status, progress that never goes back while work units are counted, and the
 // integrator capabilities the sessions and the add-on ask instead of testing types.
+#include "photon/integrators/registry.h"
 #include "photon/session/job.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +11,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/session/bake.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"

@@ -4,6 +4,7 @@
 
 #include "photon/integrators/prepared_state_file.h"
 #include "photon/integrators/prepared_state_fingerprint.h"
+#include "photon/integrators/registry.h"
 
 namespace photon {
 namespace {

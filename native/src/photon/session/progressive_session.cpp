@@ -1,3 +1,4 @@
+#include "photon/integrators/registry.h"
 #include "photon/session/progressive_session.h"
 
 #include <tbb/blocked_range.h>
@@ -8,8 +9,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "photon/render/scene_resources.h"
-#include "photon/session/pixel_renderer.h"
+#include "photon/session/scene_resources.h"
 #include "photon/session/render_session.h"
 
 namespace photon {
@@ -51,25 +51,7 @@ ProgressiveView sanitized(ProgressiveView v) {
   return v;
 }
 
-// Below this many photons in the coarse map, the full map comes about as fast.
-constexpr uint64_t kMinCoarsePhotons = 2000;
-
 }  // namespace
-
-bool coarse_photon_settings(const RenderSettings& settings, RenderSettings* coarse) {
-  // SPPM and VCM show photon mapping outside final renders (make_integrator).
-  const IntegratorType type = settings.integrator;
-  if (type != IntegratorType::kPhotonMap && type != IntegratorType::kSppm &&
-      type != IntegratorType::kVcm)
-    return false;
-  const bool budget = settings.photon_time > 0.0f;
-  if (!budget && settings.photons < kCoarsePhotonShare * kMinCoarsePhotons) return false;
-  *coarse = settings;
-  coarse->photons = std::max<uint64_t>(settings.photons / kCoarsePhotonShare, 1);
-  coarse->caustic_photons = settings.caustic_photons / kCoarsePhotonShare;
-  coarse->photon_time = settings.photon_time / kCoarsePhotonShare;
-  return true;
-}
 
 ProgressiveSession::ProgressiveSession(std::shared_ptr<const Scene> scene,
                                        const RenderSettings& settings,
@@ -86,7 +68,8 @@ ProgressiveSession::ProgressiveSession(std::shared_ptr<ViewportScene> viewport_s
   settings_ = sanitized_settings(settings, &warnings);
   add_warnings(warnings);
   view_ = view_of(viewport_scene_->scene(), settings_);
-  set_work_total(static_cast<size_t>(settings_.samples));
+  target_ = std::max(make_integrator(settings_.integrator)->passes(settings_), 1);
+  set_work_total(static_cast<size_t>(target_));
 }
 
 ProgressiveSession::~ProgressiveSession() {
@@ -149,134 +132,67 @@ bool ProgressiveSession::interrupted(uint64_t serial) const {
          serial_.load(std::memory_order_relaxed) != serial;
 }
 
-bool ProgressiveSession::render_pass(const RenderContext& context, const Integrator& integrator,
-                                     const ProgressiveView& view, int first, int end,
-                                     uint64_t serial) {
-  const RenderSettings& s = settings_;
-  const int width = view.x1 - view.x0, height = view.y1 - view.y0;
-  const PixelFilter filter(s.filter_type, s.filter_width);
-  std::atomic<bool> stopped{false};
-  std::atomic<uint64_t> non_finite{0};
-  // Rows in any order on any thread: a pixel's sum depends only on its own samples, added in
-  // sample order, exactly as render_pixels adds them (so N samples in passes equal a render
-  // of N samples bit for bit).
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), [&](const tbb::blocked_range<int>& r) {
-    const size_t n = static_cast<size_t>(width);
-    std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
-    std::vector<Ray> rays(n);
-    std::vector<Hit> hits(n);
-    std::unique_ptr<bool[]> found(new bool[n]);
-    uint64_t bad = 0;
-    for (int row = r.begin(); row < r.end(); ++row) {
-      const int py = view.y0 + row;
-      float* sums = &accum_[static_cast<size_t>(row) * n * 4];
-      for (int k = first; k < end; ++k) {
-        if (stopped.load(std::memory_order_relaxed) || interrupted(serial)) {
-          stopped = true;
-          return;
-        }
-        for (size_t i = 0; i < n; ++i) {
-          const int px = view.x0 + static_cast<int>(i);
-          const uint64_t pixel_index = static_cast<uint64_t>(py) * view.full_width + px;
-          samplers[i] = Sampler(s.seed, pixel_index, static_cast<uint32_t>(k),
-                                static_cast<uint32_t>(s.samples));
-          rays[i] = camera_sample_ray(filter, view.camera, view.full_width, view.full_height, px,
-                                      py, samplers[i]);
-        }
-        context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
-        for (size_t i = 0; i < n; ++i) {
-          CameraHit hit;
-          hit.found = found[i];
-          if (hit.found) hit.hit = hits[i];
-          const RadianceSample rs =
-              integrator.radiance_from_hit(context, rays[i], hit, samplers[i]);
-          const Vec3 radiance = rs.radiance();
-          if (!is_finite(radiance) || !is_finite(rs.photon_map)) {
-            ++bad;
-            continue;
-          }
-          sums[4 * i + 0] += radiance.x;
-          sums[4 * i + 1] += radiance.y;
-          sums[4 * i + 2] += radiance.z;
-          const float coverage = s.transparent_background ? rs.alpha : 1.0f;
-          sums[4 * i + 3] += rs.holdout > 0.0f ? std::max(coverage - rs.holdout, 0.0f) : coverage;
-        }
-      }
-    }
-    non_finite += bad;
-  });
-  non_finite_ += non_finite.load();
-  return !stopped.load() && !interrupted(serial);
+std::unique_ptr<Film> ProgressiveSession::make_film(const ProgressiveView& view, int step) const {
+  // The viewport shows Combined only: no light or data passes.
+  FilmOptions options = film_options(settings_);
+  options.light_passes = false;
+  options.data_passes = DataPassSettings{};
+  return std::make_unique<Film>(film_frame(view.camera, view.full_width, view.full_height, view.x0,
+                                           view.y0, view.x1, view.y1, step),
+                                options);
 }
 
-bool ProgressiveSession::render_coarse_pass(const RenderContext& context,
-                                            const Integrator& integrator,
+bool ProgressiveSession::render_pass(const RenderContext& context, Integrator& integrator,
+                                     const ProgressiveView& view, int first, int end,
+                                     uint64_t serial, int* done) {
+  if (first == 0 || !film_) film_ = make_film(view, 1);
+  RenderControl control;
+  control.first_pass = first;
+  control.end_pass = end;
+  control.cancel = &cancel_flag();
+  control.interrupted = [this, serial] { return interrupted(serial); };
+  control.tile_size = settings_.tile_size;
+  control.warn = [this](const std::string& w) { add_warning(w); };
+  const uint64_t before = film_->non_finite();
+  *done = integrator.render(context, *film_, control);
+  non_finite_ += film_->non_finite() - before;
+  return *done > first && !interrupted(serial);
+}
+
+bool ProgressiveSession::render_coarse_pass(const RenderContext& context, Integrator& integrator,
                                             const ProgressiveView& view, int step,
                                             uint64_t serial) {
-  const RenderSettings& s = settings_;
-  const int width = view.x1 - view.x0, height = view.y1 - view.y0;
-  const int coarse_w = (width + step - 1) / step, coarse_h = (height + step - 1) / step;
-  const PixelFilter filter(s.filter_type, s.filter_width);
+  const std::unique_ptr<Film> coarse = make_film(view, step);
+  Film& film = *coarse;
+  RenderControl control;
+  control.end_pass = 1;
+  control.cancel = &cancel_flag();
+  control.interrupted = [this, serial] { return interrupted(serial); };
+  control.tile_size = settings_.tile_size;
+  if (integrator.render(context, film, control) < 1 || interrupted(serial)) return false;
   ProgressiveImage image;
-  image.width = coarse_w;
-  image.height = coarse_h;
+  image.width = film.width();
+  image.height = film.height();
   image.samples = 1;
   image.quick = true;
   image.view_serial = serial;
   image.step = step;
-  image.rgba.assign(static_cast<size_t>(coarse_w) * coarse_h * 4, 0.0f);
-  std::atomic<bool> stopped{false};
-  tbb::parallel_for(tbb::blocked_range<int>(0, coarse_h, 1), [&](const tbb::blocked_range<int>& r) {
-    const size_t n = static_cast<size_t>(coarse_w);
-    std::vector<Sampler> samplers(n, Sampler(0, 0, 0));
-    std::vector<Ray> rays(n);
-    std::vector<Hit> hits(n);
-    std::unique_ptr<bool[]> found(new bool[n]);
-    for (int cy = r.begin(); cy < r.end(); ++cy) {
-      if (stopped.load(std::memory_order_relaxed) || interrupted(serial)) {
-        stopped = true;
-        return;
-      }
-      const int row = cy * step, py = view.y0 + row;
-      for (size_t i = 0; i < n; ++i) {
-        const int px = view.x0 + static_cast<int>(i) * step;
-        const uint64_t pixel_index = static_cast<uint64_t>(py) * view.full_width + px;
-        samplers[i] = Sampler(s.seed, pixel_index, 0, static_cast<uint32_t>(s.samples));
-        rays[i] = camera_sample_ray(filter, view.camera, view.full_width, view.full_height, px, py,
-                                    samplers[i]);
-      }
-      context.accel->intersect_coherent(rays.data(), n, kVisibleCamera, hits.data(), found.get());
-      for (size_t i = 0; i < n; ++i) {
-        CameraHit hit;
-        hit.found = found[i];
-        if (hit.found) hit.hit = hits[i];
-        const RadianceSample rs = integrator.radiance_from_hit(context, rays[i], hit, samplers[i]);
-        const Vec3 radiance = rs.radiance();
-        if (!is_finite(radiance) || !is_finite(rs.photon_map)) continue;
-        const float coverage = s.transparent_background ? rs.alpha : 1.0f;
-        float* pixel = &image.rgba[(static_cast<size_t>(cy) * n + i) * 4];
-        pixel[0] = finite_average(radiance.x, s.exposure);
-        pixel[1] = finite_average(radiance.y, s.exposure);
-        pixel[2] = finite_average(radiance.z, s.exposure);
-        pixel[3] = rs.holdout > 0.0f ? std::max(coverage - rs.holdout, 0.0f) : coverage;
-      }
-    }
-  });
-  if (stopped.load() || interrupted(serial)) return false;
+  image.rgba.resize(film.pixel_count() * 4);
+  film.resolve_rgba(FilmRect{0, 0, film.width(), film.height()}, 1, image.rgba.data());
   std::lock_guard<std::mutex> lock(mutex_);
   image_ = std::move(image);
   changed_.notify_all();
   return true;
 }
 
-bool ProgressiveSession::render_coarse_photon_pass(const RenderContext& context,
-                                                   const PrepareControl& control) {
+bool ProgressiveSession::render_coarse_preparation_pass(const RenderContext& context,
+                                                        const PrepareControl& control) {
+  std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
   RenderSettings coarse;
-  if (!coarse_photon_settings(settings_, &coarse)) return false;
+  if (!integrator->coarse_settings(settings_, &coarse)) return false;
   RenderContext coarse_context = context;
   coarse_context.settings = &coarse;
   set_status("Coarse photon map");
-  std::unique_ptr<Integrator> integrator = make_integrator(settings_.integrator);
   integrator->prepare(coarse_context, control);
   if (cancel_flag()) return false;
   uint64_t serial = 0;
@@ -286,8 +202,8 @@ bool ProgressiveSession::render_coarse_photon_pass(const RenderContext& context,
     serial = serial_;
     view = view_;
   }
-  accum_.assign(static_cast<size_t>(view.x1 - view.x0) * (view.y1 - view.y0) * 4, 0.0f);
-  if (!render_pass(coarse_context, *integrator, view, 0, 1, serial)) return false;
+  int done = 0;
+  if (!render_pass(coarse_context, *integrator, view, 0, 1, serial, &done)) return false;
   publish(view, 1, true, serial, true);
   return true;
 }
@@ -301,19 +217,13 @@ void ProgressiveSession::publish(const ProgressiveView& view, int samples, bool 
   image.quick = quick;
   image.coarse_photons = coarse_photons;
   image.view_serial = serial;
-  image.rgba.resize(accum_.size());
-  const float inv_spp = 1.0f / samples;
-  const float colour_scale = inv_spp * settings_.exposure;  // as render_pixels scales colour
-  for (size_t i = 0; i < accum_.size(); i += 4) {
-    image.rgba[i + 0] = finite_average(accum_[i + 0], colour_scale);
-    image.rgba[i + 1] = finite_average(accum_[i + 1], colour_scale);
-    image.rgba[i + 2] = finite_average(accum_[i + 2], colour_scale);
-    image.rgba[i + 3] = accum_[i + 3] * inv_spp;
-  }
+  image.rgba.resize(film_->pixel_count() * 4);
+  film_->resolve_rgba(FilmRect{0, 0, film_->width(), film_->height()}, samples,
+                      image.rgba.data());
   std::lock_guard<std::mutex> lock(mutex_);
   image_ = std::move(image);
   // Converged together with the last pass's image, so a reader never sees one without the other.
-  if (!quick && samples >= settings_.samples && serial == serial_) converged_ = true;
+  if (!quick && samples >= target_ && serial == serial_) converged_ = true;
   changed_.notify_all();
 }
 
@@ -357,18 +267,20 @@ void ProgressiveSession::run() {
       const ProgressiveView view = current_view(&serial);
       const int step = coarse_step(view);
       if (step > 1 && render_coarse_pass(context, *quick, view, step, serial)) mark_first_image();
-      if (settings_.integrator != IntegratorType::kRayTrace) {
-        accum_.assign(static_cast<size_t>(view.x1 - view.x0) * (view.y1 - view.y0) * 4, 0.0f);
-        if (render_pass(context, *quick, view, 0, 1, serial)) {
-          publish(view, 1, true, serial);
-          mark_first_image();
-        }
+      // Integrators whose own first image comes late (after a preparation, or a whole
+      // iteration) show one ray-traced sample of every pixel meanwhile.
+      int done = 0;
+      if ((caps.prepares || caps.iterative) &&
+          render_pass(context, *quick, view, 0, 1, serial, &done)) {
+        publish(view, 1, true, serial);
+        mark_first_image();
       }
       if (cancel) return;
-      // Then indirect light and caustics from a coarse photon map, traced in a sixteenth of
-      // the full map's time; it stays on screen while the full map is traced.
+      // Then the integrator's own coarse first look (indirect light and caustics from a photon
+      // map traced in a sixteenth of the full map's time); it stays on screen while the full
+      // preparation runs.
       set_preparing(true);
-      render_coarse_photon_pass(context, control);
+      render_coarse_preparation_pass(context, control);
       if (cancel) return;
     }
 
@@ -380,11 +292,10 @@ void ProgressiveSession::run() {
     if (cancel) return;
     set_status("Rendering");
 
-    const int target = settings_.samples;
+    const int target = target_;
     while (!cancel) {
       uint64_t serial = 0;
       const ProgressiveView view = current_view(&serial);
-      accum_.assign(static_cast<size_t>(view.x1 - view.x0) * (view.y1 - view.y0) * 4, 0.0f);
       work_done() = 0;
       int done = 0;
       double seconds_per_sample = 0.0;
@@ -395,9 +306,11 @@ void ProgressiveSession::run() {
           count = static_cast<int>(kPassSeconds / seconds_per_sample);
         count = std::clamp(count, 1, std::min(std::max(done, 1), target - done));
         const auto t0 = Clock::now();
-        if (!render_pass(context, *integrator, view, done, done + count, serial)) break;
-        seconds_per_sample = std::chrono::duration<double>(Clock::now() - t0).count() / count;
-        done += count;
+        int now_done = 0;
+        if (!render_pass(context, *integrator, view, done, done + count, serial, &now_done)) break;
+        seconds_per_sample =
+            std::chrono::duration<double>(Clock::now() - t0).count() / (now_done - done);
+        done = now_done;
         publish(view, done, false, serial);
         mark_first_image();
         work_done() = static_cast<size_t>(done);

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "photon/integrators/integrator.h"
+#include "photon/integrators/registry.h"
 #include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 #include "photon/session/job.h"
@@ -44,12 +45,6 @@ struct ProgressiveImage {
   int step = 1;
 };
 
-// The photon-mapping settings of the coarse map a session shows while the full one is traced:
-// kCoarsePhotonShare times fewer photons (and a shorter photon time budget, when one is set).
-// False when the integrator traces no photons or its map is small enough to come at once.
-constexpr int kCoarsePhotonShare = 16;
-bool coarse_photon_settings(const RenderSettings& settings, RenderSettings* coarse);
-
 class ProgressiveSession : public Job {
  public:
   // Renders `scene` (its camera is the initial view) up to settings.samples samples per
@@ -69,7 +64,8 @@ class ProgressiveSession : public Job {
   // The latest completed pass (a pass interrupted by set_view or cancel is never shown).
   ProgressiveImage image() const;
   int samples_done() const;
-  int target_samples() const { return settings_.samples; }
+  // The passes the view converges at: samples per pixel, or the integrator's iterations.
+  int target_samples() const { return target_; }
   // True once the current view has all its samples (the worker then sleeps until a new view).
   bool converged() const;
   // Blocks until the current view has at least `samples` samples (or is converged, or the
@@ -85,19 +81,23 @@ class ProgressiveSession : public Job {
   void run() override;
   void on_finished() override;
   // Cycles' viewport "start resolution": sample 0 of every step-th pixel of every step-th
-  // row, standing for its step x step block, published as a coarse quick image (accum_
-  // untouched); false when interrupted.
-  bool render_coarse_pass(const RenderContext& context, const Integrator& integrator,
+  // row, standing for its step x step block, published as a coarse quick image (the view's
+  // film untouched); false when interrupted.
+  bool render_coarse_pass(const RenderContext& context, Integrator& integrator,
                           const ProgressiveView& view, int step, uint64_t serial);
-  // Renders samples [first, end) of `view` into accum_ (sums); false when interrupted.
-  bool render_pass(const RenderContext& context, const Integrator& integrator,
-                   const ProgressiveView& view, int first, int end, uint64_t serial);
+  // Renders passes [first, end) of `view` into film_ (a first of 0 starts it afresh); false
+  // when interrupted. `done` receives the passes the film then holds.
+  bool render_pass(const RenderContext& context, Integrator& integrator,
+                   const ProgressiveView& view, int first, int end, uint64_t serial, int* done);
   void publish(const ProgressiveView& view, int samples, bool quick, uint64_t serial,
                bool coarse_photons = false);
-  // One sample of every pixel with a photon map of kCoarsePhotonShare times fewer photons,
-  // published as a quick image; false when it does not apply or was interrupted.
-  bool render_coarse_photon_pass(const RenderContext& context, const PrepareControl& control);
+  // One pass of every pixel with the integrator's coarse first look (a photon map of a
+  // sixteenth of the photons), published as a quick image; false when it has none or was
+  // interrupted.
+  bool render_coarse_preparation_pass(const RenderContext& context, const PrepareControl& control);
   bool interrupted(uint64_t serial) const;
+  // The film of `view` (its whole rectangle, every step-th pixel).
+  std::unique_ptr<Film> make_film(const ProgressiveView& view, int step) const;
 
   std::shared_ptr<ViewportScene> viewport_scene_;
   RenderSettings settings_;
@@ -111,8 +111,9 @@ class ProgressiveSession : public Job {
   bool converged_ = false;
   double first_image_seconds_ = -1.0;
 
-  std::vector<float> accum_;  // worker only: per-pixel sums (RGB, alpha) of the current view
-  uint64_t non_finite_ = 0;   // worker only
+  int target_ = 1;
+  std::unique_ptr<Film> film_;  // worker only: the current view's sums
+  uint64_t non_finite_ = 0;     // worker only
 };
 
 }  // namespace photon

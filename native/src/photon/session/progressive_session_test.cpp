@@ -159,6 +159,11 @@ double mean_of(const ProgressiveImage& image) {
   return sum / (0.75 * image.rgba.size());
 }
 
+// Whether an integrator has a coarse first look, and its settings.
+bool coarse_photon_settings(const RenderSettings& s, RenderSettings* coarse) {
+  return make_integrator(s.integrator)->coarse_settings(s, coarse);
+}
+
 TEST(ProgressiveSession, CoarsePhotonSettingsTakeASixteenthOfLargeMapsOnly) {
   RenderSettings s = settings(IntegratorType::kPhotonMap, 16, 1);
   RenderSettings coarse;
@@ -174,8 +179,8 @@ TEST(ProgressiveSession, CoarsePhotonSettingsTakeASixteenthOfLargeMapsOnly) {
   s.photon_time = 2.0f;  // a time budget: a sixteenth of it
   ASSERT_TRUE(coarse_photon_settings(s, &coarse));
   EXPECT_FLOAT_EQ(coarse.photon_time, 0.125f);
-  s.integrator = IntegratorType::kSppm;  // shown through photon mapping outside final renders
-  EXPECT_TRUE(coarse_photon_settings(s, &coarse));
+  s.integrator = IntegratorType::kSppm;  // its own first iteration is its first look
+  EXPECT_FALSE(coarse_photon_settings(s, &coarse));
   s.integrator = IntegratorType::kRadiosity;
   EXPECT_FALSE(coarse_photon_settings(s, &coarse));
   s.integrator = IntegratorType::kRayTrace;

@@ -1,12 +1,9 @@
 #include "photon/session/quick_preview.h"
 
-#include <tbb/parallel_for.h>
-
 #include <algorithm>
 #include <cmath>
 
 #include "photon/integrators/ray_trace/ray_trace_integrator.h"
-#include "photon/session/pixel_renderer.h"
 
 namespace photon {
 
@@ -30,22 +27,24 @@ std::vector<float> render_quick_preview(const RenderContext& context,
   coarse.samples = kPreviewSamples;
   coarse.filter_width = 1.0f;  // samples spread over the block
   coarse.light_passes = false;
+  coarse.data_passes = DataPassSettings{};
   RenderContext coarse_context = context;
   coarse_context.settings = &coarse;
 
   const int cx0 = full.x0 / block, cy0 = full.y0 / block;
   const int cx1 = (full.x1 + block - 1) / block, cy1 = (full.y1 + block - 1) / block;
   const int cw = cx1 - cx0, ch = cy1 - cy0;
+  Film film(film_frame(context.scene->camera, coarse.full_width, coarse.full_height, cx0, cy0, cx1,
+                       cy1),
+            film_options(coarse));
+  RayTraceIntegrator integrator;
+  RenderControl control;
+  control.end_pass = kPreviewSamples;
+  control.cancel = &cancel;
+  control.tile_size = coarse.tile_size;
+  if (integrator.render(coarse_context, film, control) < kPreviewSamples || cancel) return {};
   std::vector<float> small(static_cast<size_t>(cw) * ch * 4, 0.0f);
-  const RayTraceIntegrator integrator;
-  std::atomic<bool> incomplete{false};
-  tbb::parallel_for(0, ch, [&](int row) {
-    uint64_t non_finite = 0;
-    if (!render_pixels(coarse_context, integrator, cx0, cy0 + row, cw, 1,
-                       &small[static_cast<size_t>(row) * cw * 4], cancel, &non_finite))
-      incomplete = true;
-  });
-  if (incomplete || cancel) return {};
+  film.resolve_rgba(FilmRect{0, 0, cw, ch}, kPreviewSamples, small.data());
 
   std::vector<float> image(static_cast<size_t>(width) * height * 4);
   for (int y = 0; y < height; ++y) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "photon/integrators/integrator.h"
+#include "photon/integrators/ray_trace/ray_trace_integrator.h"
 
 namespace photon {
 

@@ -1,3 +1,4 @@
+#include "photon/integrators/registry.h"
 #include "photon/session/render_session.h"
 
 #include <pmmintrin.h>
@@ -9,10 +10,8 @@
 #include <xmmintrin.h>
 
 #include "photon/integrators/render_params.h"
-#include "photon/render/scene_resources.h"
-#include "photon/scene/camera_clip_check.h"
-#include "photon/session/data_passes.h"
-#include "photon/session/pixel_renderer.h"
+#include "photon/session/scene_resources.h"
+#include "photon/render/camera_clip_check.h"
 #include "photon/session/quick_preview.h"
 
 namespace photon {
@@ -39,6 +38,11 @@ class FlushDenormalsObserver : public tbb::task_scheduler_observer {
   ~FlushDenormalsObserver() override { observe(false); }
   void on_scheduler_entry(bool) override { set_flush_denormals(); }
 };
+
+// Between two images of an iterating integrator handed to Blender: writing a large frame's
+// passes takes a while, and short iterations would spend their time there.
+constexpr double kPublishSeconds = 1.0;
+constexpr size_t kProgressSteps = 1000;
 
 // More render threads than a few per core only add scheduling overhead; far more than TBB's
 // worker limit (65,536 in oneTBB 2021) makes TBB warn and later crashes the process.
@@ -71,8 +75,13 @@ RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
   // Every parameter into its schema's range (after the machine's thread limit, which is the
   // tighter bound and says why).
   clamp_render_params(&s, warnings);
-  if (s.spectral && s.integrator == IntegratorType::kRadiosity && warnings)
-    warnings->push_back("Spectral rendering is not available with radiosity: rendering in RGB");
+  const IntegratorCapabilities caps = integrator_capabilities(s.integrator);
+  if (s.spectral && !caps.spectral) {
+    if (warnings)
+      warnings->push_back(std::string("Spectral rendering is not available with the ") +
+                          caps.name + " integrator: rendering in RGB");
+    s.spectral = false;
+  }
   return s;
 }
 
@@ -108,10 +117,7 @@ RenderSession::RenderSession(std::shared_ptr<const Scene> scene, const RenderSet
   settings_ = sanitize(settings, &warnings);
   add_warnings(warnings);
   image_.assign(static_cast<size_t>(region_width()) * region_height() * 4, 0.0f);
-  const int ts = settings_.tile_size;
-  tile_count_ = static_cast<size_t>((region_width() + ts - 1) / ts) *
-                static_cast<size_t>((region_height() + ts - 1) / ts);
-  set_work_total(tile_count_);
+  set_work_total(kProgressSteps);
 }
 
 RenderSession::~RenderSession() {
@@ -196,19 +202,12 @@ void RenderSession::run() {
   // Kept in order after the scene's warnings; added to the session's once prepared.
   control.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
   set_preparing(true);
-  const bool iterative = integrator_capabilities(settings_.integrator).iterative;
   PreparedStateStats prepared_state;
-  if (!iterative) {
-    arena.execute([&] {
-      prepare_with_state_files(context, resources->textures(), settings_.integrator,
-                               integrator.get(), control, prepared_files_, &prepared_state,
-                               &warnings);
-    });
-  } else if (!prepared_files_.load.empty() || !prepared_files_.save.empty()) {
-    warnings.push_back(
-        "prepared-state files are used by the PHOTON_MAP integrator only; this "
-        "render's iterative integrator ignores them");
-  }
+  arena.execute([&] {
+    prepare_with_state_files(context, resources->textures(), settings_.integrator,
+                             integrator.get(), control, prepared_files_, &prepared_state,
+                             &warnings);
+  });
   set_preparing(false);
   const double prepare_seconds = seconds_since(t0);
   if (cancel) return;
@@ -232,55 +231,84 @@ void RenderSession::run() {
   }
   if (prepared_files_.prepare_only) return;
   set_status("Rendering");
-  if (iterative) {
-    run_iterative(context, arena);
-    return;
-  }
-
-  const int ts = settings_.tile_size;
-  const int tiles_x = (region_width() + ts - 1) / ts;
-  std::atomic<size_t>& tiles_done = work_done();
   t0 = Clock::now();
-  // Tiles are handed out in reading order from a shared counter, so they appear top to bottom
-  // in Blender's image editor. Which thread renders a tile does not change its pixels.
-  std::atomic<size_t> next_tile{0};
-  arena.execute([&] {
-    tbb::parallel_for(0, threads, [&](int) {
-      for (size_t i = next_tile++; i < tile_count_ && !cancel; i = next_tile++) {
-        Tile tile;
-        tile.x = static_cast<int>(i % tiles_x) * ts;
-        tile.y = static_cast<int>(i / tiles_x) * ts;
-        tile.width = std::min(ts, region_width() - tile.x);
-        tile.height = std::min(ts, region_height() - tile.y);
-        const int rows = render_tile(context, *integrator, &tile);
-        if (rows < tile.height) {
-          // Cancelled inside the tile: its finished rows are kept (their samples are complete).
-          if (rows > 0) {
-            tile.height = rows;
-            tile.rgba.resize(static_cast<size_t>(rows) * tile.width * 4);
-            if (!tile.passes.empty())
-              tile.passes.resize(static_cast<size_t>(rows) * tile.width * kPassFloats);
-            if (!tile.data.empty())
-              tile.data.resize(static_cast<size_t>(rows) * tile.width *
-                               data_pass_pixel_floats(settings_.data_passes));
-            deliver_tile(std::move(tile));
-          }
-          return;
-        }
-        deliver_tile(std::move(tile));
-        ++tiles_done;
-      }
-    });
-  });
+  const int passes = render_film(context, *integrator, arena);
+  std::lock_guard<std::mutex> lock(mutex_);
+  stats_.render_seconds = seconds_since(t0);
+  stats_.camera_samples = static_cast<uint64_t>(region_width()) * region_height() * passes;
+  stats_.iterations = integrator->render_stats();
+}
 
+int RenderSession::render_film(const RenderContext& context, Integrator& integrator,
+                               tbb::task_arena& arena) {
+  Film film(film_frame(scene_->camera, settings_.full_width, settings_.full_height, settings_.x0,
+                       settings_.y0, settings_.x1, settings_.y1),
+            film_options(settings_));
+  RenderControl control;
+  control.first_pass = 0;
+  control.end_pass = integrator.passes(settings_);
+  control.cancel = &cancel_flag();
+  control.tile_size = settings_.tile_size;
+  control.status = [this](const std::string& s) { set_status(s); };
+  control.warn = [this](const std::string& w) { add_warning(w); };
+  set_work_total(kProgressSteps);
+  control.progress = [this](float fraction) {
+    // Never backwards: tiles finish out of order.
+    const size_t steps = static_cast<size_t>(std::clamp(fraction, 0.0f, 1.0f) * kProgressSteps);
+    size_t done = work_done().load();
+    while (steps > done && !work_done().compare_exchange_weak(done, steps)) {
+    }
+  };
+  // A rectangle short of the whole film is a finished tile, handed over at once. The whole
+  // film is an integrator's image after an iteration: it replaces the one before, at most one
+  // waits, and it is handed over when first, last, or kPublishSeconds after the one before.
+  const FilmRect whole{0, 0, film.width(), film.height()};
+  Clock::time_point last_publish{};
+  bool published_any = false;
+  int pending_passes = 0;  // the whole film's passes not yet handed over (0: none)
+  const auto deliver = [&](const FilmRect& rect, int passes) {
+    Tile tile;
+    tile.x = rect.x;
+    tile.y = rect.y;
+    tile.width = rect.width;
+    tile.height = rect.height;
+    tile.rgba.resize(static_cast<size_t>(rect.width) * rect.height * 4);
+    film.resolve_rgba(rect, passes, tile.rgba.data());
+    tile.passes = film.resolve_passes(rect, passes);
+    return tile;
+  };
+  control.update = [&](const FilmRect& rect, int passes, bool last) {
+    const bool whole_film = rect.x == 0 && rect.y == 0 && rect.width == whole.width &&
+                            rect.height == whole.height;
+    if (!whole_film) {
+      deliver_tile(deliver(rect, passes));
+      return;
+    }
+    pending_passes = passes;
+    const double since = std::chrono::duration<double>(Clock::now() - last_publish).count();
+    if (!published_any || last || since >= kPublishSeconds) {
+      publish_whole(deliver(rect, passes));
+      published_any = true;
+      pending_passes = 0;
+      last_publish = Clock::now();
+    }
+  };
+  int done = 0;
+  arena.execute([&] { done = integrator.render(context, film, control); });
+  // The last complete iteration is always handed over.
+  if (pending_passes > 0) publish_whole(deliver(whole, pending_passes));
+  std::lock_guard<std::mutex> lock(mutex_);
+  stats_.non_finite_samples += film.non_finite();
+  return done;
+}
+
+void RenderSession::publish_whole(Tile tile) {
   {
+    // An image not yet taken is superseded: at most one waits, whatever the poller's pace.
     std::lock_guard<std::mutex> lock(mutex_);
-    stats_.render_seconds = seconds_since(t0);
-    stats_.camera_samples =
-        static_cast<uint64_t>(tiles_done.load()) == tile_count_
-            ? static_cast<uint64_t>(region_width()) * region_height() * settings_.samples
-            : 0;
+    queue_.clear();
   }
+  deliver_tile(std::move(tile));
 }
 
 void RenderSession::deliver_tile(Tile tile) {
@@ -292,27 +320,6 @@ void RenderSession::deliver_tile(Tile tile) {
   }
   queue_.push_back(std::move(tile));
   tiles_ready_.notify_all();
-}
-
-int RenderSession::render_tile(const RenderContext& context, const Integrator& integrator,
-                               Tile* tile) {
-  tile->rgba.assign(static_cast<size_t>(tile->width) * tile->height * 4, 0.0f);
-  if (settings_.light_passes)
-    tile->passes.assign(static_cast<size_t>(tile->width) * tile->height * kPassFloats, 0.0f);
-  const int data_floats = data_pass_pixel_floats(settings_.data_passes);
-  if (data_floats)
-    tile->data.assign(static_cast<size_t>(tile->width) * tile->height * data_floats, 0.0f);
-  uint64_t bad = 0;
-  int rows = 0;
-  render_pixels(context, integrator, settings_.x0 + tile->x, settings_.y0 + tile->y, tile->width,
-                tile->height, tile->rgba.data(), cancel_flag(), &bad,
-                settings_.light_passes ? tile->passes.data() : nullptr,
-                data_floats ? tile->data.data() : nullptr, &rows);
-  if (bad) {
-    std::lock_guard<std::mutex> lock(mutex_);
-    stats_.non_finite_samples += bad;
-  }
-  return rows;
 }
 
 }  // namespace photon

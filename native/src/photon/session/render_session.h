@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "photon/integrators/integrator.h"
-#include "photon/integrators/sppm/sppm_renderer.h"
+#include "photon/integrators/registry.h"
 #include "photon/render/blas_cache.h"
 #include "photon/scene/scene.h"
 #include "photon/session/job.h"
@@ -27,10 +27,15 @@ namespace photon {
 struct Tile {
   int x = 0, y = 0, width = 0, height = 0;
   std::vector<float> rgba;
-  // With RenderSettings::light_passes: kPassFloats floats per pixel (see pixel_renderer.h).
-  std::vector<float> passes;
-  // With RenderSettings::data_passes: data_pass_pixel_floats() floats per pixel (data_passes.h).
-  std::vector<float> data;
+  // The film's other passes by name (film.h): the light passes with RenderSettings::light_passes,
+  // the data passes and Cryptomatte layers of RenderSettings::data_passes.
+  std::vector<PassImage> passes;
+  // The pass called `name`, or null.
+  const PassImage* pass(const std::string& name) const {
+    for (const PassImage& p : passes)
+      if (p.name == name) return &p;
+    return nullptr;
+  }
 };
 
 // `settings` clamped to what the renderer accepts (also used by lighting bakes); a clamp the
@@ -60,7 +65,7 @@ struct RenderStats {
   int threads = 0;
   PrepareStats integrator;            // the integrator's prepare_stats()
   PreparedStateStats prepared_state;  // a prepared-state file loaded or saved
-  SppmStats sppm;                     // an iterative (SPPM) render's; iterations = 0 otherwise
+  IterationStats iterations;  // an iterating integrator's (SPPM, VCM); iterations = 0 otherwise
 };
 
 class RenderSession : public Job {
@@ -96,17 +101,17 @@ class RenderSession : public Job {
  private:
   void run() override;
   void on_finished() override;
-  // Renders the tile; returns the number of finished rows (fewer than its height if cancelled).
-  int render_tile(const RenderContext& context, const Integrator& integrator, Tile* tile);
+  // Renders the integrator's passes into a film of the region and hands over what finishes:
+  // tiles as they complete, the whole region after each iteration (replacing the one before).
+  // Returns the passes every pixel holds.
+  int render_film(const RenderContext& context, Integrator& integrator, tbb::task_arena& arena);
   void deliver_tile(Tile tile);
-  // The render of an iterative integrator (SPPM), in iterative_render.cpp: whole-frame
-  // iterations, each complete one handed over as one tile of the region.
-  void run_iterative(const RenderContext& context, tbb::task_arena& arena);
+  // Hands over an image of the whole region, dropping one not yet taken.
+  void publish_whole(Tile tile);
 
   std::shared_ptr<const Scene> scene_;
   std::shared_ptr<BlasCache> blas_cache_;  // may be null
   RenderSettings settings_;
-  size_t tile_count_ = 0;
   bool quick_preview_ = false;
   PreparedStateFiles prepared_files_;
 

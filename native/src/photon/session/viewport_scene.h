@@ -13,7 +13,7 @@
 
 #include "photon/integrators/integrator.h"
 #include "photon/render/blas_cache.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/scene/scene.h"
 
 namespace photon {

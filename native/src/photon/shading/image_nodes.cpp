@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "photon/render/textures.h"
+#include "photon/shading/textures.h"
 
 namespace photon {
 namespace {

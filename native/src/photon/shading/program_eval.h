@@ -12,11 +12,6 @@ namespace photon {
 // kUnknownNode when no family does; kError with `error` set when the node cannot be compiled.
 CompileStatus compile_node(const NodeDesc& desc, ShaderProgram* program, std::string* error);
 
-// Checks that every register an instruction names lies inside the register file (with room for a
-// vector where one may be read) and that Bump blocks lie inside the code; false with `error` if not.
-// Programs from Python are checked before they are rendered.
-bool validate_program(const ShaderProgram& program, std::string* error);
-
 // Registers large enough for most programs live on the stack; bigger ones on the heap.
 class ProgramRegisters {
  public:

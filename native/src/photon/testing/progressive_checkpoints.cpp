@@ -6,9 +6,8 @@
 #include <cmath>
 #include <memory>
 
-#include "photon/integrators/sppm/sppm_renderer.h"
-#include "photon/integrators/vcm/vcm_renderer.h"
-#include "photon/render/scene_resources.h"
+#include "photon/integrators/registry.h"
+#include "photon/session/scene_resources.h"
 
 namespace photon {
 
@@ -22,26 +21,29 @@ std::vector<Checkpoint> render_checkpoints(const Scene& scene, const RenderSetti
   const int last = iterations.empty() ? 0 : *std::max_element(iterations.begin(), iterations.end());
   // The samplers stratify over the render's iteration count, as the session sets it.
   s.sppm_iterations = last;
+  s.vcm_iterations = last;
   const SceneResources resources(scene, s, nullptr);
   const RenderContext& context = resources.context();
-  std::unique_ptr<IterativeRenderer> renderer;
-  if (s.integrator == IntegratorType::kVcm && VcmRenderer::supports_camera(context))
-    renderer = std::make_unique<VcmRenderer>(context);
-  else
-    renderer = std::make_unique<SppmRenderer>(context);
+  const std::unique_ptr<Integrator> integrator = make_integrator(s.integrator);
+  integrator->prepare(context, PrepareControl{});
+  Film film(film_frame(scene.camera, s.full_width, s.full_height, 0, 0, s.full_width,
+                       s.full_height),
+            film_options(s));
   const std::atomic<bool> cancel{false};
   std::vector<Checkpoint> out;
-  while (renderer->iterations() < last) {
-    if (!renderer->iterate(cancel)) break;
-    const int k = renderer->iterations();
-    if (std::find(iterations.begin(), iterations.end(), k) == iterations.end()) continue;
+  RenderControl control;
+  control.end_pass = last;
+  control.cancel = &cancel;
+  control.update = [&](const FilmRect& rect, int k, bool) {
+    if (std::find(iterations.begin(), iterations.end(), k) == iterations.end()) return;
     Checkpoint c;
     c.iterations = k;
     c.rgba.resize(static_cast<size_t>(s.full_width) * s.full_height * 4);
-    renderer->write_image(c.rgba.data());
+    film.resolve_rgba(rect, k, c.rgba.data());
     c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.push_back(std::move(c));
-  }
+  };
+  integrator->render(context, film, control);
   return out;
 }
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/integrators/integrator.h"
 #include "photon/integrators/radiosity/radiosity_material.h"
 #include "photon/integrators/radiosity/radiosity_mesh.h"

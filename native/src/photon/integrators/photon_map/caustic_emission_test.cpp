@@ -9,9 +9,10 @@
 #include <cstring>
 
 #include "photon/integrators/photon_map/caustic_targets.h"
+#include "photon/lights/photon_aim.h"
 #include "photon/integrators/photon_map/photon_tracer.h"
 #include "photon/base/sampling.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

@@ -10,7 +10,7 @@
 
 #include "photon/base/optics.h"
 #include "photon/integrators/photon_map/photon_tracer.h"
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

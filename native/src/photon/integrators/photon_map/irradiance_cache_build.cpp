@@ -10,7 +10,7 @@
 #include <string>
 
 #include "photon/integrators/camera_path.h"
-#include "photon/render/matte.h"
+#include "photon/integrators/matte.h"
 #include "photon/scene/camera.h"
 
 namespace photon {

@@ -636,4 +636,36 @@ void PhotonMapIntegrator::prepare_bake(const RenderContext& context, const BakeP
   cache.seconds = build.seconds;
 }
 
+bool PhotonMapIntegrator::coarse_settings(const RenderSettings& settings,
+                                          RenderSettings* coarse) const {
+  const bool budget = settings.photon_time > 0.0f;
+  if (!budget && settings.photons < kCoarsePhotonShare * kMinCoarsePhotons) return false;
+  *coarse = settings;
+  coarse->photons = std::max<uint64_t>(settings.photons / kCoarsePhotonShare, 1);
+  coarse->caustic_photons = settings.caustic_photons / kCoarsePhotonShare;
+  coarse->photon_time = settings.photon_time / kCoarsePhotonShare;
+  return true;
+}
+
+IntegratorInfo photon_map_integrator_info() {
+  IntegratorInfo info;
+  info.type = IntegratorType::kPhotonMap;
+  info.label = "Photon Mapping";
+  info.description =
+      "Global illumination and caustics from global and caustic photon maps, with final "
+      "gathering";
+  IntegratorCapabilities& c = info.capabilities;
+  c.name = "PHOTON_MAP";
+  c.prepares = true;
+  c.bake = true;
+  c.shares_preparation = true;
+  // Only photon tracing (photon_tracer.cpp) polls stop_early; the maps are then built from the
+  // photons stored so far.
+  c.stop_early = true;
+  c.stop_early_status = "Tracing photons";
+  c.stop_early_effect = "photon tracing stopped, rendering with the photons traced so far";
+  info.make = [] { return std::unique_ptr<Integrator>(new PhotonMapIntegrator); };
+  return info;
+}
+
 }  // namespace photon

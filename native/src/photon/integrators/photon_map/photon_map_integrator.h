@@ -12,17 +12,26 @@
 #pragma once
 
 #include "photon/integrators/camera_path.h"
-#include "photon/integrators/integrator.h"
+#include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/photon_map/prepared_state_io.h"
+#include "photon/integrators/registry.h"
 
 namespace photon {
 
-class PhotonMapIntegrator : public Integrator {
+class PhotonMapIntegrator : public PixelIntegrator {
  public:
   void prepare(const RenderContext& context, const PrepareControl& control) override;
   RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                    const CameraHit& first, Sampler& sampler) const override;
   PrepareStats prepare_stats() const override;
+  // A sixteenth of the photons (kCoarsePhotonShare), when that is enough photons to be worth a
+  // first look of its own.
+  bool coarse_settings(const RenderSettings& settings, RenderSettings* coarse) const override;
+  // Every camera sample's final-gather rays, and the photons.
+  uint64_t extra_rays(const RenderSettings& settings, uint64_t camera_samples) const override {
+    return camera_samples * static_cast<uint64_t>(std::max(0, settings.final_gather_rays)) +
+           settings.photons + settings.caustic_photons;
+  }
   // The photon maps, radiance records, irradiance cache and radii (prepared_state_io.h).
   void save_prepared(PreparedStateWriter* out) const override;
   bool load_prepared(PreparedStateReader* in, std::string* error) override;
@@ -75,5 +84,13 @@ class PhotonMapIntegrator : public Integrator {
   IrradianceCache bake_irradiance_;  // final gathers among a bake's points
   PrepareStats stats_;
 };
+
+// The coarse photon map of a first look has this many times fewer photons (and a shorter photon
+// time budget, when one is set); below kMinCoarsePhotons photons it would come about as fast as
+// the full map.
+constexpr int kCoarsePhotonShare = 16;
+constexpr uint64_t kMinCoarsePhotons = 2000;
+
+IntegratorInfo photon_map_integrator_info();
 
 }  // namespace photon

@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "photon/render/scene_resources.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

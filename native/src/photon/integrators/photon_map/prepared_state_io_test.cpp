@@ -18,7 +18,6 @@
 #include <string>
 #include <vector>
 
-#include "photon/session/pixel_renderer.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"
 
@@ -77,7 +76,9 @@ Frame render(const RenderSettings& s, const PreparedStateFiles& files = {},
           const size_t src = static_cast<size_t>(y) * t.width + x;
           const size_t dst = static_cast<size_t>(s.y0 + t.y + y) * kWidth + (s.x0 + t.x + x);
           std::copy_n(&t.rgba[src * 4], 4, &f.rgba[dst * 4]);
-          std::copy_n(&t.passes[src * kPassFloats], kPassFloats, &f.passes[dst * kPassFloats]);
+          for (int k = 0; k < kPassCount; ++k)
+            if (const PassImage* pass = t.pass(light_pass_names()[k]))
+              std::copy_n(&pass->pixels[src * 3], 3, &f.passes[dst * kPassFloats + 3 * k]);
         }
     }
   }

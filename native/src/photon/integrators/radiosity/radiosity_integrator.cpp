@@ -113,4 +113,23 @@ bool RadiosityIntegrator::baked_radiance(const RenderContext& context, const Hit
   return true;
 }
 
+IntegratorInfo radiosity_integrator_info() {
+  IntegratorInfo info;
+  info.type = IntegratorType::kRadiosity;
+  info.label = "Radiosity";
+  info.description =
+      "Diffuse global illumination solved once on a mesh of patches (stochastic Jacobi "
+      "radiosity) and viewed from anywhere; mirrors and glass are ray traced";
+  IntegratorCapabilities& c = info.capabilities;
+  c.name = "RADIOSITY";
+  c.prepares = true;
+  c.bake = true;
+  // The solver (radiosity_solver.cpp, radiosity_refine.cpp) keeps the solution so far.
+  c.stop_early = true;
+  c.stop_early_effect = "radiosity solve stopped, rendering the solution so far";
+  c.spectral = false;
+  info.make = [] { return std::unique_ptr<Integrator>(new RadiosityIntegrator); };
+  return info;
+}
+
 }  // namespace photon

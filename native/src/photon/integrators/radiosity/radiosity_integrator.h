@@ -7,16 +7,20 @@
 // mirrors/glass; Indirect = light after at least one diffuse bounce.
 #pragma once
 
-#include "photon/integrators/integrator.h"
+#include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/radiosity/radiosity_field.h"
 #include "photon/integrators/radiosity/radiosity_mesh.h"
+#include "photon/integrators/registry.h"
 
 namespace photon {
 
-class RadiosityIntegrator : public Integrator {
+class RadiosityIntegrator : public PixelIntegrator {
  public:
   void prepare(const RenderContext& context, const PrepareControl& control) override;
   PrepareStats prepare_stats() const override { return stats_; }
+  uint64_t extra_rays(const RenderSettings& settings, uint64_t) const override {
+    return settings.radiosity_rays;
+  }
   RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                    const CameraHit& first, Sampler& sampler) const override;
   // Emission plus the interpolated radiosity / pi on the side of the surface `si.ng` faces.
@@ -33,5 +37,7 @@ class RadiosityIntegrator : public Integrator {
   RadiosityField field_;
   PrepareStats stats_;
 };
+
+IntegratorInfo radiosity_integrator_info();
 
 }  // namespace photon

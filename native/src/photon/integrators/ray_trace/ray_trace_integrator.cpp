@@ -16,4 +16,17 @@ RadianceSample RayTraceIntegrator::radiance_from_hit(const RenderContext& contex
   return result;
 }
 
+IntegratorInfo ray_trace_integrator_info() {
+  IntegratorInfo info;
+  info.type = IntegratorType::kRayTrace;
+  info.label = "Ray Tracing";
+  info.description = "Whitted ray tracing: direct light, perfect mirrors and glass";
+  info.capabilities.name = "RAY_TRACE";
+  info.capabilities.no_bake_reason =
+      "the RAY_TRACE integrator has no view-independent lighting solution to bake; bake from "
+      "the photon maps or the radiosity solution";
+  info.make = [] { return std::unique_ptr<Integrator>(new RayTraceIntegrator); };
+  return info;
+}
+
 }  // namespace photon

@@ -3,14 +3,17 @@
 // diffuse light.
 #pragma once
 
-#include "photon/integrators/integrator.h"
+#include "photon/integrators/pixel_integrator.h"
+#include "photon/integrators/registry.h"
 
 namespace photon {
 
-class RayTraceIntegrator : public Integrator {
+class RayTraceIntegrator : public PixelIntegrator {
  public:
   RadianceSample radiance_from_hit(const RenderContext& context, const Ray& camera_ray,
                                    const CameraHit& first, Sampler& sampler) const override;
 };
+
+IntegratorInfo ray_trace_integrator_info();
 
 }  // namespace photon

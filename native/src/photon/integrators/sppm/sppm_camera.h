@@ -4,7 +4,7 @@
 // direct_lighting.h) to its visible point, the first vertex with a diffuse lobe or a glossy lobe
 // at least kSppmGlossyAlpha rough. There the iteration's photons within the pixel's radius are
 // summed: Phi = sum beta_vp beta_j f(wo, wi_j) and M = their count (eqs. 6-8 then update the
-// pixel, sppm_renderer.h).
+// pixel, sppm_integrator.h).
 #pragma once
 
 #include <cstdint>

@@ -63,23 +63,6 @@ const ParamSchema<SppmParams>& sppm_schema() {
                  .max = 0.99,
                  .subtype = "FACTOR",
                  .ui = {.column = 2}}),
-          param(
-              &S::vcm_mode,
-              {.name = "vcm_mode",
-               .label = "VCM Strategies",
-               .description = "Strategies the VCM integrator combines by multiple importance "
-                              "sampling",
-               .min = 0,
-               .max = 2,
-               .items = {{"VCM", "Connection and Merging",
-                          "Bidirectional path tracing and photon merging together",
-                          static_cast<int>(VcmMode::kVcm)},
-                         {"BPT", "Connections Only",
-                          "Bidirectional path tracing: vertex connections only",
-                          static_cast<int>(VcmMode::kBpt)},
-                         {"PPM", "Merging Only", "Progressive photon mapping: vertex merging only",
-                          static_cast<int>(VcmMode::kPpm)}},
-               .ui = {.column = 2}}),
       }};
   return schema;
 }

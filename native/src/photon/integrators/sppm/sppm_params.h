@@ -8,18 +8,12 @@
 
 namespace photon {
 
-// Which strategies the VCM integrator combines (integrators/vcm/): all of them, vertex
-// connections only (bidirectional path tracing) or vertex merging only (progressive photon
-// mapping).
-enum class VcmMode : uint8_t { kVcm, kBpt, kPpm };
-
 struct SppmParams {
   int sppm_iterations = 64;                      // camera + photon passes
   uint64_t sppm_photons_per_iteration = 100000;  // photon paths emitted per iteration
   float sppm_initial_radius = 0.0f;              // 0 = a few pixels' footprint per pixel
   float sppm_alpha = 2.0f / 3.0f;                // share of new photons kept (eq. 6 of the paper)
   float sppm_time = 0.0f;                        // > 0: stop after this many seconds
-  VcmMode vcm_mode = VcmMode::kVcm;              // VCM integrator only
 };
 
 const ParamSchema<SppmParams>& sppm_schema();

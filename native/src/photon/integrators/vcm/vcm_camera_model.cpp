@@ -4,18 +4,20 @@
 
 namespace photon {
 
-VcmCamera::VcmCamera(const Camera& camera, const RenderSettings& s)
-    : filter_(s.filter_type, s.filter_width),
+VcmCamera::VcmCamera(const FilmFrame& frame, const FilmOptions& film)
+    : camera_(frame.camera),
+      filter_(film.filter_type, film.filter_width),
       type_(filter_.type()),
       width_(filter_.width()),
-      wmin_x_(camera.window_min_x),
-      wmax_x_(camera.window_max_x),
-      wmin_y_(camera.window_min_y),
-      wmax_y_(camera.window_max_y),
-      clip_start_(camera.clip_start),
-      clip_end_(camera.clip_end),
-      full_width_(s.full_width),
-      full_height_(s.full_height) {
+      wmin_x_(frame.camera.window_min_x),
+      wmax_x_(frame.camera.window_max_x),
+      wmin_y_(frame.camera.window_min_y),
+      wmax_y_(frame.camera.window_max_y),
+      clip_start_(frame.camera.clip_start),
+      clip_end_(frame.camera.clip_end),
+      full_width_(frame.full_width),
+      full_height_(frame.full_height) {
+  const Camera& camera = frame.camera;
   supported_ = camera.projection == Projection::kPerspective && camera.aperture_radius <= 0.0f;
   const Transform& xf = camera.camera_to_world;  // rigid
   position_ = xf.column(3);

@@ -8,14 +8,15 @@
 #pragma once
 
 #include "photon/base/math.h"
-#include "photon/integrators/integrator.h"
+#include "photon/film/film.h"
 #include "photon/scene/pixel_filter.h"
 
 namespace photon {
 
 class VcmCamera {
  public:
-  VcmCamera(const Camera& camera, const RenderSettings& settings);
+  // The camera of `frame`, whose pixels the film's filter covers.
+  VcmCamera(const FilmFrame& frame, const FilmOptions& film);
   // Light tracing needs a camera position: pinhole perspective only (no orthographic, no depth
   // of field).
   bool supported() const { return supported_; }
@@ -34,10 +35,14 @@ class VcmCamera {
   float filter_pdf(float dx, float dy) const { return filter_1d(dx) * filter_1d(dy); }
   float filter_half_support() const { return half_support_; }
   const PixelFilter& filter() const { return filter_; }
+  const Camera& camera() const { return camera_; }
+  int full_width() const { return full_width_; }
+  int full_height() const { return full_height_; }
 
  private:
   float filter_1d(float x) const;
 
+  Camera camera_;
   PixelFilter filter_;
   PixelFilterType type_;
   float width_;

@@ -191,12 +191,11 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
                                       const VcmLightPass& pass, uint64_t light_path,
                                       const VcmGrid& grid, int px, int py, Sampler& sampler,
                                       const VcmColours& colours) {
-  const RenderSettings& s = *context.settings;
   VcmCameraSample out;
   const Vec2 jitter = camera.filter().sample(sampler.get_2d());
   const Vec2 lens = sampler.get_2d();
-  const float inv_w = 1.0f / s.full_width, inv_h = 1.0f / s.full_height;
-  Ray ray = generate_camera_ray(context.scene->camera, (px + jitter.x) * inv_w,
+  const float inv_w = 1.0f / camera.full_width(), inv_h = 1.0f / camera.full_height();
+  Ray ray = generate_camera_ray(camera.camera(), (px + jitter.x) * inv_w,
                                 (py + jitter.y) * inv_h, lens);
   const float filter_pdf = camera.filter_pdf(jitter.x - 0.5f, jitter.y - 0.5f);
   const float cos_axis = camera.cos_axis(ray.direction);

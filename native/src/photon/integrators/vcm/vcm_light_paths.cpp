@@ -192,7 +192,7 @@ VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights
 }
 
 void apply_vcm_splats(const std::vector<VcmSplat>& splats, const VcmCamera& camera,
-                      const RenderSettings& s, std::vector<Vec3>* image) {
+                      const FilmFrame& s, std::vector<Vec3>* image) {
   const int width = s.x1 - s.x0;
   const float h = camera.filter_half_support();
   for (const VcmSplat& sp : splats) {

@@ -47,6 +47,6 @@ VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights
 // Adds the splats to `image` (RGB per pixel of the region x0, y0 .. x1, y1 of the full frame)
 // in order.
 void apply_vcm_splats(const std::vector<VcmSplat>& splats, const VcmCamera& camera,
-                      const RenderSettings& settings, std::vector<Vec3>* image);
+                      const FilmFrame& frame, std::vector<Vec3>* image);
 
 }  // namespace photon

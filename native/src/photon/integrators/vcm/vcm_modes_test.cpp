@@ -30,12 +30,12 @@ TileStats tile_stats(const Scene& scene, VcmMode mode, uint64_t first_seed) {
     s.seed = first_seed + k;
     s.integrator = IntegratorType::kVcm;
     s.vcm_mode = mode;
-    s.sppm_photons_per_iteration = 20000;
+    s.vcm_light_paths = 20000;
     // A merging radius of about a fifth of a pixel: the blur and the light that merging moves
     // across edges (the tall block's lit top into its front) stay well below the tiles' noise;
     // at the automatic radius (two pixels) merging brightens the tile under that edge by 7-12%
     // after 16 iterations.
-    s.sppm_initial_radius = 0.02f;
+    s.vcm_initial_radius = 0.02f;
     const std::vector<Checkpoint> c = render_checkpoints(scene, s, {1});
     std::vector<double> t(kTiles + 1, 0.0);
     for (int y = 0; y < kSize; ++y)

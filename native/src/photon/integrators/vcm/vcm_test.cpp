@@ -19,8 +19,8 @@ RenderSettings vcm_settings(int size, int iterations, uint64_t paths, VcmMode mo
   s.seed = 7;
   s.integrator = IntegratorType::kVcm;
   s.vcm_mode = mode;
-  s.sppm_iterations = iterations;
-  s.sppm_photons_per_iteration = paths;
+  s.vcm_iterations = iterations;
+  s.vcm_light_paths = paths;
   return s;
 }
 
@@ -59,7 +59,7 @@ Scene emissive_furnace(float rho, float le) {
 TEST(Vcm, EmissiveFurnaceConvergesToLeOverOneMinusAlbedoInEveryMode) {
   for (VcmMode mode : {VcmMode::kVcm, VcmMode::kBpt, VcmMode::kPpm}) {
     const Rendered r = render(emissive_furnace(0.6f, 1.0f), vcm_settings(24, 8, 2000, mode));
-    EXPECT_EQ(r.stats.sppm.iterations, 8) << name(mode);
+    EXPECT_EQ(r.stats.iterations.iterations, 8) << name(mode);
     EXPECT_NEAR(mean_channel(r.rgba, 0), 1.0 / (1.0 - 0.6), 0.02 * 2.5) << name(mode);
     EXPECT_NEAR(mean_channel(r.rgba, 3), 1.0, 1e-6) << name(mode);
   }
@@ -183,7 +183,7 @@ TEST(Vcm, OrthographicCameraFallsBackToSppmWithAWarning) {
   for (const std::string& w : session.warnings())
     warned = warned || w.find("rendering with SPPM instead") != std::string::npos;
   EXPECT_TRUE(warned);
-  EXPECT_EQ(session.stats().sppm.iterations, 2);
+  EXPECT_EQ(session.stats().iterations.iterations, 2);
 }
 
 // A point lamp with a radius is a sphere camera paths can meet: seen in a mirror it shows its

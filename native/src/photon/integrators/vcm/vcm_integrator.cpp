@@ -1,0 +1,233 @@
+#include "photon/integrators/vcm/vcm_integrator.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "photon/integrators/photon_map/photon_sources.h"
+#include "photon/integrators/pixel_integrator.h"
+#include "photon/integrators/spectral_path.h"
+#include "photon/integrators/vcm/vcm_camera_paths.h"
+#include "photon/integrators/vcm/vcm_grid.h"
+#include "photon/integrators/vcm/vcm_light_paths.h"
+
+namespace photon {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+constexpr uint64_t kCameraStream = 0x56434D43414D;      // "VCMCAM"
+constexpr uint64_t kWavelengthStream = 0x56434D57564C;  // "VCMWVL"
+// Russian roulette ends paths long before this; it bounds chains between perfect mirrors.
+constexpr int kMaxPathLength = 64;
+// Automatic initial radius, in pixel footprints at the median depth the camera sees.
+constexpr float kAutoRadiusPixels = 2.0f;
+
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+const std::atomic<bool>& cancel_flag(const RenderControl& control) {
+  static const std::atomic<bool> never{false};
+  return control.cancel ? *control.cancel : never;
+}
+
+}  // namespace
+
+VcmIntegrator::VcmIntegrator() = default;
+VcmIntegrator::~VcmIntegrator() = default;
+
+void VcmIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
+  const PhotonSources sources(context);
+  scene_frame_.center = sources.scene_center();
+  scene_frame_.radius = sources.scene_radius();
+  std::vector<std::string> warnings;
+  lights_ = std::make_unique<VcmLights>(context, scene_frame_, &warnings);
+  for (const std::string& w : warnings)
+    if (control.warn) control.warn(w);
+}
+
+IterationStats VcmIntegrator::render_stats() const {
+  return use_fallback_ ? fallback_->render_stats() : stats_;
+}
+
+float VcmIntegrator::automatic_radius(const RenderContext& context, const Film& film) const {
+  // The distance between neighbouring pixels' centre rays at the depth each sees, on a grid of
+  // at most 64 x 64 pixels of the whole frame (not the rendered rectangle: a band of a frame
+  // must render with the full frame's radius); the median.
+  const FilmFrame& f = film.frame();
+  const Camera& camera = f.camera;
+  const float inv_w = 1.0f / f.full_width, inv_h = 1.0f / f.full_height;
+  const int step = std::max(1, std::max(f.full_width, f.full_height) / 64);
+  std::vector<float> seen;
+  for (int py = 0; py < f.full_height; py += step)
+    for (int px = 0; px < f.full_width; px += step) {
+      const Vec2 lens(0.5f, 0.5f);
+      const Ray a = generate_camera_ray(camera, (px + 0.5f) * inv_w, (py + 0.5f) * inv_h, lens);
+      const Ray b = generate_camera_ray(camera, (px + 1.5f) * inv_w, (py + 0.5f) * inv_h, lens);
+      Hit hit;
+      if (!context.accel->intersect(a, kVisibleCamera, &hit)) continue;
+      const float r = kAutoRadiusPixels *
+                      length((b.origin + hit.t * b.direction) - (a.origin + hit.t * a.direction));
+      if (std::isfinite(r) && r > 0.0f) seen.push_back(r);
+    }
+  if (seen.empty()) return 0.0f;
+  std::nth_element(seen.begin(), seen.begin() + seen.size() / 2, seen.end());
+  return seen[seen.size() / 2];
+}
+
+float VcmIntegrator::radius(int iteration) const {
+  return initial_radius_ * std::pow(static_cast<float>(iteration + 1), 0.5f * (alpha_ - 1.0f));
+}
+
+bool VcmIntegrator::iterate(const RenderContext& context, Film& film, uint32_t iteration,
+                            const std::atomic<bool>& cancel) {
+  const RenderSettings& s = *context.settings;
+  const VcmMis mis =
+      VcmMis::make(s.vcm_mode, radius(static_cast<int>(iteration)),
+                   std::max<uint64_t>(s.vcm_light_paths, 1), kMaxPathLength);
+  // Spectral mode: one set of wavelengths for the iteration's light and camera subpaths, so
+  // connections and merges join them at the same wavelengths; stratified over the iterations.
+  SampledWavelengths wavelengths;
+  VcmColours colours;
+  if (spectral_mode(context)) {
+    wavelengths = sample_wavelengths(
+        s, Sampler(s.seed, kWavelengthStream, iteration, static_cast<uint32_t>(s.vcm_iterations)));
+    colours.wl = &wavelengths;
+  }
+  auto t0 = Clock::now();
+  const VcmLightPass pass =
+      trace_vcm_light_paths(context, *lights_, *camera_, mis, iteration, cancel, colours);
+  if (pass.cancelled) return false;
+  stats_.rays += pass.rays;
+  stats_.photons_recorded = pass.vertices.size();
+  std::vector<Vec3> light_image(film.pixel_count(), Vec3(0.0f));
+  apply_vcm_splats(pass.splats, *camera_, film.frame(), &light_image);
+  const VcmGrid grid = mis.use_vm ? VcmGrid(pass.vertices, mis.radius) : VcmGrid();
+  stats_.peak_photon_bytes =
+      std::max(stats_.peak_photon_bytes, pass.vertices.size() * (sizeof(VcmLightVertex) + 8));
+  stats_.photon_seconds += seconds_since(t0);
+
+  t0 = Clock::now();
+  std::atomic<uint64_t> non_finite{0};
+  tbb::parallel_for(tbb::blocked_range<int>(0, film.height(), 1), [&](const auto& rows) {
+    for (int row = rows.begin(); row != rows.end(); ++row) {
+      if (cancel.load(std::memory_order_relaxed)) return;
+      for (int col = 0; col < film.width(); ++col) {
+        const size_t i = film.index(col, row);
+        const uint64_t pixel_index = film.frame_pixel(col, row);
+        Sampler sampler(s.seed, hash_combine(kCameraStream, pixel_index), iteration,
+                        static_cast<uint32_t>(s.vcm_iterations));
+        const VcmCameraSample c = trace_vcm_camera_path(
+            context, *lights_, *camera_, mis, pass, pixel_index % mis.light_paths, grid,
+            film.frame_x(col), film.frame_y(row), sampler, colours);
+        // Holdouts are not rendered by VCM: the coverage is the camera ray's alone.
+        const Vec3 estimate = c.radiance + light_image[i];
+        if (!is_finite(estimate)) {
+          non_finite.fetch_add(1, std::memory_order_relaxed);
+          continue;
+        }
+        film.add_light(i, estimate, film.coverage(c.alpha, 0.0f));
+      }
+    }
+  });
+  stats_.camera_seconds += seconds_since(t0);
+  if (cancel.load()) return false;
+  stats_.non_finite += non_finite.load();
+  film.count_non_finite(non_finite.load());
+  stats_.photons_emitted += mis.light_paths;
+  ++stats_.iterations;
+  return true;
+}
+
+int VcmIntegrator::render(const RenderContext& context, Film& film, const RenderControl& control) {
+  const RenderSettings& s = *context.settings;
+  const std::atomic<bool>& cancel = cancel_flag(control);
+  if (control.first_pass == 0) {
+    camera_ = std::make_unique<VcmCamera>(film.frame(), film.options());
+    use_fallback_ = !camera_->supported();
+    if (use_fallback_) {
+      control.report_warning(
+          "the VCM integrator renders pinhole perspective cameras only (no orthographic camera, "
+          "no depth of field): rendering with SPPM instead");
+      if (!fallback_) {
+        // SPPM with VCM's budget: as many iterations, a photon per light path.
+        fallback_settings_ = s;
+        fallback_settings_.integrator = IntegratorType::kSppm;
+        fallback_settings_.sppm_iterations = s.vcm_iterations;
+        fallback_settings_.sppm_photons_per_iteration = s.vcm_light_paths;
+        fallback_settings_.sppm_initial_radius = s.vcm_initial_radius;
+        fallback_settings_.sppm_alpha = s.vcm_alpha;
+        fallback_settings_.sppm_time = s.vcm_time;
+        fallback_context_ = context;
+        fallback_context_.settings = &fallback_settings_;
+        fallback_ = std::make_unique<SppmIntegrator>();
+        PrepareControl prepare;
+        prepare.cancel = control.cancel;
+        prepare.warn = control.warn;
+        fallback_->prepare(fallback_context_, prepare);
+      }
+    }
+  }
+  if (use_fallback_) return fallback_->render(fallback_context_, film, control);
+
+  const auto t0 = Clock::now();
+  if (control.first_pass == 0) {
+    if (film.options().light_passes)
+      control.report_warning(
+          "light passes are not rendered by the VCM integrator yet: they are left at zero");
+    film.clear();
+    if (film.data_floats() > 0) {
+      control.report_status("Data passes");
+      if (!render_data_passes(context, film, control)) return 0;
+    }
+    stats_ = IterationStats{};
+    alpha_ = s.vcm_alpha;
+    const float floor_radius = 1e-6f * context.accel->length_scale();
+    initial_radius_ = s.vcm_initial_radius > 0.0f
+                          ? std::min(s.vcm_initial_radius, 2.0f * scene_frame_.radius)
+                          : automatic_radius(context, film);
+    if (!(initial_radius_ > floor_radius))
+      initial_radius_ = std::max(floor_radius, 0.01f * scene_frame_.radius);
+  }
+  const double time_limit = s.vcm_time;
+  int done = control.first_pass;
+  while (done < control.end_pass && !control.stopped()) {
+    control.report_status("Iteration " + std::to_string(done + 1) + " / " +
+                          std::to_string(control.end_pass));
+    if (!iterate(context, film, static_cast<uint32_t>(done), cancel)) return done;
+    ++done;
+    const double elapsed = seconds_since(t0);
+    const bool out_of_time = time_limit > 0.0 && elapsed >= time_limit;
+    const bool last = done >= control.end_pass || out_of_time;
+    if (control.progress) {
+      double fraction = static_cast<double>(done - control.first_pass) /
+                        std::max(control.end_pass - control.first_pass, 1);
+      if (time_limit > 0.0) fraction = std::max(fraction, elapsed / time_limit);
+      control.progress(static_cast<float>(std::min(fraction, 1.0)));
+    }
+    if (control.update) control.update(FilmRect{0, 0, film.width(), film.height()}, done, last);
+    if (out_of_time) break;
+  }
+  return done;
+}
+
+IntegratorInfo vcm_integrator_info() {
+  IntegratorInfo info;
+  info.type = IntegratorType::kVcm;
+  info.label = "Vertex Connection and Merging";
+  info.description =
+      "Bidirectional path tracing and photon merging under one multiple importance sampling "
+      "(Georgiev et al. 2012); refines as it renders";
+  info.capabilities.name = "VCM";
+  info.capabilities.iterative = true;
+  info.capabilities.no_bake_reason =
+      "the VCM integrator converges per pixel of a view and has no view-independent lighting "
+      "solution to bake; bake from the photon maps or the radiosity solution";
+  info.make = [] { return std::unique_ptr<Integrator>(new VcmIntegrator); };
+  return info;
+}
+
+}  // namespace photon
