@@ -1,8 +1,10 @@
-"""One progress bar for a whole render: Blender's bar must only move forward, but a render runs
-several stages (photon tracing, radiance precompute, irradiance cache, tiles) whose own fractions
-each start again at 0, and whose lengths are not known in advance."""
+"""A final render's progress as Blender shows it: one progress bar for the whole render, and
+the stats line above the image. Blender's bar must only move forward, but a render runs several
+stages (photon tracing, radiance precompute, irradiance cache, tiles) whose own fractions each
+start again at 0, and whose lengths are not known in advance."""
 
 import re
+import time
 
 # Share of the bar given to the preparation stages of an integrator that prepares (photon
 # mapping, radiosity); the tiles fill the rest. Each new preparation stage takes half of what is
@@ -61,3 +63,11 @@ class RenderProgress:
         if fraction < MIN_FRACTION_FOR_ESTIMATE or fraction >= 1.0:
             return None
         return elapsed * (1.0 - fraction) / fraction
+
+
+def stats_line(status, sync_stats, tiles_done, tiles_total, t_start, time_left=""):
+    """The render's stats line: stage, tiles, the synced scene's size, time and time left."""
+    left = f" | {time_left}" if time_left else ""
+    return (f"Photon | {status} | Tiles {tiles_done}/{tiles_total} | "
+            f"Triangles {sync_stats.triangles:,} | Instances {sync_stats.instances:,} | "
+            f"Lights {sync_stats.lights} | Time {time.perf_counter() - t_start:.1f} s{left}")

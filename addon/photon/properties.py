@@ -5,7 +5,7 @@ import bpy
 from bpy.props import (BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty,
                        StringProperty)
 
-from . import schema
+from . import schema, viewport
 
 
 class PhotonRenderSettings(bpy.types.PropertyGroup):
@@ -122,26 +122,26 @@ class PhotonLightSettings(bpy.types.PropertyGroup):
                              items=ILLUMINANTS, default="D65")
 
 
-# (pass name in Blender, view-layer property, index in the native pass array)
+# (pass name in Blender and in the native tiles, view-layer property)
 LIGHT_PASSES = (
-    ("Photon Direct", "use_pass_direct", 0),
-    ("Photon Indirect", "use_pass_indirect", 1),
-    ("Photon Caustics", "use_pass_caustics", 2),
-    ("Photon Map", "use_pass_photon_map", 3),
+    ("Photon Direct", "use_pass_direct"),
+    ("Photon Indirect", "use_pass_indirect"),
+    ("Photon Caustics", "use_pass_caustics"),
+    ("Photon Map", "use_pass_photon_map"),
 )
 
 
 def enabled_passes(view_layer):
+    """The names of the view layer's enabled Photon light passes."""
     settings = getattr(view_layer, "photon", None)
     if settings is None:
         return []
-    return [(name, index) for name, prop, index in LIGHT_PASSES if getattr(settings, prop)]
+    return [name for name, prop in LIGHT_PASSES if getattr(settings, prop)]
 
 
 def _redraw_rendered_viewports(_settings, _context):
     """A render setting changed: Rendered viewports redraw, and their view_draw restarts the
     render with it (a property change alone reaches no view_update)."""
-    from . import viewport
     viewport.tag_rendered_viewports()
 
 

@@ -1,19 +1,20 @@
 """The render parameters' schema, declared once in the native library (render_params.h): from
 _photon.parameter_schema(), or from parameter_schema.json staged beside it at build time when the
 native module does not import. properties.py generates scene.photon's properties from it,
-ui.py draws them, engine.make_settings copies them into the native settings by name."""
+ui.py draws them, render_settings.make_settings copies them into the native settings by name."""
 
 import json
 import os
+
+from . import native
 
 INT32_MAX = (1 << 31) - 1
 SCHEMA_FILE = os.path.join(os.path.dirname(__file__), "parameter_schema.json")
 
 
 def _load():
-    from . import _photon
-    if _photon is not None:
-        return _photon.parameter_schema(), None
+    if native.MODULE is not None:
+        return native.MODULE.parameter_schema(), None
     try:
         with open(SCHEMA_FILE, encoding="utf-8") as f:
             return json.load(f), None

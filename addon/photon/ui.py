@@ -4,7 +4,8 @@ import textwrap
 
 import bpy
 
-from . import schema
+from . import native, schema
+from .render_settings import uses_cycles_film
 
 ENGINE = "PHOTON"
 
@@ -68,12 +69,11 @@ class PHOTON_PT_render(PhotonPanel, bpy.types.Panel):
     bl_label = "Photon"
 
     def draw(self, context):
-        from . import NATIVE_IMPORT_ERROR
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        if NATIVE_IMPORT_ERROR:
-            draw_message(layout, "Photon cannot render:", NATIVE_IMPORT_ERROR)
+        if native.IMPORT_ERROR:
+            draw_message(layout, "Photon cannot render:", native.IMPORT_ERROR)
         if schema.LOAD_ERROR:
             layout.label(text=f"Parameter schema missing: {schema.LOAD_ERROR}", icon="ERROR")
         schema.draw(layout, context.scene.photon, "sampling")
@@ -170,13 +170,12 @@ class PHOTON_PT_simplify_render(PhotonSimplifyPanel, bpy.types.Panel):
 
 class PHOTON_PT_film(PhotonPanel, bpy.types.Panel):
     """Film: with Cycles enabled, the very properties Cycles' Film panel edits (Photon renders
-    them alike, engine.film_settings), plus Photon's Box width; else Photon's own. Cycles'
+    them alike, render_settings.film_settings), plus Photon's Box width; else Photon's own. Cycles'
     Transparent Glass is not drawn: Photon does not honour it."""
     bl_label = "Film"
     bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context):
-        from .engine import uses_cycles_film
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
@@ -279,22 +278,32 @@ class PHOTON_PT_layer_override(PhotonViewLayerPanel, bpy.types.Panel):
         layout.prop(context.view_layer, "material_override")
 
 
-class PHOTON_PT_sppm(PhotonPanel, bpy.types.Panel):
-    bl_label = "Progressive Photon Mapping"
+class _IntegratorGroupPanel(PhotonPanel):
+    """A panel of one integrator's schema group, shown while that integrator is chosen."""
     bl_parent_id = "PHOTON_PT_render"
+    group = ""
 
     @classmethod
     def poll(cls, context):
-        group = schema.group("sppm")
-        # VCM runs on the same iteration settings, so SPPM and VCM compare at one budget.
+        group = schema.group(cls.group)
         return super().poll(context) and group is not None and \
-            context.scene.photon.integrator in (group["integrator"], "VCM")
+            context.scene.photon.integrator == group["integrator"]
 
     def draw(self, context):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        schema.draw(layout, context.scene.photon, "sppm")
+        schema.draw(layout, context.scene.photon, self.group)
+
+
+class PHOTON_PT_sppm(_IntegratorGroupPanel, bpy.types.Panel):
+    bl_label = "Progressive Photon Mapping"
+    group = "sppm"
+
+
+class PHOTON_PT_vcm(_IntegratorGroupPanel, bpy.types.Panel):
+    bl_label = "Vertex Connection and Merging"
+    group = "vcm"
 
 
 class PHOTON_PT_performance(PhotonPanel, bpy.types.Panel):
@@ -438,6 +447,7 @@ class PHOTON_PT_object_mask(PhotonObjectVisibilityPanel, bpy.types.Panel):
 
 classes = (PHOTON_PT_render, PHOTON_PT_spectral, PHOTON_PT_photon_mapping, PHOTON_PT_radiosity,
            PHOTON_PT_sppm,
+           PHOTON_PT_vcm,
            PHOTON_PT_simplify, PHOTON_PT_simplify_viewport, PHOTON_PT_simplify_render,
            PHOTON_PT_performance, PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data,
            PHOTON_PT_passes_cryptomatte, PHOTON_PT_layer_override,

@@ -1,5 +1,5 @@
-"""Rendered shading in the 3D viewport and material/light/world preview thumbnails, on the
-native ProgressiveSession (session/progressive_session.h).
+"""Rendered shading in the 3D viewport, on the native ProgressiveSession
+(session/progressive_session.h).
 
 view_update sorts `depsgraph.updates` (Cycles' viewport does the same): objects that only
 moved (a transform update of a plain mesh object) are re-placed in the synced scene's BVH top
@@ -7,24 +7,23 @@ level (native ViewportScene.move_instances; no mesh, BVH, texture or light is re
 session restarts on it, tracing photons again; anything else (geometry, materials, lights, the
 world, objects shown or hidden, instancers) syncs the scene again, with meshes unchanged since
 the last sync replayed from a MeshCache and their BVHs kept in a BlasCache. view_draw reads the
-view from `context.region_data`, re-aims the running session when it changed (no sync, no
-rebuild), and draws its latest pass as a float texture through Blender's display transform.
-All native work runs on the session's threads, off the GIL.
+view from `context.region_data` (sync/view.py), re-aims the running session when it changed (no
+sync, no rebuild), and draws its latest pass as a float texture through Blender's display
+transform. All native work runs on the session's threads, off the GIL.
 """
 
-import math
 import time
+import traceback
 
 import bpy
 import gpu
 import numpy as np
-from bpy_extras import view3d_utils
 from gpu_extras.presets import draw_texture_2d
 
-from . import report, schema, sync
+from . import render_settings, report, schema, sync
 from .sync import cache as sync_cache
-from .sync import camera as sync_camera
 from .sync.origin import REBASE_RATIO, rebased_matrix
+from .sync.view import viewport_view
 
 # While a pass is on its way, a redraw waits this long for it instead of spinning the UI.
 DRAW_WAIT_SECONDS = 0.01
@@ -32,22 +31,12 @@ DRAW_WAIT_SECONDS = 0.01
 # coarse first image (a few ms of rendering) rather than show the old image for another
 # redraw, which under load comes a tenth of a second or more later.
 FIRST_IMAGE_WAIT_SECONDS = 0.05
-# The viewport final-gathers at every sample (no irradiance cache: its records are placed for
-# the scene camera's pixels, and a moving view would keep missing them) with at most this many
-# rays per sample; over the viewport's samples the pixel averages as many rays as a final
-# render's cached gathers, so the image converges to the same brightness.
-VIEWPORT_FINAL_GATHER_RAYS = 4
-# Material/light/world thumbnails: a few photons are plenty at 128 px.
-PREVIEW_PHOTONS = 20000
-PREVIEW_CAUSTIC_PHOTONS = 10000
 
 # Seconds from the last edit (a view_update that synced) to the first image of the session it
 # started, for the benchmark in tests/blender/test_viewport_gui.py; None before the first.
 last_edit_to_image_seconds = None
 # The last view_draw's state (samples shown, converged), for tests and benchmarks.
 last_draw = {}
-# Preview thumbnails rendered to the end (tests).
-previews_rendered = 0
 # How the viewport took edits in (tests, benchmarks): "full" syncs of the whole scene,
 # "transform" updates that only moved instances and "material" updates that only converted
 # edited materials again; "last" is the latest one's kind.
@@ -62,127 +51,11 @@ def tag_rendered_viewports():
                 area.tag_redraw()
 
 
-def _settings(native, scene, width, height, region, preview=False):
-    """Render settings of a viewport or preview render: the scene's, at the viewport sample
-    count; previews also trace fewer photons."""
-    from .engine import make_settings
-    settings = make_settings(native, scene, width, height, region)
-    settings.samples = max(1, int(scene.photon.preview_samples))
-    settings.irradiance_cache = False
-    settings.final_gather_rays = min(settings.final_gather_rays, VIEWPORT_FINAL_GATHER_RAYS)
-    if preview:
-        settings.photons = min(settings.photons, PREVIEW_PHOTONS)
-        settings.caustic_photons = min(settings.caustic_photons, PREVIEW_CAUSTIC_PHOTONS)
-        settings.photon_time = 0.0
-    return settings
-
-
 def _settings_key(scene):
     """What a session was started with besides the view: a change restarts the session."""
     values = tuple(getattr(scene.photon, p["name"]) for p in schema.params())
     return values + (bool(scene.render.film_transparent),)
 
-
-# ---- The viewport's camera ----
-
-def _projection_window(window_matrix, perspective):
-    """(window [min_x, max_x, min_y, max_y], clip_start, clip_end) of an OpenGL projection
-    matrix: the image-plane window at distance 1 (perspective) or in scene units (ortho)."""
-    p = np.array(window_matrix, dtype=np.float64)
-    if perspective:
-        # x_ndc = p00 * (x / -z) - p02 (glFrustum), so x / -z = (x_ndc + p02) / p00.
-        window = [(-1.0 + p[0, 2]) / p[0, 0], (1.0 + p[0, 2]) / p[0, 0],
-                  (-1.0 + p[1, 2]) / p[1, 1], (1.0 + p[1, 2]) / p[1, 1]]
-        near, far = p[2, 3] / (p[2, 2] - 1.0), p[2, 3] / (p[2, 2] + 1.0)
-    else:
-        # x_ndc = p00 * x + p03 (glOrtho).
-        window = [(-1.0 - p[0, 3]) / p[0, 0], (1.0 - p[0, 3]) / p[0, 0],
-                  (-1.0 - p[1, 3]) / p[1, 1], (1.0 - p[1, 3]) / p[1, 1]]
-        near, far = (p[2, 3] + 1.0) / p[2, 2], (p[2, 3] - 1.0) / p[2, 2]
-    return window, near, far
-
-
-def _camera_dof(scene, depsgraph, camera_matrix):
-    """(aperture radius, focus distance) of the scene camera's depth of field, as the final
-    render uses it (sync/camera.export_camera)."""
-    cam_obj = scene.camera
-    if cam_obj is None or cam_obj.type != 'CAMERA' or not cam_obj.data.dof.use_dof:
-        return 0.0, 10.0
-    cam = cam_obj.data
-    fstop = max(cam.dof.aperture_fstop, 1e-5)
-    aperture = (1.0 / (2.0 * fstop) if cam.type == 'ORTHO'
-                else (cam.lens * 1e-3) / (2.0 * fstop))
-    if cam.dof.focus_object is not None:
-        focus = cam.dof.focus_object.evaluated_get(depsgraph).matrix_world.translation
-        axis = camera_matrix.to_3x3().normalized().col[2]
-        distance = abs(axis.dot(camera_matrix.translation - focus))
-    else:
-        distance = cam.dof.focus_distance
-    return float(aperture), float(max(distance, 1e-5))
-
-
-def _border(context, scene, width, height):
-    """Rendered pixel rectangle (x0, y0, x1, y1), y downwards, of the region: the viewport's
-    render border, or in camera view the scene's render border within the camera frame."""
-    space, rv3d = context.space_data, context.region_data
-    if rv3d.view_perspective == 'CAMERA':
-        if not scene.render.use_border or scene.camera is None:
-            return 0, 0, width, height
-        cam_obj = scene.camera
-        corners = [cam_obj.matrix_world @ v for v in cam_obj.data.view_frame(scene=scene)]
-        points = [view3d_utils.location_3d_to_region_2d(context.region, rv3d, c)
-                  for c in corners]
-        if any(p is None for p in points):
-            return 0, 0, width, height
-        xs, ys = [p.x for p in points], [p.y for p in points]
-        fx0, fx1, fy0, fy1 = min(xs), max(xs), min(ys), max(ys)
-        bx0 = fx0 + scene.render.border_min_x * (fx1 - fx0)
-        bx1 = fx0 + scene.render.border_max_x * (fx1 - fx0)
-        by0 = fy0 + scene.render.border_min_y * (fy1 - fy0)
-        by1 = fy0 + scene.render.border_max_y * (fy1 - fy0)
-    elif space.use_render_border:
-        bx0, bx1 = space.render_border_min_x * width, space.render_border_max_x * width
-        by0, by1 = space.render_border_min_y * height, space.render_border_max_y * height
-    else:
-        return 0, 0, width, height
-    x0 = min(max(int(math.floor(bx0)), 0), width - 1)
-    x1 = min(max(int(math.ceil(bx1)), x0 + 1), width)
-    y0 = min(max(int(math.floor(by0)), 0), height - 1)  # from the bottom
-    y1 = min(max(int(math.ceil(by1)), y0 + 1), height)
-    return x0, height - y1, x1, height - y0
-
-
-def viewport_view(context, depsgraph, origin):
-    """The native camera arguments and frame of a 3D viewport region: a key that changes
-    whenever the image would, and (set_camera args, width, height, region)."""
-    region, rv3d = context.region, context.region_data
-    scene = depsgraph.scene
-    width, height = max(region.width, 1), max(region.height, 1)
-    perspective = rv3d.is_perspective
-    window, near, far = _projection_window(rv3d.window_matrix, perspective)
-    camera_matrix = rv3d.view_matrix.inverted()
-    if not perspective:
-        # Blender's orthographic views clip from -far/2 to far/2 around the view point
-        # (negative near clip, as Cycles' viewport camera has); the native camera clips from
-        # 0, so its origin moves back along the view axis, which an orthographic image does
-        # not see.
-        back = camera_matrix.to_3x3().normalized().col[2] * (-near)
-        camera_matrix = camera_matrix.copy()
-        camera_matrix.translation += back
-        near, far = 0.0, far - near
-    aperture, focus = 0.0, 10.0
-    if rv3d.view_perspective == 'CAMERA':
-        aperture, focus = _camera_dof(scene, depsgraph, camera_matrix)
-    matrix = rebased_matrix(camera_matrix, origin)
-    args = ("PERSP" if perspective else "ORTHO", matrix, [float(w) for w in window],
-            float(max(near, 0.0)), float(far), aperture, focus)
-    border = _border(context, scene, width, height)
-    key = (args[0], matrix.tobytes(), tuple(args[2]), args[3], args[4], aperture, focus,
-           width, height, border)
-    return key, (args, width, height, border)
-
-
-# ---- Per-viewport state ----
 
 class ViewportRender:
     """One viewport's render: the synced native scene, its progressive session and the texture
@@ -375,7 +248,7 @@ class ViewportRender:
 
     def _start(self, scene, view):
         (args, width, height, border) = view
-        settings = _settings(self.native, scene, width, height, border)
+        settings = render_settings.viewport_settings(self.native, scene, width, height, border)
         self.session = self.native.ProgressiveSession(self.viewport_scene, settings)
         self.camera_scene.set_camera(*args)
         self.view_serial = self.session.set_view(self.camera_scene, width, height, list(border))
@@ -411,7 +284,6 @@ class ViewportRender:
             self.needs_sync = True
             self.error = f"Photon: {exc}"
             if not isinstance(exc, report.SceneError):
-                import traceback
                 traceback.print_exc()
             engine.update_stats("", self.error)
             return
@@ -499,52 +371,3 @@ def _movable_objects(depsgraph, instances):
             continue
         movable.add(name)
     return movable
-
-
-# ---- Preview thumbnails (material, light, world) ----
-
-def render_preview(engine, depsgraph):
-    """Renders Blender's preview scene (engine.is_preview) progressively into the result,
-    quickly: the viewport sample count and few photons."""
-    from .engine import native_module
-    native = native_module()
-    scene = depsgraph.scene
-    reporter = report.Reporter(None)
-    width, height = sync_camera.render_size(scene.render)
-    native_scene, stats = sync.sync_scene(native, depsgraph, reporter)
-    try:
-        settings = _settings(native, scene, width, height, (0, 0, width, height), preview=True)
-        session = native.ProgressiveSession(native_scene, settings)
-        session.start()
-        shown = None
-        try:
-            while True:
-                if engine.test_break():
-                    break
-                samples = session.wait_for_samples(settings.samples, 0.05)
-                image = session.image()
-                if image is not None and image[0].shape[:2] != (height, width):
-                    image = None  # a coarse first look: the thumbnail waits for a full pass
-                if image is not None and image[1:3] != shown:
-                    _write_result(engine, image[0], width, height)
-                    shown = image[1:3]
-                if samples >= settings.samples or session.finished:
-                    global previews_rendered
-                    previews_rendered += 1
-                    break
-        finally:
-            session.cancel()
-            session.wait()
-    finally:
-        stats.release()
-
-
-def _write_result(engine, pixels, width, height):
-    """The whole preview image (top row first) into the result; other passes left black."""
-    result = engine.begin_result(0, 0, width, height)
-    passes = result.layers[0].passes
-    rgba = np.ascontiguousarray(pixels[::-1], dtype=np.float32).ravel()
-    parts = [rgba if p.name == "Combined" else np.zeros(width * height * p.channels, np.float32)
-             for p in passes]
-    passes.foreach_set("rect", np.concatenate(parts))
-    engine.end_result(result)

@@ -177,7 +177,8 @@ def main():
                     "--sppm-iterations", args.sppm_iterations, "--seed", 1, *common)
             vcm, vcm_seconds = photon_cli(
                 build, name, tmp / f"{name}_vcm.exr", "--integrator", "vcm", "--vcm-mode", "vcm",
-                "--sppm-iterations", args.vcm_iterations, "--seed", 2, *common)
+                "--vcm-iterations", args.vcm_iterations, "--vcm-light-paths", args.photons,
+                "--seed", 2)
             pm, pm_seconds = photon_cli(
                 build, name, tmp / f"{name}_pm.exr", "--integrator", "photon_map", "--samples",
                 256, "--photons", 2000000, "--caustic-photons", 4000000, "--seed", 3)

@@ -73,7 +73,7 @@ def budgets(quick):
                    "photon.sppm_photons_per_iteration": 100000}) for k in iterations],
         "VCM": [(f"{k} iterations", "PHOTON",
                  {"photon.integrator": "VCM", "photon.vcm_mode": "VCM",
-                  "photon.sppm_iterations": k, "photon.sppm_photons_per_iteration": 100000})
+                  "photon.vcm_iterations": k, "photon.vcm_light_paths": 100000})
                 for k in iterations],
         "CYCLES": [(f"{s} spp", "CYCLES", {"cycles.samples": s, "cycles.seed": 99})
                    for s in samples],
@@ -97,7 +97,8 @@ def run_series(blender, addon_dir, blend, items, folder, tag):
     spec = [{"engine": items[0][1], "settings": dict(items[0][2]),
              "out": str(folder / f"{tag}_warmup.exr")}]
     warm = spec[0]["settings"]
-    for key in ("photon.sppm_iterations", "cycles.samples", "photon.samples"):
+    for key in ("photon.sppm_iterations", "photon.vcm_iterations", "cycles.samples",
+                "photon.samples"):
         if key in warm:
             warm[key] = 1
     for i, (label, engine, settings) in enumerate(items):
@@ -215,9 +216,10 @@ def sds_iteration_table(args, blends, folder):
     for name in SDS_SCENES:
         reference = read_rgb(SDS / f"{name}.exr")
         for integrator in ("SPPM", "VCM"):
+            prefix, paths = (("photon.vcm_", "light_paths") if integrator == "VCM" else
+                             ("photon.sppm_", "photons_per_iteration"))
             items = [(f"{k}", "PHOTON", {"photon.integrator": integrator,
-                                          "photon.sppm_iterations": k,
-                                          "photon.sppm_photons_per_iteration": 100000})
+                                          prefix + "iterations": k, prefix + paths: 100000})
                      for k in ((4, 16) if args.quick else (4, 16, 64))]
             cells = []
             for r in run_series(args.blender, args.addon_dir, blends[name], items, folder,
@@ -240,7 +242,7 @@ def sds_figure(args, blends, folder, path):
     items = [("SPPM", "PHOTON", {"photon.integrator": "SPPM", "photon.sppm_iterations": 100000,
                                  "photon.sppm_time": t}),
              ("VCM", "PHOTON", {"photon.integrator": "VCM", "photon.vcm_mode": "VCM",
-                                "photon.sppm_iterations": 100000, "photon.sppm_time": t}),
+                                "photon.vcm_iterations": 100000, "photon.vcm_time": t}),
              ("Cycles", "CYCLES", {"cycles.samples": 1 << 20, "cycles.time_limit": t,
                                    "cycles.seed": 99})]
     rows = []

@@ -47,7 +47,7 @@ scene.render.resolution_percentage = 100
 scene.photon.integrator = 'RAY_TRACE'
 scene.photon.samples = 1
 depsgraph = bpy.context.evaluated_depsgraph_get()
-from photon import _photon, engine, report, sync
+from photon import _photon, render_settings, report, sync
 from photon.sync import camera as sync_camera
 
 def status(key):
@@ -60,7 +60,7 @@ with open("/proc/self/clear_refs", "w") as f:
 before = status("VmRSS")
 native_scene, stats = sync.sync_scene(_photon, depsgraph, report.Reporter())
 region = sync_camera.render_region(scene.render, 1, 1)
-session = _photon.RenderSession(native_scene, engine.make_settings(_photon, scene, 1, 1, region))
+session = _photon.RenderSession(native_scene, render_settings.make_settings(_photon, scene, 1, 1, region))
 session.start()
 session.wait()
 print(f"PHOTON_PEAK_MB {status('VmHWM') - before:.1f} triangles {native_scene.triangle_count}")

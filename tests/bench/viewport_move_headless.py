@@ -19,8 +19,8 @@ import time
 import bpy
 import numpy as np
 
-from photon import report, sync, viewport
-from photon.engine import native_module
+from photon import render_settings, report, sync
+from photon.native import native_module
 from photon.sync import cache as sync_cache
 from photon.sync.origin import rebased_matrix
 
@@ -63,7 +63,7 @@ def main():
     native = native_module()
     cube = build_scene()
     scene = bpy.context.scene
-    settings = viewport._settings(native, scene, WIDTH, HEIGHT, (0, 0, WIDTH, HEIGHT))
+    settings = render_settings.viewport_settings(native, scene, WIDTH, HEIGHT, (0, 0, WIDTH, HEIGHT))
     reporter = report.Reporter(None)
     mesh_cache, blas_cache = sync_cache.MeshCache(), native.BlasCache()
     results = {"full": [], "transform": []}

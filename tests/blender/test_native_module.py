@@ -79,11 +79,11 @@ def test_tiles_cover_the_region_exactly_once(native):
     session.start()
     covered = np.zeros((70, 100), dtype=int)
     while True:
-        for x, y, w, h, rgba, _passes, _data in session.take_tiles(0.05):
+        for x, y, w, h, rgba, _passes in session.take_tiles(0.05):
             assert rgba.shape == (h, w, 4)
             covered[y:y + h, x:x + w] += 1
         if session.finished:
-            for x, y, w, h, rgba, _passes, _data in session.take_tiles(0.0):
+            for x, y, w, h, rgba, _passes in session.take_tiles(0.0):
                 covered[y:y + h, x:x + w] += 1
             break
     assert (covered == 1).all()

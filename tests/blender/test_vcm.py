@@ -1,6 +1,6 @@
 """The VCM integrator through Blender: selectable from the schema's enum with its vcm_mode, its
-settings in the progressive photon mapping panel, and the Cornell box rendered with the
-brightness photon mapping gives it in each of its modes."""
+settings in a panel of their own (not SPPM's), and the Cornell box rendered with the brightness
+photon mapping gives it in each of its modes."""
 
 import re
 import sys
@@ -29,8 +29,8 @@ def render(blender, out_prefix, python_expr, timeout=600):
 def test_vcm_matches_photon_mapping_on_the_cornell_box(blender, tmp_path, mode):
     proc = render(blender, tmp_path / "vcm_",
                   SMALL + f"s.photon.integrator = 'VCM'; s.photon.vcm_mode = '{mode}'; "
-                  "s.photon.sppm_iterations = 16; s.photon.sppm_photons_per_iteration = 20000")
-    match = re.search(r"Photon: sppm: (\d+) iterations", proc.stdout)
+                  "s.photon.vcm_iterations = 16; s.photon.vcm_light_paths = 20000")
+    match = re.search(r"Photon: vcm: (\d+) iterations, 320,000 light paths", proc.stdout)
     assert match and int(match.group(1)) == 16, proc.log
     assert "rendering with SPPM instead" not in proc.stdout, proc.log
     render(blender, tmp_path / "pm_", SMALL + "s.photon.samples = 16")
@@ -50,6 +50,7 @@ def test_vcm_is_in_the_enum_and_shows_the_iteration_settings(blender):
         "items = [i.identifier for i in s.photon.bl_rna.properties['integrator'].enum_items]\n"
         "modes = [i.identifier for i in s.photon.bl_rna.properties['vcm_mode'].enum_items]\n"
         "s.photon.integrator = 'VCM'\n"
-        "print('vcm:', 'VCM' in items, modes, bpy.types.PHOTON_PT_sppm.poll(bpy.context))\n")
+        "print('vcm:', 'VCM' in items, modes, bpy.types.PHOTON_PT_vcm.poll(bpy.context),\n"
+        "      bpy.types.PHOTON_PT_sppm.poll(bpy.context))\n")
     proc = blender.run(["--python-expr", expr])
-    assert "vcm: True ['VCM', 'BPT', 'PPM'] True" in proc.stdout, proc.log
+    assert "vcm: True ['VCM', 'BPT', 'PPM'] True False" in proc.stdout, proc.log

@@ -13,7 +13,8 @@ import time
 import numpy as np
 
 from .. import report, sync
-from ..engine import make_settings, native_module
+from ..native import native_module
+from ..render_settings import make_settings
 from . import targets as bake_targets
 
 ATTRIBUTE = "PhotonLighting"

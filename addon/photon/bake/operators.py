@@ -8,6 +8,7 @@ import traceback
 import bpy
 
 from .. import report
+from ..native import native_module
 from ..ui import PhotonPanel
 from . import job as bake
 from . import viewport
@@ -77,7 +78,7 @@ class PHOTON_OT_bake_lighting(bpy.types.Operator):
         # Blocking (scripts, background mode): Ctrl-C cancels the bake through a SIGINT
         # handler installed for its duration (Blender's own only flags renders).
         try:
-            native = bake.native_module()
+            native = native_module()
         except Exception:  # noqa: BLE001 - _make_job reports the missing module
             native = None
         if native is not None:

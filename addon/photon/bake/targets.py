@@ -10,6 +10,8 @@ apply them first).
 
 import numpy as np
 
+from ..native import native_module
+
 # Corner points are shaded this fraction of the way from the corner to the triangle's centre:
 # exactly at a vertex a point would lie on the neighbouring faces too (wall corners), where
 # shadow rays graze them.
@@ -212,7 +214,6 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
     the world origin offset of the synced native scene (SyncStats.origin): lightmap corners are
     placed in its coordinates, as the positions the native bake returns are."""
     import bpy
-    from ..engine import native_module
 
     native = native_module()
     size = int(props.lightmap_size)

@@ -1,4 +1,6 @@
-"""The scene camera as a native camera: view window, clipping and depth of field."""
+"""The scene camera as a native camera: frame size and border, view window, clipping, depth of
+field and multiview eyes. sync/view.py places the 3D viewport's camera, with the same depth of
+field in camera view."""
 
 import math
 
@@ -79,6 +81,27 @@ def _horizontal_fit(cam, window):
     return cam.sensor_fit == 'HORIZONTAL'
 
 
+def depth_of_field(cam, depsgraph, placement):
+    """(aperture radius, focus distance) of camera data `cam` placed at `placement` (its world
+    matrix: a focus object's distance is measured along its view axis); (0, 10) without depth
+    of field. The final render's camera and the viewport's camera view (sync/view.py) share
+    it."""
+    if not cam.dof.use_dof:
+        return 0.0, 10.0
+    fstop = max(cam.dof.aperture_fstop, 1e-5)
+    if cam.type == 'ORTHO':
+        aperture_radius = 1.0 / (2.0 * fstop)
+    else:
+        aperture_radius = (cam.lens * 1e-3) / (2.0 * fstop)
+    if cam.dof.focus_object is not None:
+        focus = cam.dof.focus_object.evaluated_get(depsgraph).matrix_world.translation
+        view_axis = placement.to_3x3().normalized().col[2]
+        focus_distance = abs(view_axis.dot(placement.translation - focus))
+    else:
+        focus_distance = cam.dof.focus_distance
+    return float(aperture_radius), float(max(focus_distance, 1e-5))
+
+
 def export_camera(native_scene, scene, depsgraph, reporter, view=None, origin=None):
     """Sets the native camera from the scene camera, or from `view` (a ViewCamera) for one
     view of a multiview render. `origin` is the world origin offset the native scene is built
@@ -127,24 +150,10 @@ def export_camera(native_scene, scene, depsgraph, reporter, view=None, origin=No
         window[0] += offset
         window[1] += offset
 
-    aperture_radius = 0.0
-    focus_distance = 10.0
-    if cam.dof.use_dof:
-        fstop = max(cam.dof.aperture_fstop, 1e-5)
-        if projection == "ORTHO":
-            aperture_radius = 1.0 / (2.0 * fstop)
-        else:
-            aperture_radius = (cam.lens * 1e-3) / (2.0 * fstop)
-        if cam.dof.focus_object is not None:
-            focus = cam.dof.focus_object.evaluated_get(depsgraph).matrix_world.translation
-            view_axis = placement.to_3x3().normalized().col[2]
-            focus_distance = abs(view_axis.dot(placement.translation - focus))
-        else:
-            focus_distance = cam.dof.focus_distance
-        focus_distance = max(focus_distance, 1e-5)
+    aperture_radius, focus_distance = depth_of_field(cam, depsgraph, placement)
 
     # Cycles removes the camera object's scale; so do we (camera_model_matrix has none).
     matrix = placement.normalized()
     native_scene.set_camera(projection, rebased_matrix(matrix, origin), window,
                             float(cam.clip_start), float(cam.clip_end),
-                            float(aperture_radius), float(focus_distance))
+                            aperture_radius, focus_distance)

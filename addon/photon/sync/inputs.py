@@ -7,6 +7,7 @@ falls back to its nearest meaning, never to silent black or magenta."""
 import functools
 import math
 
+from ..native import native_module
 from . import nodes
 
 DEFAULT_COLOR = (0.8, 0.8, 0.8)
@@ -99,13 +100,6 @@ class Param:
         self.name, self.kind, self.lo, self.hi, self.default = name, kind, lo, hi, default
 
 
-def _native():
-    from .. import _photon, NATIVE_IMPORT_ERROR
-    if _photon is None:
-        raise RuntimeError(NATIVE_IMPORT_ERROR)
-    return _photon
-
-
 def _scalar_param(name, spec):
     return Param(name, 'scalar', spec["min"], spec["max"], spec["default"])
 
@@ -115,7 +109,7 @@ def closure_table():
     """{bpy node type: (closure type, [(socket names, Param), ...])}: the core's one table of
     material inputs (native/src/photon/scene/material_params.cpp), read once."""
     table = {}
-    for closure in _native().material_parameters():
+    for closure in native_module().material_parameters():
         params = []
         for p in closure["params"]:
             default = list(p["default"]) if p["kind"] == 'color' else p["default"]
@@ -132,12 +126,12 @@ def closure_param(node_type, key):
 
 @functools.lru_cache(maxsize=None)
 def mix_factor_param():
-    return _scalar_param("fac", _native().MIX_FACTOR)
+    return _scalar_param("fac", native_module().MIX_FACTOR)
 
 
 @functools.lru_cache(maxsize=None)
 def normal_map_strength_param():
-    return _scalar_param("strength", _native().NORMAL_MAP_STRENGTH)
+    return _scalar_param("strength", native_module().NORMAL_MAP_STRENGTH)
 
 
 def read_input(socket, stack, param, ctx):

@@ -1,5 +1,5 @@
 """Holdout and shadow-catcher flags of the objects a render draws (native Instance::holdout and
-Instance::shadow_catcher; what the renderer does with them is in native/src/photon/render/matte.h).
+Instance::shadow_catcher; what the renderer does with them is in native/src/photon/integrators/matte.h).
 
 As Cycles reads them (blender/object.cpp, Blender 3.4): an object is a holdout when its own
 Object > Visibility > Holdout is set, or when it or the object instancing it is held out in the

@@ -13,6 +13,7 @@ A node the native library does not know is reported once and replaced by its nea
 its own input of the output's kind when it has one, else the socket's default value.
 """
 
+from ..native import native_module
 from . import nodes
 
 KIND_SIZE = {'float': 1, 'vector': 3, 'color': 3}
@@ -53,13 +54,6 @@ def program_attributes(program):
         if name:
             found.setdefault(name, []).append(desc.get("where", ""))
     return found
-
-
-def _native():
-    from .. import _photon, NATIVE_IMPORT_ERROR
-    if _photon is None:
-        raise RuntimeError(NATIVE_IMPORT_ERROR)
-    return _photon
 
 
 def _base_properties():
@@ -288,7 +282,7 @@ class ProgramBuilder:
         key = (desc["type"], tuple(sorted(desc["enums"].items())),
                tuple(sorted(desc["inputs"])), len(desc.get("table", ())))
         if key not in self._checked:
-            self._checked[key] = _native().check_shader_node(desc)
+            self._checked[key] = native_module().check_shader_node(desc)
         return self._checked[key]
 
     def _special(self, node, stack, desc):

@@ -3,7 +3,7 @@
 images, to native pixel memory filled in place (one float copy, no reshape or flip: the native
 side reads rows bottom-up), and adds each (image, colour space, extension, interpolation) to the
 native scene once per render. The native side converts them to MIP-mapped textures in a
-persistent cache keyed by content (native/src/photon/render/texture_convert.h)."""
+persistent cache keyed by content (native/src/photon/shading/texture_convert.h)."""
 
 import os
 import re

@@ -1,5 +1,5 @@
 """Run inside Blender's GUI (under Xvfb): starts an F12 render shown in the image editor, waits
-for a stage of it (photon.engine.RENDER_STATUS), presses Esc there with xdotool, takes a
+for a stage of it (photon.final.RENDER_STATUS), presses Esc there with xdotool, takes a
 screenshot, and reports through stdout when Blender's render_cancel / render_complete handlers
 fire.
 
@@ -12,7 +12,7 @@ import time
 
 import bpy
 
-from photon import engine
+from photon import final
 
 args = dict(a.split("=", 1) for a in sys.argv[sys.argv.index("--") + 1:])
 esc_stage = args.get("esc_stage", "")
@@ -49,7 +49,7 @@ def in_stage(status):
 
 def watch():
     now = time.monotonic()
-    status = dict(engine.RENDER_STATUS)
+    status = dict(final.RENDER_STATUS)
     if state["ended"] is not None or now - state["start"] > TIMEOUT:
         finish()
         return None

@@ -19,10 +19,13 @@ def main(out_prefix, integrator, photons, percentage, *counts):
     scene.render.image_settings.color_depth = '32'
     photon = scene.photon
     photon.integrator = integrator
-    photon.sppm_photons_per_iteration = int(photons)
+    # Each integrator's own budget: photons (SPPM) or light paths (VCM) per iteration.
+    prefix, paths = ("vcm_", "light_paths") if integrator == "VCM" else ("sppm_",
+                                                                         "photons_per_iteration")
+    setattr(photon, prefix + paths, int(photons))
     renders = []
     for count in map(int, counts):
-        photon.sppm_iterations = count
+        setattr(photon, prefix + "iterations", count)
         scene.render.filepath = f"{out_prefix}{count}.exr"
         t0 = time.perf_counter()
         bpy.ops.render.render(write_still=True)

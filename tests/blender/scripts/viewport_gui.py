@@ -139,7 +139,8 @@ def steps():
     result["ortho"] = screenshot("ortho")
 
     # A material thumbnail (Material Properties > Preview) rendered by Photon.
-    done = vp.previews_rendered
+    import photon.preview
+    done = photon.preview.previews_rendered
     box = scene.objects["TallBox"]
     bpy.context.view_layer.objects.active = box
     box.select_set(True)
@@ -150,7 +151,7 @@ def steps():
         props.spaces[0].context = 'MATERIAL'  # its Preview panel and slot icons render
         props.tag_redraw()
     t0 = time.time()
-    while vp.previews_rendered == done:
+    while photon.preview.previews_rendered == done:
         if time.time() - t0 > TIMEOUT:
             raise RuntimeError("no preview thumbnail rendered")
         yield 0.1
