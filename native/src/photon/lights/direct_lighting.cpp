@@ -10,6 +10,18 @@
 namespace photon {
 namespace {
 
+// A light sample of `e` towards p for direct lighting, with the random numbers it takes.
+bool sample_light(const Emitter& e, const Vec3& p, Sampler& sampler, LightSample* ls) {
+  return e.sample_li(p, e.draw_li(sampler), nullptr, ls);
+}
+
+// Light sampling's solid-angle density of the point of emissive surface `e` a ray hit (0 when
+// it is not e's).
+float surface_pdf(const Emitter& e, const Hit& hit, const Vec3& wi, const Vec3& ng) {
+  LightHit h;
+  return e.surface_hit(hit.instance, hit.primitive, hit.t, dot(wi, ng), false, &h) ? h.pdf : 0.0f;
+}
+
 // How direct lighting sees colours: in RGB, or at the sampled wavelengths of a spectral path
 // (emitters' values converted where they are used: Emitter::spectrum, the illuminant uplift of
 // a surface's emission). The RGB instantiation is the RGB renderer's arithmetic, unchanged.
@@ -94,11 +106,10 @@ typename P::Color bsdf_sample_term(const P& colours, const RenderContext& contex
                                    const typename P::Sample& bs, float light_pmf) {
   switch (e.kind()) {
     case EmitterKind::kLamp: {
-      Vec3 le;
-      float distance, pdf_light;
-      if (!e.eval(si.p, bs.wi, &le, &distance, &pdf_light)) return P::zero();
-      if (!unoccluded(context, si, bs.wi, distance)) return P::zero();
-      return colours.emitted(e, le) * bs.weight * power_heuristic(bs.pdf, light_pmf * pdf_light);
+      LightHit h;
+      if (!e.eval_li(si.p, bs.wi, &h)) return P::zero();
+      if (!unoccluded(context, si, bs.wi, h.distance)) return P::zero();
+      return colours.emitted(e, h.radiance) * bs.weight * power_heuristic(bs.pdf, light_pmf * h.pdf);
     }
     case EmitterKind::kSurface:  // found by the scene's BVH: emissive_hit_term
     case EmitterKind::kWorld:    // found by rays leaving the scene
@@ -149,7 +160,7 @@ typename P::Color every_light_radiance(const P& colours, const RenderContext& co
   typename P::Sample bs;
   for (const Emitter* e : context.emitters->every_light()) {
     LightSample ls;
-    if (e->sample(si.p, sampler, &ls))
+    if (sample_light(*e, si.p, sampler, &ls))
       l += light_sample_term(colours, context, si, bsdf, wo, lobes, *e, ls);
     if (!e->has_area()) continue;
     // BSDF sample, weighted against the light sample.
@@ -163,7 +174,7 @@ typename P::Color every_light_radiance(const P& colours, const RenderContext& co
       case EmitterKind::kSurface:
         l += emissive_hit_term(
             colours, context, si, bs, [&](const Hit& hit, const SurfaceInteraction& h) {
-              return e->surface_pdf(hit.instance, hit.primitive, hit.t, dot(bs.wi, h.ng));
+              return surface_pdf(*e, hit, bs.wi, h.ng);
             });
         break;
       case EmitterKind::kWorld:
@@ -186,7 +197,7 @@ typename P::Color tree_radiance(const P& colours, const RenderContext& context,
   typename P::Color l = P::zero();
   for (const Emitter* e : set.distant()) {
     LightSample ls;
-    if (e->sample(si.p, sampler, &ls))
+    if (sample_light(*e, si.p, sampler, &ls))
       l += light_sample_term(colours, context, si, bsdf, wo, lobes, *e, ls);
   }
   if (!tree.empty()) {
@@ -195,7 +206,7 @@ typename P::Color tree_radiance(const P& colours, const RenderContext& context,
     float pmf;
     LightSample ls;
     if (tree.sample(si.p, u_pick, &index, &pmf)) {
-      if (set.tree_emitter(index).sample(si.p, sampler, &ls)) {
+      if (sample_light(set.tree_emitter(index), si.p, sampler, &ls)) {
         ls.weight = ls.weight / pmf;
         ls.pdf *= pmf;
         l += light_sample_term(colours, context, si, bsdf, wo, lobes, set.tree_emitter(index), ls);
@@ -222,14 +233,13 @@ typename P::Color tree_radiance(const P& colours, const RenderContext& context,
       lamp_ray.tmax =
           found ? t_geo / (1.0f - 1e-4f) + 1e-4f * context.accel->length_scale() : INFINITY;
       tree.for_each_hit(lamp_ray, [&](uint32_t i) {
-        Vec3 le;
-        float distance, pdf_lamp;
-        if (!set.tree_emitter(i).eval(si.p, bs.wi, &le, &distance, &pdf_lamp)) return;
-        if (found && t_geo < distance * (1.0f - 1e-4f)) return;  // behind the geometry
+        LightHit h;
+        if (!set.tree_emitter(i).eval_li(si.p, bs.wi, &h)) return;
+        if (found && t_geo < h.distance * (1.0f - 1e-4f)) return;  // behind the geometry
         const float pmf_i = tree.pmf(si.p, i);
         if (pmf_i > 0.0f)
-          l += colours.emitted(set.tree_emitter(i), le) * bs.weight *
-               power_heuristic(bs.pdf, pmf_i * pdf_lamp);
+          l += colours.emitted(set.tree_emitter(i), h.radiance) * bs.weight *
+               power_heuristic(bs.pdf, pmf_i * h.pdf);
       });
       const EmissiveMeshes* emissive = set.emissive();
       const long t = found && emissive ? emissive->find(hit.instance, hit.primitive) : -1;
@@ -237,8 +247,7 @@ typename P::Color tree_radiance(const P& colours, const RenderContext& context,
         const SurfaceInteraction light_si = context.accel->interaction(hit);
         const uint32_t i = set.triangle_entry(static_cast<size_t>(t));
         const float pdf_light =
-            tree.pmf(si.p, i) * set.tree_emitter(i).surface_pdf(hit.instance, hit.primitive, hit.t,
-                                                                dot(bs.wi, light_si.ng));
+            tree.pmf(si.p, i) * surface_pdf(set.tree_emitter(i), hit, bs.wi, light_si.ng);
         if (pdf_light > 0.0f)
           l += colours.surface(emitted_radiance(*light_si.mat, light_si, context.textures)) *
                bs.weight * power_heuristic(bs.pdf, pdf_light);
@@ -247,7 +256,7 @@ typename P::Color tree_radiance(const P& colours, const RenderContext& context,
   }
   if (const Emitter* world = set.world()) {
     LightSample ls;
-    if (world->sampled_at_infinity() && world->sample(si.p, sampler, &ls))
+    if (sample_light(*world, si.p, sampler, &ls))
       l += light_sample_term(colours, context, si, bsdf, wo, lobes, *world, ls);
     typename P::Sample bs;
     const float u_lobe = sampler.get_1d();
@@ -309,19 +318,19 @@ Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
         continue;
       }
       LightSample ls;
-      if (e->sample(si.p, sampler, &ls)) light_term(ls);
+      if (sample_light(*e, si.p, sampler, &ls)) light_term(ls);
     }
   } else {
     for (const Emitter* e : set.distant()) {
       LightSample ls;
-      if (e->sample(si.p, sampler, &ls)) light_term(ls);
+      if (sample_light(*e, si.p, sampler, &ls)) light_term(ls);
     }
     if (!set.tree().empty()) {
       uint32_t index;
       float pmf;
       LightSample ls;
       if (set.tree().sample(si.p, sampler.get_1d(), &index, &pmf)) {
-        if (set.tree_emitter(index).sample(si.p, sampler, &ls)) {
+        if (sample_light(set.tree_emitter(index), si.p, sampler, &ls)) {
           ls.weight = ls.weight / pmf;
           light_term(ls);
         }
@@ -331,11 +340,11 @@ Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
     }
     world = set.world();
   }
-  if (world && world->sampled_at_infinity()) {
+  if (world && !(world->flags() & kEmitterBsdfSampledOnly)) {
     // An environment map by light sampling alone, as the lamps (its density is positive in
     // every direction, environment.h).
     LightSample ls;
-    if (world->sample(si.p, sampler, &ls)) light_term(ls);
+    if (sample_light(*world, si.p, sampler, &ls)) light_term(ls);
   } else if (world) {
     BsdfSample bs;
     const float u_lobe = sampler.get_1d();

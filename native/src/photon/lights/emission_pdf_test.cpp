@@ -1,4 +1,4 @@
-// The densities emitters give bidirectional estimators (emission_pdf.h), checked against
+// The densities emitters give bidirectional estimators (emitter.h), checked against
 // numeric integration: emitted rays weighted by radiance cos / (pdf_pos pdf_dir) must carry the
 // emitter's power; light samples weighted by radiance cos / direct_pdf must give the irradiance
 // found by quadrature over the emitter; and the densities reported for a point a camera ray
@@ -12,8 +12,11 @@
 #include <vector>
 
 #include "photon/base/sampling.h"
-#include "photon/lights/emitters.h"
+#include "photon/integrators/vcm/vcm_common.h"
+#include "photon/lights/emissive_lights.h"
 #include "photon/lights/environment.h"
+#include "photon/lights/lights.h"
+#include "photon/lights/world_light.h"
 #include "photon/render/accel.h"
 #include "photon/testing/test_scenes.h"
 
@@ -21,6 +24,22 @@ namespace photon {
 namespace {
 
 constexpr int kGrid = 256;  // strata per axis of the 2D sample grids
+
+// A light sample with its bidirectional densities, as VCM takes one.
+bool illuminate(const Emitter& e, const PhotonFrame& frame, const Vec3& p, float u_rest, Vec2 u,
+                LightSample* s) {
+  LightSampleU lu;
+  lu.pick = u_rest;
+  lu.uv = u;
+  return e.sample_li(p, lu, &frame, s);
+}
+
+// What a camera ray meets of `e` with its densities, as VCM asks it: a lamp by intersection, a
+// light at infinity by direction.
+bool bidirectional_hit(const Emitter& e, const PhotonFrame& frame, const Ray& ray, LightHit* h) {
+  if (e.flags() & kEmitterInfinite) return hit_at_infinity(e, frame, ray.direction, h);
+  return e.intersect(ray, INFINITY, true, h);
+}
 
 Light make_lamp(LightType type, const Vec3& position, float power) {
   Light l;
@@ -42,8 +61,8 @@ Vec3 emitted_power(const Emitter& e, const PhotonFrame& frame) {
       const Vec2 u_dir(((j * 7 + i * 3) % kGrid + 0.5f) / kGrid,
                        ((i * 5 + j * 11) % kGrid + 0.5f) / kGrid);
       const float u_rest = ((i * 13 + j * 17) % kGrid + 0.5f) / kGrid;
-      EmissionSample s;
-      if (!e.emit_vcm(frame, u_rest, u_pos, u_dir, &s)) {
+      EmittedPhoton s;
+      if (!e.sample_le(frame, u_rest, u_pos, u_dir, true, &s)) {
         ++failures;
         continue;
       }
@@ -61,9 +80,9 @@ Vec3 sampled_irradiance(const Emitter& e, const PhotonFrame& frame, const Vec3& 
   double sum[3] = {0, 0, 0};
   for (int j = 0; j < kGrid; ++j)
     for (int i = 0; i < kGrid; ++i) {
-      Illumination s;
+      LightSample s;
       const float u_rest = ((i * 13 + j * 17) % kGrid + 0.5f) / kGrid;
-      if (!e.illuminate_vcm(frame, p, u_rest, Vec2((i + 0.5f) / kGrid, (j + 0.5f) / kGrid), &s))
+      if (!illuminate(e, frame, p, u_rest, Vec2((i + 0.5f) / kGrid, (j + 0.5f) / kGrid), &s))
         continue;
       const float c = std::max(0.0f, dot(s.wi, n));
       const Vec3 w = s.radiance * (c / s.direct_pdf);
@@ -98,16 +117,16 @@ void expect_hit_matches_sample(const Emitter& e, const PhotonFrame& frame, const
                                int min_checked = 17) {
   int checked = 0;
   for (int k = 0; k < 64; ++k) {
-    Illumination s;
+    LightSample s;
     const Vec2 u((k % 8 + 0.5f) / 8, (k / 8 + 0.5f) / 8);
-    if (!e.illuminate_vcm(frame, p, 0.37f, u, &s)) continue;
+    if (!illuminate(e, frame, p, 0.37f, u, &s)) continue;
     Ray ray;
     ray.origin = p;
     ray.direction = s.wi;
     ray.tmin = 0.0f;
     ray.tmax = INFINITY;
-    EmitterHit h;
-    ASSERT_TRUE(e.hit_vcm(frame, ray, INFINITY, &h)) << k;
+    LightHit h;
+    ASSERT_TRUE(bidirectional_hit(e, frame, ray, &h)) << k;
     float direct = h.direct_pdf;
     if (std::isfinite(s.distance)) {  // area measure to solid angle at p
       EXPECT_NEAR(h.distance, s.distance, 1e-4f * s.distance);
@@ -130,8 +149,8 @@ TEST(EmissionPdf, AreaLampsCarryTheirPowerAndSampleTheirIrradiance) {
     l.size_x = 1.5f;
     l.size_y = 0.5f;
     const LightSet set({l}, nullptr);
-    const LampEmitter e(set, 0);
-    EXPECT_EQ(e.vcm_flags(), kVcmSupported);
+    const Emitter& e = set.lamp(0);
+    EXPECT_EQ(e.flags(), kEmitterBidirectional);
     const Vec3 power = e.power(kFrame.radius);
     EXPECT_NEAR(emitted_power(e, kFrame).x, power.x, 2e-3f * power.x);
     // Quadrature of the irradiance at a tilted receiver below the light.
@@ -140,8 +159,8 @@ TEST(EmissionPdf, AreaLampsCarryTheirPowerAndSampleTheirIrradiance) {
     const double radiance = 50.0 / (4.0 * area);
     const double expected = quadrature_irradiance(n, [&](const Vec3& w) {
       Ray ray{p, w, 0.0f, INFINITY};
-      EmitterHit h;
-      return e.hit_vcm(kFrame, ray, INFINITY, &h) ? radiance : 0.0;
+      LightHit h;
+      return bidirectional_hit(e, kFrame, ray, &h) ? radiance : 0.0;
     });
     EXPECT_NEAR(sampled_irradiance(e, kFrame, p, n).x, expected, 5e-3 * expected);
     expect_hit_matches_sample(e, kFrame, p);
@@ -151,12 +170,12 @@ TEST(EmissionPdf, AreaLampsCarryTheirPowerAndSampleTheirIrradiance) {
 TEST(EmissionPdf, PointAndSpotLampsFollowTheirIntensity) {
   const Vec3 pos(0.0f, 0.0f, 2.0f);
   const LightSet points({make_lamp(LightType::kPoint, pos, 80.0f)}, nullptr);
-  const LampEmitter point(points, 0);
-  EXPECT_EQ(point.vcm_flags(), kVcmSupported | kVcmDeltaPosition);
+  const Emitter& point = points.lamp(0);
+  EXPECT_EQ(point.flags(), kEmitterBidirectional | kEmitterDeltaPosition);
   EXPECT_NEAR(emitted_power(point, kFrame).x, 80.0f, 1e-3f * 80.0f);
-  Illumination s;
+  LightSample s;
   const Vec3 p(1.0f, 0.5f, 0.0f);
-  ASSERT_TRUE(point.illuminate_vcm(kFrame, p, 0.5f, Vec2(0.5f, 0.5f), &s));
+  ASSERT_TRUE(illuminate(point, kFrame, p, 0.5f, Vec2(0.5f, 0.5f), &s));
   EXPECT_NEAR(s.radiance.x / s.direct_pdf, 80.0f / (4.0f * kPi) / length_squared(pos - p), 1e-5f);
   EXPECT_NEAR(s.emission_pdf, 1.0f / (4.0f * kPi), 1e-7f);
 
@@ -164,14 +183,14 @@ TEST(EmissionPdf, PointAndSpotLampsFollowTheirIntensity) {
   spot.spot_size = 1.2f;
   spot.spot_blend = 0.3f;
   const LightSet spots({spot}, nullptr);
-  const LampEmitter se(spots, 0);
+  const Emitter& se = spots.lamp(0);
   const Vec3 power = se.power(kFrame.radius);
   EXPECT_NEAR(emitted_power(se, kFrame).x, power.x, 3e-3f * power.x);
   // Light sample and emitted ray: the emission density is the cone's, and a receiver outside
   // the cone gets nothing.
-  ASSERT_TRUE(se.illuminate_vcm(kFrame, Vec3(0.1f, 0.0f, 0.0f), 0.5f, Vec2(0.5f, 0.5f), &s));
+  ASSERT_TRUE(illuminate(se, kFrame, Vec3(0.1f, 0.0f, 0.0f), 0.5f, Vec2(0.5f, 0.5f), &s));
   EXPECT_NEAR(s.emission_pdf, uniform_cone_pdf(std::cos(0.6f)), 1e-4f);
-  EXPECT_FALSE(se.illuminate_vcm(kFrame, Vec3(5.0f, 0.0f, 1.9f), 0.5f, Vec2(0.5f, 0.5f), &s));
+  EXPECT_FALSE(illuminate(se, kFrame, Vec3(5.0f, 0.0f, 1.9f), 0.5f, Vec2(0.5f, 0.5f), &s));
 }
 
 // A point or spot with a radius is a Lambertian sphere of radiance I / (pi r^2): its emitted
@@ -185,8 +204,8 @@ TEST(EmissionPdf, LampsWithARadiusAreSpheres) {
     l.spot_size = 1.2f;
     l.spot_blend = 0.3f;
     const LightSet set({l}, nullptr);
-    const LampEmitter e(set, 0);
-    EXPECT_EQ(e.vcm_flags(), kVcmSupported);
+    const Emitter& e = set.lamp(0);
+    EXPECT_EQ(e.flags(), kEmitterBidirectional);
     const Vec3 power = e.power(kFrame.radius);
     EXPECT_NEAR(emitted_power(e, kFrame).x, power.x, 5e-3f * power.x);
     // Receivers near the sphere, where it covers a wide solid angle, and one beside it.
@@ -194,8 +213,8 @@ TEST(EmissionPdf, LampsWithARadiusAreSpheres) {
       const Vec3 n = normalize(pos - p + Vec3(0.2f, 0.0f, 0.0f));
       const double expected = quadrature_irradiance(n, [&](const Vec3& w) {
         Ray ray{p, w, 0.0f, INFINITY};
-        EmitterHit h;
-        return e.hit_vcm(kFrame, ray, INFINITY, &h) ? static_cast<double>(h.radiance.x) : 0.0;
+        LightHit h;
+        return bidirectional_hit(e, kFrame, ray, &h) ? static_cast<double>(h.radiance.x) : 0.0;
       });
       ASSERT_GT(expected, 0.0);
       EXPECT_NEAR(sampled_irradiance(e, kFrame, p, n).x, expected, 1e-2 * expected);
@@ -209,14 +228,14 @@ TEST(EmissionPdf, LampsWithARadiusAreSpheres) {
     Light point_lamp = l;
     point_lamp.radius = 0.0f;
     const LightSet points({point_lamp}, nullptr);
-    const LampEmitter pe(points, 0);
-    Illumination s;
-    ASSERT_TRUE(pe.illuminate_vcm(kFrame, far, 0.5f, Vec2(0.5f, 0.5f), &s));
+    const Emitter& pe = points.lamp(0);
+    LightSample s;
+    ASSERT_TRUE(illuminate(pe, kFrame, far, 0.5f, Vec2(0.5f, 0.5f), &s));
     const double point_irradiance = s.radiance.x / s.direct_pdf * dot(s.wi, up);
     EXPECT_NEAR(sampled_irradiance(e, kFrame, far, up).x, point_irradiance,
                 5e-3 * point_irradiance);
     // Inside the sphere nothing is lit.
-    EXPECT_FALSE(e.illuminate_vcm(kFrame, pos, 0.5f, Vec2(0.3f, 0.6f), &s));
+    EXPECT_FALSE(illuminate(e, kFrame, pos, 0.5f, Vec2(0.3f, 0.6f), &s));
   }
 }
 
@@ -225,8 +244,8 @@ TEST(EmissionPdf, SunBeamCarriesIrradianceOverTheSceneDisc) {
     Light l = make_lamp(LightType::kSun, Vec3(0.0f), 3.0f);
     l.sun_angle = angle;
     const LightSet set({l}, nullptr);
-    const LampEmitter e(set, 0);
-    EXPECT_EQ((e.vcm_flags() & kVcmDeltaDirection) != 0, angle == 0.0f);
+    const Emitter& e = set.lamp(0);
+    EXPECT_EQ((e.flags() & kEmitterDeltaDirection) != 0, angle == 0.0f);
     const float power = 3.0f * kPi * kFrame.radius * kFrame.radius;
     EXPECT_NEAR(emitted_power(e, kFrame).x, power, 1e-3f * power);
     // A receiver facing the sun gets its irradiance (cos of the cone's directions aside).
@@ -267,8 +286,8 @@ TEST(EmissionPdf, UniformWorldAndEnvironmentMap) {
   for (const Vec3& axis : {up, -up})
     total += quadrature_irradiance(axis, [&](const Vec3& w) {
       Ray ray{Vec3(0.0f), w, 0.0f, INFINITY};
-      EmitterHit h;
-      return env.hit_vcm(kFrame, ray, INFINITY, &h) ? h.direct_pdf / std::fabs(w.z) : 0.0;
+      LightHit h;
+      return bidirectional_hit(env, kFrame, ray, &h) ? h.direct_pdf / std::fabs(w.z) : 0.0;
     });
   EXPECT_NEAR(total, 1.0, 0.01);
 }
@@ -300,13 +319,13 @@ TEST(EmissionPdf, EmissiveTrianglesAloneAndAsAGroup) {
   EXPECT_NEAR(sampled_irradiance(group, kFrame, p, n).x, expected, 5e-3 * expected);
   // A camera ray meeting a triangle: its densities are the light sample's.
   for (int k = 0; k < 32; ++k) {
-    Illumination s;
-    ASSERT_TRUE(group.illuminate_vcm(kFrame, p, (k + 0.5f) / 32, Vec2(0.3f, 0.6f), &s));
+    LightSample s;
+    ASSERT_TRUE(illuminate(group, kFrame, p, (k + 0.5f) / 32, Vec2(0.3f, 0.6f), &s));
     Hit hit;
     ASSERT_TRUE(accel.intersect(Ray{p, s.wi, 0.0f, INFINITY}, kVisibleDiffuse, &hit));
-    EmitterHit h;
+    LightHit h;
     const float cos_light = dot(s.wi, s.surface_normal);
-    ASSERT_TRUE(group.surface_hit_vcm(hit.instance, hit.primitive, cos_light, &h));
+    ASSERT_TRUE(group.surface_hit(hit.instance, hit.primitive, hit.t, cos_light, true, &h));
     EXPECT_NEAR(h.direct_pdf * s.distance * s.distance / s.cos_light, s.direct_pdf,
                 1e-3f * s.direct_pdf);
     EXPECT_NEAR(h.emission_pdf, s.emission_pdf, 1e-3f * s.emission_pdf);

@@ -1,13 +1,13 @@
-// Triangles of emissive materials as light sources: sampled for direct light (by power, then
-// uniformly by area), looked up for multiple importance sampling when a BSDF-sampled ray hits
-// one, and used as photon emitters. Emission is two-sided, as in Cycles.
+// The triangles of emissive materials in world space, with their radiance and the distribution
+// that picks them by power: the data the emissive lights (emissive_lights.h) sample, and the
+// lookup of a triangle a ray hit.
 #pragma once
 
 #include <unordered_map>
 #include <vector>
 
 #include "photon/base/distribution.h"
-#include "photon/lights/lights.h"
+#include "photon/scene/scene.h"
 #include "photon/render/accel.h"
 #include "photon/shading/textures.h"
 
@@ -31,22 +31,11 @@ class EmissiveMeshes {
   // Total emitted flux, W per channel (both sides: 2 pi L A per triangle).
   Vec3 power() const { return power_; }
 
-  // Picks a triangle by power and a uniform point on it, as seen from `p`. `out->pdf` is the
-  // solid-angle density of the chosen direction.
-  bool sample(const Vec3& p, float u_pick, Vec2 u_point, LightSample* out) const;
-  // Solid-angle density with which sample() picks the direction to a point of the triangle
-  // hit by a ray (Embree instance / primitive), at distance `distance` with cosine
-  // `cos_light` between the ray and the triangle's normal. 0 if that triangle is not emissive.
-  float pdf(uint32_t instance, uint32_t primitive, float distance, float cos_light) const;
-
-  // Photon emission: a point by power and area, a side, and a cosine-distributed direction.
-  // `power` is the photon's flux for one photon (divide by the photon count).
-  void emit(float u_pick, Vec2 u_point, Vec2 u_dir, Ray* ray, Vec3* power) const;
-  // A point chosen by power (and the side chosen by `u_side`), for emission towards a target.
-  size_t pick_point(float u_pick, Vec2 u_point, Vec3* point, Vec3* normal) const;
   float pick_probability(size_t i) const { return distribution_.probability(i); }
   // A triangle by power; `remapped` gets u rescaled inside its interval (Distribution1D).
   size_t pick(float u, float* remapped) const { return distribution_.sample(u, remapped); }
+  size_t pick(float u) const { return distribution_.sample(u); }
+  bool distribution_empty() const { return distribution_.empty(); }
   // The triangle an Embree hit (instance, primitive) is on, or -1 if it does not emit.
   long find(uint32_t instance, uint32_t primitive) const {
     auto it = index_.find((static_cast<uint64_t>(instance) << 32) | primitive);

@@ -1,7 +1,8 @@
 #include "photon/lights/emitter_set.h"
 
-#include "photon/lights/emitters.h"
+#include "photon/lights/emissive_lights.h"
 #include "photon/lights/environment.h"
+#include "photon/lights/world_light.h"
 
 namespace photon {
 
@@ -17,8 +18,7 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, co
     return owned_.back().get();
   };
   std::vector<const Emitter*> lamp_emitters;
-  for (size_t i = 0; i < lamps.size(); ++i)
-    lamp_emitters.push_back(own(std::make_unique<LampEmitter>(lamps, i)));
+  for (size_t i = 0; i < lamps.size(); ++i) lamp_emitters.push_back(&lamps.lamp(i));
   every_light_ = lamp_emitters;
   if (!emissive.empty())
     every_light_.push_back(own(std::make_unique<EmissiveGroupEmitter>(emissive)));

@@ -8,7 +8,7 @@
 
 #include "photon/base/sampling.h"
 #include "photon/lights/photon_aim.h"
-#include "photon/lights/emitters.h"
+#include "photon/lights/world_light.h"
 
 namespace photon {
 namespace {
@@ -121,7 +121,7 @@ EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, 
   }
 }
 
-Vec3 EnvironmentEmitter::radiance_at_infinity(const Vec3& direction) const {
+Vec3 EnvironmentEmitter::radiance_at_infinity(const Vec3& direction, bool) const {
   return radiance_ ? sanitized(radiance_(direction)) : Vec3(0.0f);
 }
 
@@ -131,7 +131,7 @@ float EnvironmentEmitter::mixed_pdf(int row, int col) const {
   return (1.0f - uniform_share_) * map_pdf(row, col) + uniform;
 }
 
-float EnvironmentEmitter::pdf_at_infinity(const Vec3& direction) const {
+float EnvironmentEmitter::pdf_at_infinity(const Vec3& direction, bool) const {
   if (!is_finite(direction)) return 0.0f;
   double phi = std::atan2(static_cast<double>(direction.y), static_cast<double>(direction.x));
   if (phi < 0.0) phi += kTwoPiD;
@@ -164,17 +164,28 @@ bool EnvironmentEmitter::sample_direction(Vec2 u, Vec3* direction, float* pdf) c
   return *pdf > 0.0f;
 }
 
-bool EnvironmentEmitter::sample(const Vec3&, Sampler& sampler, LightSample* out) const {
+bool EnvironmentEmitter::sample_li(const Vec3&, const LightSampleU& u,
+                                   const PhotonFrame* bidirectional, LightSample* out) const {
+  out->surface_normal = Vec3(0.0f);
+  if (bidirectional) {
+    float pdf;
+    if (!sample_direction(u.uv, &out->wi, &pdf) || !(pdf > 0.0f)) return false;
+    out->distance = INFINITY;
+    out->radiance = radiance_at_infinity(out->wi);
+    out->direct_pdf = pdf;
+    out->emission_pdf = pdf * scene_disc_pdf(*bidirectional);
+    out->cos_light = 1.0f;
+    return !is_black(out->radiance) && is_finite(out->radiance);
+  }
   Vec3 wi;
   float pdf;
-  if (!sample_direction(sampler.get_2d(), &wi, &pdf)) return false;
+  if (!sample_direction(u.uv, &wi, &pdf)) return false;
   const Vec3 l = radiance_at_infinity(wi);
   if (is_black(l)) return false;
   out->wi = wi;
   out->distance = INFINITY;
   out->pdf = pdf;
   out->weight = l / pdf;
-  out->surface_normal = Vec3(0.0f);
   return is_finite(out->weight);
 }
 
@@ -182,8 +193,19 @@ Vec3 EnvironmentEmitter::power(float scene_radius) const {
   return integral_ * (kPi * scene_radius * scene_radius);
 }
 
-void EnvironmentEmitter::emit(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir,
-                              EmittedPhoton* out) const {
+bool EnvironmentEmitter::sample_le(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir,
+                                   bool bidirectional, EmittedPhoton* out) const {
+  if (bidirectional) {
+    Vec3 w;
+    float pdf;
+    if (!sample_direction(u_dir, &w, &pdf) || !(pdf > 0.0f)) return false;
+    ray_from_infinity(frame, -w, u_pos, &out->ray);
+    out->radiance = radiance_at_infinity(w);
+    out->pdf_pos = scene_disc_pdf(frame);
+    out->pdf_dir = out->direct_pdf = pdf;
+    out->cos_light = 1.0f;
+    return !is_black(out->radiance) && is_finite(out->radiance);
+  }
   out->power = Vec3(0.0f);
   Vec3 w;
   float pdf = 0.0f;
@@ -192,21 +214,15 @@ void EnvironmentEmitter::emit(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 
     pdf = 0.0f;
   }
   // The light arrives from w, so the photon travels along -w, entering through a disc
-  // perpendicular to it that covers the scene (as WorldEmitter::emit).
-  const Vec3 d = -w;
-  const Frame f(d);
-  const Vec2 q = sample_concentric_disk(u_pos);
-  out->ray.origin =
-      frame.center + (f.t * q.x + f.b * q.y) * frame.radius - d * (2.0f * frame.radius);
-  out->ray.direction = d;
-  out->ray.tmin = 0.0f;
-  out->ray.tmax = INFINITY;
+  // perpendicular to it that covers the scene (as the uniform world's photons).
+  ray_from_infinity(frame, -w, u_pos, &out->ray);
   if (pdf > 0.0f) out->power = radiance_at_infinity(w) * (kPi * frame.radius * frame.radius / pdf);
+  return pdf > 0.0f;
 }
 
-bool EnvironmentEmitter::emit_towards(const std::vector<BoundingSphere>& targets,
-                                      const PhotonFrame& frame, float u_pick, Vec2 u_pos,
-                                      Vec2 u_dir, Sampler&, EmittedPhoton* out) const {
+bool EnvironmentEmitter::sample_le_towards(const std::vector<BoundingSphere>& targets,
+                                           const PhotonFrame& frame, float u_pick, Vec2 u_pos,
+                                           Vec2 u_dir, Sampler&, EmittedPhoton* out) const {
   Vec3 w;
   float pdf_dir = 0.0f;
   if (!sample_direction(u_dir, &w, &pdf_dir)) return false;
@@ -219,10 +235,7 @@ bool EnvironmentEmitter::emit_towards(const std::vector<BoundingSphere>& targets
   if (!(pdf_area > 0.0f)) return false;
   // From the plane through the origin back to 2 R before the scene's centre along the beam.
   const float back = dot(frame.center, d) - 2.0f * frame.radius;
-  out->ray.origin = p + d * back;
-  out->ray.direction = d;
-  out->ray.tmin = 0.0f;
-  out->ray.tmax = INFINITY;
+  set_emitted_ray(p + d * back, d, &out->ray);
   out->power = radiance_at_infinity(w) / (pdf_dir * pdf_area);
   return is_finite(out->power) && !is_black(out->power);
 }
@@ -238,7 +251,7 @@ LightBounds EnvironmentEmitter::bounds() const {
   LightBounds b;
   b.infinite = true;
   b.lo = b.hi = Vec3(0.0f);
-  b.power = mean_power(integral_) * kInv4Pi;  // mean radiance, as WorldEmitter's
+  b.power = mean_power(integral_) * kInv4Pi;  // mean radiance, as the uniform world's
   return b;
 }
 

@@ -45,38 +45,29 @@ class EnvironmentEmitter final : public Emitter {
                               int subsamples = 1, const std::atomic<bool>* cancel = nullptr);
 
   EmitterKind kind() const override { return EmitterKind::kWorld; }
+  uint8_t flags() const override { return kEmitterBidirectional | kEmitterInfinite; }
   // One 2D sample: a direction from the table; pdf in solid angle, weight L / pdf with L the
-  // function's value (not the table's).
-  bool sample(const Vec3& p, Sampler& sampler, LightSample* out) const override;
+  // function's value (not the table's). Bidirectional estimators sample it alike.
+  bool sample_li(const Vec3& p, const LightSampleU& u, const PhotonFrame* bidirectional,
+                 LightSample* out) const override;
   bool has_area() const override { return true; }
-  bool sampled_at_infinity() const override { return true; }
-  Vec3 radiance_at_infinity(const Vec3& direction) const override;
-  float pdf_at_infinity(const Vec3& direction) const override;
-
+  Vec3 radiance_at_infinity(const Vec3& direction, bool bidirectional = false) const override;
+  float pdf_at_infinity(const Vec3& direction, bool bidirectional = false) const override;
   // The flux through a disc of radius R covering the scene: pi R^2 times the integral of the
   // radiance over the sphere (as the table estimates it).
   Vec3 power(float scene_radius) const override;
   // Jensen 2001 sec. 5.1 for lights at infinity: a direction w from the table, a point on the
   // disc of the scene's bounding sphere perpendicular to it, flux L(w) / pdf(w) x pi R^2.
-  void emit(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-            EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
+                 bool bidirectional, EmittedPhoton* out) const override;
   // Caustic photons: a direction from the table, then a point of the targets' discs across it
-  // (as the sun's beam, light_emission.cpp): flux L(w) / (pdf(w) x area density).
-  bool emit_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,
-                    float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler& sampler,
-                    EmittedPhoton* out) const override;
+  // (as the sun's beam, sun_lamp.h): flux L(w) / (pdf(w) x area density).
+  bool sample_le_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,
+                         float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler& sampler,
+                         EmittedPhoton* out) const override;
   // The targets' cross-sections over the scene's disc (a sphere's is the same from any side).
   float coverage(const std::vector<BoundingSphere>& targets, float scene_radius) const override;
   LightBounds bounds() const override;
-
-  // Directions from the table for light samples and emitted rays (emission_pdf.h).
-  uint8_t vcm_flags() const override { return kVcmSupported | kVcmInfinite; }
-  bool emit_vcm(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                EmissionSample* out) const override;
-  bool illuminate_vcm(const PhotonFrame& frame, const Vec3& p, float u_rest, Vec2 u,
-                      Illumination* out) const override;
-  bool hit_vcm(const PhotonFrame& frame, const Ray& ray, float tmax,
-               EmitterHit* out) const override;
 
   // The map width a requested one is rendered with: in [4, 16384] and even.
   static int clamped_width(int width) { return std::clamp(width, 4, 16384) & ~1; }

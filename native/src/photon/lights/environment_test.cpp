@@ -16,7 +16,7 @@
 #include "photon/base/sampling.h"
 #include "photon/integrators/photon_map/photon_sources.h"
 #include "photon/lights/direct_lighting.h"
-#include "photon/lights/emitters.h"
+#include "photon/lights/world_light.h"
 #include "photon/session/scene_resources.h"
 #include "photon/session/render_session.h"
 #include "photon/testing/test_scenes.h"
@@ -476,7 +476,7 @@ TEST(Environment, ConstantFunctionEmitsWhatTheUniformWorldEmits) {
   for (int i = 0; i < 1000; ++i) {
     Sampler sampler(1, 2, static_cast<uint32_t>(i), 1000);
     EmittedPhoton photon;
-    env.emit(PhotonFrame{Vec3(0.0f), 3.0f}, 0.5f, sampler.get_2d(), sampler.get_2d(), &photon);
+    env.sample_le(PhotonFrame{Vec3(0.0f), 3.0f}, 0.5f, sampler.get_2d(), sampler.get_2d(), false, &photon);
     for (int k = 0; k < 3; ++k)
       ASSERT_NEAR(photon.power[k], uniform.power(3.0f)[k], 1e-4 * uniform.power(3.0f)[k]);
   }
@@ -495,7 +495,7 @@ TEST(Environment, EmittedPhotonsCarryTheIntegralAndTheIrradianceOfAPatch) {
     Sampler sampler(9, 0, static_cast<uint32_t>(i), n);
     const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
     EmittedPhoton photon;
-    env.emit(PhotonFrame{Vec3(0.0f), radius}, 0.5f, u_pos, u_dir, &photon);
+    env.sample_le(PhotonFrame{Vec3(0.0f), radius}, 0.5f, u_pos, u_dir, false, &photon);
     ASSERT_TRUE(is_finite(photon.power));
     for (int k = 0; k < 3; ++k) mean_d[k] += photon.power[k];
     const Ray& r = photon.ray;
@@ -538,7 +538,7 @@ TEST(Environment, CausticPhotonsCarryTheFluxThroughTheirTarget) {
     const float u_pick = sampler.get_1d();
     const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
     EmittedPhoton photon;
-    ASSERT_TRUE(env.emit_towards({target}, frame, u_pick, u_pos, u_dir, sampler, &photon));
+    ASSERT_TRUE(env.sample_le_towards({target}, frame, u_pick, u_pos, u_dir, sampler, &photon));
     const Vec3 to_center = target.center - photon.ray.origin;
     const float along = dot(to_center, photon.ray.direction);
     ASSERT_GT(along, 0.0f);  // starts before the target
@@ -575,7 +575,7 @@ TEST(Environment, PhotonSourcesSplitPowerWithTheEnvironment) {
 
 TEST(Environment, RadiosityFloorUnderALinearSkyReceivesItsIrradiance) {
   // The radiosity solve lights the floor only by photons the environment shoots: its radiance
-  // rho E / pi must come out of emit() (directions and powers) right.
+  // rho E / pi must come out of sample_le() (directions and powers) right.
   const LinearSky sky;
   const Vec3 albedo(0.5f);
   auto scene = floor_under(sky, 128, 0, albedo);

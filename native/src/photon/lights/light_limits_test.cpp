@@ -34,11 +34,11 @@ TEST(LightLimits, HugePowerIsClampedToTheEmitterBoundWithAWarning) {
     EXPECT_NE(warnings[0].find("clamped to 1e+12"), std::string::npos) << warnings[0];
     // The clamped lamp is the 1e12 one exactly, and every sample of it is finite.
     const LightSet bound({lamp(type, hi)}, nullptr);
-    const Vec3 power = set.power(0, 10.0f);
+    const Vec3 power = set.lamp(0).power(10.0f);
     EXPECT_TRUE(is_finite(power));
-    EXPECT_EQ(power.x, bound.power(0, 10.0f).x);
+    EXPECT_EQ(power.x, bound.lamp(0).power(10.0f).x);
     LightSample s;
-    ASSERT_TRUE(set.sample(0, Vec3(0.0f, 0.0f, 0.0f), Vec2(0.5f, 0.5f), &s));
+    ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &s));
     EXPECT_TRUE(is_finite(s.weight));
     EXPECT_GT(s.weight.x, 0.0f);
   }
@@ -50,11 +50,11 @@ TEST(LightLimits, ColourTimesPowerOverflowingAFloatKeepsTheHue) {
   std::vector<std::string> warnings;
   const LightSet set({l}, &warnings);
   ASSERT_EQ(warnings.size(), 1u);
-  const Vec3 power = set.power(0, 1.0f);
+  const Vec3 power = set.lamp(0).power(1.0f);
   ASSERT_TRUE(is_finite(power));
   // Red carries the bound: the flux of a white lamp of that power.
   const float bound =
-      LightSet({lamp(LightType::kArea, emitter_range().hi)}, nullptr).power(0, 1.0f).x;
+      LightSet({lamp(LightType::kArea, emitter_range().hi)}, nullptr).lamp(0).power(1.0f).x;
   EXPECT_NEAR(power.x, bound, 1e-6 * bound);
   EXPECT_NEAR(power.y / power.x, 0.5f, 1e-6f);
   EXPECT_NEAR(power.z / power.x, 0.25f, 1e-6f);
@@ -65,16 +65,16 @@ TEST(LightLimits, PowersWithinTheBoundAreKeptSilently) {
   const LightSet set({lamp(LightType::kArea, 1e9f)}, &warnings);
   EXPECT_TRUE(warnings.empty());
   const LightSet unit({lamp(LightType::kArea, 1.0f)}, nullptr);
-  EXPECT_FLOAT_EQ(set.power(0, 1.0f).x / unit.power(0, 1.0f).x, 1e9f);
+  EXPECT_FLOAT_EQ(set.lamp(0).power(1.0f).x / unit.lamp(0).power(1.0f).x, 1e9f);
 }
 
 TEST(LightLimits, PointRadiusWhoseDiscUnderflowsIsAPoint) {
   Light l = lamp(LightType::kPoint, 100.0f);
   l.radius = 1e-30f;  // pi r^2 = 3e-60: zero as a float
   const LightSet set({l}, nullptr);
-  EXPECT_FALSE(set.has_area(0));
+  EXPECT_FALSE(set.lamp(0).has_area());
   LightSample s;
-  ASSERT_TRUE(set.sample(0, Vec3(0.0f), Vec2(0.5f, 0.5f), &s));
+  ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &s));
   EXPECT_TRUE(is_finite(s.weight));
   EXPECT_NEAR(s.weight.x, 100.0f / (4.0f * 3.14159265f * 4.0f), 1e-4f);
 }

@@ -38,7 +38,7 @@ Vec3 average_over_grid(const LightSet& set, size_t index, const Vec3& p, int n,
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       LightSample ls;
-      if (!set.sample(index, p, Vec2((i + 0.5f) / n, (j + 0.5f) / n), &ls)) continue;
+      if (!set.lamp(index).sample_li(p, LightSampleU{0.0f, Vec2((i + 0.5f) / n, (j + 0.5f) / n)}, nullptr, &ls)) continue;
       const Vec3 v = f(ls);
       sx += v.x;
       sy += v.y;
@@ -61,7 +61,7 @@ TEST(PointLight, IrradianceFollowsTheInverseSquareLaw) {
   // Straight below, and at an angle (a point light has no cosine falloff of its own).
   for (const Vec3& p : {Vec3(1.0f, -2.0f, 0.0f), Vec3(5.0f, -2.0f, 0.0f), Vec3(1.0f, 1.0f, 7.0f)}) {
     LightSample ls;
-    ASSERT_TRUE(set.sample(0, p, Vec2(0.3f, 0.7f), &ls));
+    ASSERT_TRUE(set.lamp(0).sample_li(p, LightSampleU{0.0f, Vec2(0.3f, 0.7f)}, nullptr, &ls));
     const Vec3 to_light = light.light_to_world.column(3) - p;
     const float d2 = length_squared(to_light);
     EXPECT_NEAR(ls.distance, std::sqrt(d2), 1e-5f);
@@ -121,7 +121,7 @@ TEST(SpotLight, IsZeroOutsideTheConeAndCosineWeightedInside) {
   };
   auto weight_at = [&](double angle) {
     LightSample ls;
-    if (!set.sample(0, receiver_at(angle), Vec2(0.5f, 0.5f), &ls)) return 0.0;
+    if (!set.lamp(0).sample_li(receiver_at(angle), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls)) return 0.0;
     return static_cast<double>(ls.weight.x);
   };
   // On the axis: the point light value.
@@ -136,10 +136,10 @@ TEST(SpotLight, IsZeroOutsideTheConeAndCosineWeightedInside) {
   // Outside the cone nothing arrives.
   for (double deg : {30.5, 45.0, 80.0}) {
     LightSample ls;
-    EXPECT_FALSE(set.sample(0, receiver_at(deg * kPiD / 180.0), Vec2(0.5f, 0.5f), &ls)) << deg;
+    EXPECT_FALSE(set.lamp(0).sample_li(receiver_at(deg * kPiD / 180.0), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls)) << deg;
   }
   LightSample ls;
-  EXPECT_FALSE(set.sample(0, Vec3(0.0f, 0.0f, 2.0f * d), Vec2(0.5f, 0.5f), &ls));  // behind
+  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, 2.0f * d), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));  // behind
 
   // Blend region: smoothstep in (cos - cos_half) / smooth, halfway = half of the full value.
   const double c_mid = cos_half + 0.5 * smooth, a_mid = std::acos(c_mid);
@@ -167,11 +167,11 @@ TEST(SpotLight, PointsAlongTheTransformedAxis) {
   light.spot_size = 1.0f;
   LightSet set({light}, nullptr);
   LightSample ls;
-  ASSERT_TRUE(set.sample(0, Vec3(0.0f, 3.0f, 0.0f), Vec2(0.5f, 0.5f), &ls));
+  ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f, 3.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
   EXPECT_NEAR(ls.weight.x, 10.0 / (4.0 * kPiD) / 9.0, 1e-6);
-  EXPECT_FALSE(set.sample(0, Vec3(0.0f, -3.0f, 0.0f), Vec2(0.5f, 0.5f), &ls));
-  EXPECT_FALSE(set.sample(0, Vec3(0.0f, 0.0f, -3.0f), Vec2(0.5f, 0.5f), &ls));
-  EXPECT_FALSE(set.sample(0, Vec3(3.0f, 0.0f, 0.0f), Vec2(0.5f, 0.5f), &ls));
+  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, -3.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
+  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, -3.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
+  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(3.0f, 0.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
 }
 
 TEST(SunLight, GivesItsStrengthFromWithinItsAngularDisc) {
@@ -190,7 +190,7 @@ TEST(SunLight, GivesItsStrengthFromWithinItsAngularDisc) {
     for (int i = 0; i < 32; ++i) {
       LightSample ls;
       ASSERT_TRUE(
-          set.sample(0, Vec3(0.3f, 0.2f, 0.1f), Vec2((i + 0.5f) / 32, (j + 0.5f) / 32), &ls));
+          set.lamp(0).sample_li(Vec3(0.3f, 0.2f, 0.1f), LightSampleU{0.0f, Vec2((i + 0.5f) / 32, (j + 0.5f) / 32)}, nullptr, &ls));
       EXPECT_FALSE(std::isfinite(ls.distance));
       EXPECT_TRUE(VecNear(ls.weight, light.color * 3.0f, 1e-6f));
       EXPECT_NEAR(length(ls.wi), 1.0f, 1e-5f);
@@ -204,7 +204,7 @@ TEST(SunLight, GivesItsStrengthFromWithinItsAngularDisc) {
   light.sun_angle = 0.0f;
   LightSet sharp({light}, nullptr);
   LightSample ls;
-  ASSERT_TRUE(sharp.sample(0, Vec3(0.0f), Vec2(0.9f, 0.1f), &ls));
+  ASSERT_TRUE(sharp.lamp(0).sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.9f, 0.1f)}, nullptr, &ls));
   EXPECT_TRUE(VecNear(ls.wi, -forward, 1e-6f));
 }
 
@@ -303,12 +303,12 @@ TEST(AreaLight, EmitsOnlyDownItsAxis) {
     for (int j = 0; j < 16; ++j)
       for (int i = 0; i < 16; ++i) {
         LightSample ls;
-        EXPECT_FALSE(set.sample(0, p, Vec2((i + 0.5f) / 16, (j + 0.5f) / 16), &ls))
+        EXPECT_FALSE(set.lamp(0).sample_li(p, LightSampleU{0.0f, Vec2((i + 0.5f) / 16, (j + 0.5f) / 16)}, nullptr, &ls))
             << p.x << " " << p.y << " " << p.z;
       }
   }
   LightSample ls;
-  EXPECT_TRUE(set.sample(0, Vec3(3.0f, 0.0f, 0.5f), Vec2(0.5f, 0.5f), &ls));
+  EXPECT_TRUE(set.lamp(0).sample_li(Vec3(3.0f, 0.0f, 0.5f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
 }
 
 TEST(LightSet, SkipsZeroSizeAndZeroPowerLights) {
@@ -327,7 +327,7 @@ TEST(LightSet, SkipsZeroSizeAndZeroPowerLights) {
   EXPECT_NE(warnings[0].find("flat_area"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("zero size"), std::string::npos) << warnings[0];
   LightSample ls;
-  ASSERT_TRUE(set.sample(0, Vec3(0.0f), Vec2(0.5f, 0.5f), &ls));
+  ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
   EXPECT_NEAR(ls.weight.x, 8.0 / (4.0 * kPiD) / 4.0, 1e-6);  // the surviving light is `good`
 
   Light broken = good;

@@ -45,7 +45,8 @@ bool PhotonSources::emit_global(Sampler& sampler, EmittedPhoton* out) const {
   float u_rest;
   const size_t k = global_.sample(sampler.get_1d(), &u_rest);
   const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
-  sources_[k]->emit(PhotonFrame{center_, radius_}, u_rest, u_pos, u_dir, out);
+  if (!sources_[k]->sample_le(PhotonFrame{center_, radius_}, u_rest, u_pos, u_dir, false, out))
+    return false;
   out->power = out->power / global_.probability(k);
   out->emitter = sources_[k];
   return is_finite(out->power) && !is_black(out->power);
@@ -55,8 +56,8 @@ bool PhotonSources::emit_caustic(Sampler& sampler, EmittedPhoton* out) const {
   float u_pick;
   const size_t k = caustic_.sample(sampler.get_1d(), &u_pick);
   const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
-  if (!sources_[k]->emit_towards(targets_, PhotonFrame{center_, radius_}, u_pick, u_pos, u_dir,
-                                 sampler, out))
+  if (!sources_[k]->sample_le_towards(targets_, PhotonFrame{center_, radius_}, u_pick, u_pos,
+                                      u_dir, sampler, out))
     return false;
   out->power = out->power / caustic_.probability(k);
   out->emitter = sources_[k];

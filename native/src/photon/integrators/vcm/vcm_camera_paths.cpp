@@ -58,14 +58,17 @@ class CameraPath {
     if (lights_.empty() || c.path_length + 1 > mis_.max_path_length) return black;
     float u_rest;
     const size_t k = lights_.pick(u_pick, &u_rest);
-    Illumination il;
-    if (!lights_.emitter(k).illuminate_vcm(lights_.frame(), p, u_rest, u, &il)) return black;
+    LightSample il;
+    LightSampleU lu;
+    lu.pick = u_rest;
+    lu.uv = u;
+    if (!lights_.emitter(k).sample_li(p, lu, &lights_.frame(), &il)) return black;
     const float pick = lights_.pick_probability(k);
     const SampledSpectrum f = bsdf.eval(wo, il.wi);
     if (is_black(f) || !(il.direct_pdf > 0.0f)) return black;
     const float cos_shading = std::fabs(dot(bsdf.frame().n, il.wi));
     const float cos_geometric = std::fabs(dot(ng, il.wi));
-    const bool delta = (lights_.flags(k) & (kVcmDeltaPosition | kVcmDeltaDirection)) != 0;
+    const bool delta = (lights_.flags(k) & (kEmitterDeltaPosition | kEmitterDeltaDirection)) != 0;
     const float dir_pdf = delta ? 0.0f : bsdf.pdf(wo, il.wi) * continuation;
     const float rev_pdf = bsdf.pdf(il.wi, wo) * continuation;
     // Tech. report eqs. 38-40.
@@ -224,8 +227,8 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
     // camera rays, as Blender's lamps are by default).
     if (c.path_length > 1 && count_emission) {
       for (size_t k : lights.lamps()) {
-        EmitterHit h;
-        if (!lights.emitter(k).hit_vcm(lights.frame(), ray, found ? hit.t : INFINITY, &h)) continue;
+        LightHit h;
+        if (!lights.emitter(k).intersect(ray, found ? hit.t : INFINITY, true, &h)) continue;
         const float pick = lights.pick_probability(k);
         const float dvcm = c.dvcm * h.distance * h.distance / h.cos_light;
         const float dvc = c.dvc / h.cos_light;
@@ -238,8 +241,8 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
     if (!found) {
       if (count_emission)
         for (size_t k : lights.infinite()) {
-          EmitterHit h;
-          if (!lights.emitter(k).hit_vcm(lights.frame(), ray, INFINITY, &h)) continue;
+          LightHit h;
+          if (!hit_at_infinity(lights.emitter(k), lights.frame(), ray.direction, &h)) continue;
           const float pick = lights.pick_probability(k);
           colours.add(
               &l,
@@ -260,11 +263,11 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
     c.dvc /= cos_in;
     c.dvm /= cos_in;
     if (!is_black(sp.emission) && count_emission) {
-      EmitterHit h;
+      LightHit h;
       float weight = c.path_length == 1 ? 1.0f : 0.0f;
       if (c.path_length > 1 && lights.surface() >= 0 &&
           lights.emitter(lights.surface())
-              .surface_hit_vcm(hit.instance, hit.primitive, cos_in, &h)) {
+              .surface_hit(hit.instance, hit.primitive, hit.t, cos_in, true, &h)) {
         const float pick = lights.pick_probability(lights.surface());
         weight = emission_weight(c, h.direct_pdf * pick, h.emission_pdf * pick, c.dvcm, c.dvc);
       }

@@ -30,8 +30,8 @@ VcmLights::VcmLights(const RenderContext& context, const PhotonFrame& frame,
   std::vector<double> weights;
   if (context.emitters) {
     for (const Emitter* e : context.emitters->every_light()) {
-      const uint8_t f = e->vcm_flags();
-      if (!(f & kVcmSupported)) {
+      const uint8_t f = e->flags();
+      if (!(f & kEmitterBidirectional)) {
         if (warnings) warnings->push_back("an emitter VCM cannot sample was left out");
         continue;
       }
@@ -42,15 +42,25 @@ VcmLights::VcmLights(const RenderContext& context, const PhotonFrame& frame,
       emitters_.push_back(e);
       flags_.push_back(f);
       weights.push_back(w);
-      if (f & kVcmInfinite)
+      if (f & kEmitterInfinite)
         infinite_.push_back(i);
       else if (e->kind() == EmitterKind::kSurface)
         surface_ = static_cast<long>(i);
-      else if (!(f & kVcmDeltaPosition))
+      else if (!(f & kEmitterDeltaPosition))
         lamps_.push_back(i);
     }
   }
   pick_ = Distribution1D(weights);
+}
+
+bool hit_at_infinity(const Emitter& e, const PhotonFrame& frame, const Vec3& direction,
+                     LightHit* out) {
+  out->radiance = e.radiance_at_infinity(direction, true);
+  out->distance = INFINITY;
+  out->direct_pdf = e.pdf_at_infinity(direction, true);
+  out->emission_pdf = out->direct_pdf * scene_disc_pdf(frame);
+  out->cos_light = 1.0f;
+  return out->direct_pdf > 0.0f && is_finite(out->radiance);
 }
 
 Vec3 VcmColours::rgb(const SampledSpectrum& sum) const {

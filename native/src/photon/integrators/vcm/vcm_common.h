@@ -137,6 +137,11 @@ inline float adjoint_correction(const Vec3& ns, const Vec3& ng, const Vec3& w_pr
 
 // The emitters light subpaths start from and light samples pick, by power (one distribution for
 // both, so a camera path that meets an emitter knows how likely each technique was).
+// What a ray that left the scene meets of light at infinity `e` (a sun's disc, the world), with
+// its bidirectional densities; false when it meets nothing there.
+bool hit_at_infinity(const Emitter& e, const PhotonFrame& frame, const Vec3& direction,
+                     LightHit* out);
+
 class VcmLights {
  public:
   VcmLights(const RenderContext& context, const PhotonFrame& frame,

@@ -22,7 +22,7 @@
 // measured over the whole frame, pixel streams and light-path pairing use full-frame indices).
 //
 // Supported: pinhole perspective cameras (other cameras render with SPPM, with a warning), every
-// emitter kind of emission_pdf.h (lamps with a radius as spheres). The data passes (Depth,
+// emitter (lights/emitter.h; lamps with a radius as spheres). The data passes (Depth,
 // Normal, Cryptomatte, ...) are rendered once from the camera rays before the first iteration,
 // as for SPPM. Not rendered: the light passes (left black, with a warning), holdouts, shadow
 // catchers and ray-visibility flags other than the camera's.

@@ -60,8 +60,8 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
   float u_rest;
   const size_t k = lights.pick(sampler.get_1d(), &u_rest);
   const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
-  EmissionSample e;
-  if (!lights.emitter(k).emit_vcm(lights.frame(), u_rest, u_pos, u_dir, &e)) return;
+  EmittedPhoton e;
+  if (!lights.emitter(k).sample_le(lights.frame(), u_rest, u_pos, u_dir, true, &e)) return;
   const float pick = lights.pick_probability(k);
   const uint8_t flags = lights.flags(k);
   const float emission_pdf = e.pdf_pos * e.pdf_dir * pick;
@@ -71,11 +71,11 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
       colours.emitted(lights.emitter(k), e.radiance) * (e.cos_light / emission_pdf);
   SampledWavelengths path_wl = colours.wl ? *colours.wl : SampledWavelengths();
   float dvcm = e.direct_pdf * pick / emission_pdf;
-  float dvc = (flags & (kVcmDeltaPosition | kVcmDeltaDirection))
+  float dvc = (flags & (kEmitterDeltaPosition | kEmitterDeltaDirection))
                   ? 0.0f
-                  : ((flags & kVcmInfinite) ? 1.0f : e.cos_light) / emission_pdf;
+                  : ((flags & kEmitterInfinite) ? 1.0f : e.cos_light) / emission_pdf;
   float dvm = dvc * mis.vc_factor;
-  const bool infinite = (flags & kVcmInfinite) != 0;
+  const bool infinite = (flags & kEmitterInfinite) != 0;
   Ray ray = e.ray;
   uint32_t mask = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
   const float length_scale = context.accel->length_scale();

@@ -1,0 +1,156 @@
+#include "photon/lights/area_lamp.h"
+
+#include "photon/base/sampling.h"
+#include "photon/base/spherical_caps.h"
+#include "photon/lights/photon_aim.h"
+
+namespace photon {
+
+std::unique_ptr<Lamp> make_area_lamp(LampDescription d, std::vector<std::string>* warnings) {
+  auto lamp = std::make_unique<AreaLamp>(d);
+  // Zero or so small its radiance overflows; a tiny lamp of a tiny scene is still a lamp.
+  if (!(lamp->area() > 0.0f) || !is_finite(d.flux_color * (0.25f / lamp->area()))) {
+    if (warnings) warnings->push_back("Area light '" + d.light->name + "' has zero size; skipped");
+    return nullptr;
+  }
+  return lamp;
+}
+
+AreaLamp::AreaLamp(LampDescription d) : Lamp(d.light->visibility, std::move(d.spectrum)) {
+  const Light& l = *d.light;
+  shape_ = l.shape;
+  position_ = l.light_to_world.column(3);
+  axis_ = normalize(-l.light_to_world.column(2));
+  radius_ = std::max(l.radius, 0.0f);
+  half_u_ = l.light_to_world.column(0) * (0.5f * std::max(l.size_x, 0.0f));
+  half_v_ = l.light_to_world.column(1) * (0.5f * std::max(l.size_y, 0.0f));
+  const float lu = length(half_u_), lv = length(half_v_);
+  area_ = l.shape == AreaShape::kRectangle ? 4.0f * lu * lv : kPi * lu * lv;
+  radiance_ = d.flux_color * (0.25f / area_);
+}
+
+Vec3 AreaLamp::point(Vec2 u) const {
+  if (shape_ == AreaShape::kRectangle)
+    return position_ + half_u_ * (2.0f * u.x - 1.0f) + half_v_ * (2.0f * u.y - 1.0f);
+  const Vec2 d = sample_concentric_disk(u);
+  return position_ + half_u_ * d.x + half_v_ * d.y;
+}
+
+bool AreaLamp::inside(const Vec3& d) const {
+  const float su = dot(d, half_u_) / length_squared(half_u_);
+  const float sv = dot(d, half_v_) / length_squared(half_v_);
+  return shape_ == AreaShape::kRectangle ? std::fabs(su) <= 1.0f && std::fabs(sv) <= 1.0f
+                                         : su * su + sv * sv <= 1.0f;
+}
+
+Vec3 AreaLamp::power(float) const {
+  return radiance_ * (kPi * area_);
+}
+
+LightBounds AreaLamp::extent() const {
+  const Vec3 e(std::fabs(half_u_.x) + std::fabs(half_v_.x), std::fabs(half_u_.y) + std::fabs(half_v_.y),
+               std::fabs(half_u_.z) + std::fabs(half_v_.z));
+  LightBounds b;
+  b.lo = position_ - e;
+  b.hi = position_ + e;
+  b.axis = axis_;  // one-sided cosine emitter
+  b.cos_theta_o = 1.0f;
+  b.cos_theta_e = 0.0f;
+  return b;
+}
+
+bool AreaLamp::sample_li(const Vec3& p, const LightSampleU& u, const PhotonFrame* bidirectional,
+                         LightSample* out) const {
+  out->surface_normal = Vec3(0.0f);
+  const Vec3 q = point(u.uv);
+  const Vec3 to_light = q - p;
+  const float dist2 = length_squared(to_light);
+  if (!(dist2 > 0.0f)) return false;
+  const float dist = std::sqrt(dist2);
+  out->wi = to_light / dist;
+  out->distance = dist;
+  const float cos_light = dot(-out->wi, axis_);  // one-sided: emits along its axis only
+  if (bidirectional) {
+    if (!(cos_light > 1e-7f)) return false;
+    out->radiance = radiance_;
+    out->cos_light = cos_light;
+    out->direct_pdf = dist2 / (cos_light * area_);
+    out->emission_pdf = cos_light * kInvPi / area_;
+    return std::isfinite(out->direct_pdf);
+  }
+  if (cos_light <= 0.0f) return false;
+  out->weight = radiance_ * (cos_light * area_ / dist2);
+  out->pdf = dist2 / (cos_light * area_);
+  return true;
+}
+
+bool AreaLamp::eval_li(const Vec3& p, const Vec3& wi, LightHit* out) const {
+  const float denom = dot(wi, axis_);
+  if (!(denom < 0.0f)) return false;
+  const float t = dot(position_ - p, axis_) / denom;
+  if (!(t > 0.0f)) return false;
+  if (!inside(p + wi * t - position_)) return false;
+  const float cos_light = -denom;
+  out->radiance = radiance_;
+  out->distance = t;
+  out->pdf = t * t / (cos_light * area_);
+  return true;
+}
+
+bool AreaLamp::intersect(const Ray& ray, float tmax, bool bidirectional, LightHit* out) const {
+  const float denom = dot(ray.direction, axis_);
+  if (!(denom < 0.0f)) return false;  // seen from behind: the back of an area lamp is dark
+  const float t = dot(position_ - ray.origin, axis_) / denom;
+  if (bidirectional ? !(t > ray.tmin) || !(t < tmax) : t <= ray.tmin || t >= tmax) return false;
+  if (!inside(ray.origin + ray.direction * t - position_)) return false;
+  out->radiance = radiance_;
+  out->distance = t;
+  if (bidirectional) {
+    out->direct_pdf = 1.0f / area_;
+    out->emission_pdf = -denom * kInvPi / area_;
+    out->cos_light = -denom;
+  }
+  return true;
+}
+
+bool AreaLamp::sample_le(const PhotonFrame&, float, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                         EmittedPhoton* out) const {
+  const Vec3 q = point(u_pos);
+  const Vec3 local = sample_cosine_hemisphere(u_dir);
+  set_emitted_ray(q, Frame(axis_).to_world(local), &out->ray);
+  if (!bidirectional) {
+    out->power = radiance_ * (kPi * area_);
+    return true;
+  }
+  out->radiance = radiance_;
+  out->pdf_pos = out->direct_pdf = 1.0f / area_;
+  out->cos_light = local.z;
+  out->pdf_dir = local.z * kInvPi;
+  return local.z > 0.0f;
+}
+
+bool AreaLamp::sample_le_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame&,
+                                 float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler&,
+                                 EmittedPhoton* out) const {
+  // One-sided: directions in the hemisphere below the lamp that head into a target, so targets
+  // behind its plane get nothing and those partly behind only their facing part.
+  const Vec3 q = point(u_pos);
+  Vec3 d;
+  float pdf;
+  if (!ConeMixture(q, targets, Cap(axis_, 0.5 * Cap::kPiD)).sample(u_pick, u_dir, &d, &pdf))
+    return false;
+  const float cos_l = dot(d, axis_);
+  if (cos_l <= 0.0f) return false;
+  set_emitted_ray(q, d, &out->ray);
+  out->power = radiance_ * (cos_l * area_ / pdf);
+  return true;
+}
+
+float AreaLamp::coverage(const std::vector<BoundingSphere>& targets, float) const {
+  if (targets.empty()) return 0.0f;
+  // The share of the lamp's hemisphere (seen from its centre) that heads into targets; zero
+  // when its targets are all behind it.
+  return ConeMixture(position_, targets, Cap(axis_, 0.5 * Cap::kPiD), radius_).coverage();
+}
+
+}  // namespace photon
