@@ -181,124 +181,38 @@ void Photon::set_spectral_power(float power) {
 }
 
 PhotonMap::PhotonMap(std::vector<Photon> photons, const std::atomic<bool>* cancel, bool spectral)
-    : photons_(std::move(photons)), spectral_(spectral) {
+    : spectral_(spectral) {
   try {
-    if (photons_.capacity() != photons_.size()) {
+    if (photons.capacity() != photons.size()) {
       // shrink_to_fit, in slices that poll for cancellation (a billion-photon copy takes seconds).
       std::vector<Photon> exact;
-      exact.reserve(photons_.size());
+      exact.reserve(photons.size());
       constexpr size_t kSlice = size_t{1} << 20;
-      for (size_t i = 0; i < photons_.size(); i += kSlice) {
+      for (size_t i = 0; i < photons.size(); i += kSlice) {
         if (cancel && cancel->load(std::memory_order_relaxed)) throw Cancelled();
-        exact.insert(exact.end(), photons_.begin() + i,
-                     photons_.begin() + std::min(photons_.size(), i + kSlice));
+        exact.insert(exact.end(), photons.begin() + i,
+                     photons.begin() + std::min(photons.size(), i + kSlice));
       }
-      photons_.swap(exact);
+      photons.swap(exact);
     }
-    build(0, photons_.size(), 0, cancel);
+    tree_ = PointKdTree<Photon>(std::move(photons), cancel);
   } catch (const Cancelled&) {
-    photons_ = std::vector<Photon>();
+    tree_ = PointKdTree<Photon>();
   }
 }
 
 bool PhotonMap::from_balanced(std::vector<Photon> photons, bool spectral, PhotonMap* out) {
   for (const Photon& p : photons)
     if (p.split_axis() > 2) return false;
-  out->photons_ = std::move(photons);
+  out->tree_ = PointKdTree<Photon>::from_balanced(std::move(photons));
   out->spectral_ = spectral;
   return true;
 }
 
-// Balances [lo, hi): the median along the widest axis of the range's bounds becomes the node at
-// (lo + hi) / 2, smaller coordinates to its left. Big halves are built in parallel; the result
-// depends only on the input order.
-void PhotonMap::build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel) {
-  if (hi - lo <= 1) {
-    if (hi > lo) photons_[lo].axis &= ~3u;
-    return;
-  }
-  CancelPoll poll(cancel);
-  float bmin[3] = {INFINITY, INFINITY, INFINITY}, bmax[3] = {-INFINITY, -INFINITY, -INFINITY};
-  for (size_t i = lo; i < hi; ++i) {
-    poll();
-    for (int a = 0; a < 3; ++a) {
-      bmin[a] = std::min(bmin[a], photons_[i].position[a]);
-      bmax[a] = std::max(bmax[a], photons_[i].position[a]);
-    }
-  }
-  int axis = 0;
-  for (int a = 1; a < 3; ++a)
-    if (bmax[a] - bmin[a] > bmax[axis] - bmin[axis]) axis = a;
-  const size_t mid = (lo + hi) / 2;
-  std::nth_element(photons_.begin() + lo, photons_.begin() + mid, photons_.begin() + hi,
-                   [axis, &poll](const Photon& a, const Photon& b) {
-                     poll();
-                     return a.position[axis] < b.position[axis];
-                   });
-  photons_[mid].axis = static_cast<uint8_t>((photons_[mid].axis & ~3u) | axis);
-  // Cancelled thrown in either half reaches the constructor (TBB rethrows it here).
-  if (hi - lo > 65536 && depth < 12) {
-    tbb::parallel_invoke([&] { build(lo, mid, depth + 1, cancel); },
-                         [&] { build(mid + 1, hi, depth + 1, cancel); });
-  } else {
-    build(lo, mid, depth + 1, cancel);
-    build(mid + 1, hi, depth + 1, cancel);
-  }
-}
-
 void PhotonMap::k_nearest(const Vec3& p, size_t k, float max_radius, uint8_t flag_mask,
                           std::vector<PhotonNeighbor>* out) const {
-  out->clear();
-  if (photons_.empty() || k == 0) return;
-  float max_d2 = max_radius * max_radius;
-  const float q[3] = {p.x, p.y, p.z};
-  auto farther = [](const PhotonNeighbor& a, const PhotonNeighbor& b) {
-    return a.distance_squared < b.distance_squared;
-  };
-  // Explicit stack of ranges; depth is at most ~log2(n) + 1 per pending far side.
-  // Explicit stack of far sides with their splitting plane's squared distance; at most one
-  // entry per tree level is pending, and the tree is under 40 levels deep.
-  struct Range {
-    uint32_t lo, hi;
-    float plane_d2;
-  };
-  Range stack[64];
-  int top = 0;
-  stack[top++] = {0, static_cast<uint32_t>(photons_.size()), 0.0f};
-  while (top > 0) {
-    Range r = stack[--top];
-    if (r.plane_d2 >= max_d2) continue;  // the radius shrank since it was queued
-    while (r.hi > r.lo) {
-      const uint32_t mid = (r.lo + r.hi) / 2;
-      const Photon& ph = photons_[mid];
-      const int axis = ph.split_axis();
-      const float delta = q[axis] - ph.position[axis];
-      // Visit the near side now, queue the far side if the splitting plane is within reach.
-      const float d2_plane = delta * delta;
-      const Range near_side = delta < 0.0f ? Range{r.lo, mid, 0.0f} : Range{mid + 1, r.hi, 0.0f};
-      const Range far_side =
-          delta < 0.0f ? Range{mid + 1, r.hi, d2_plane} : Range{r.lo, mid, d2_plane};
-      if (d2_plane < max_d2 && far_side.hi > far_side.lo) stack[top++] = far_side;
-      if (ph.flags & flag_mask) {
-        const float dx = ph.position[0] - q[0], dy = ph.position[1] - q[1],
-                    dz = ph.position[2] - q[2];
-        const float d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 < max_d2) {
-          if (out->size() < k) {
-            out->push_back({mid, d2});
-            std::push_heap(out->begin(), out->end(), farther);
-            if (out->size() == k) max_d2 = out->front().distance_squared;
-          } else {
-            std::pop_heap(out->begin(), out->end(), farther);
-            out->back() = {mid, d2};
-            std::push_heap(out->begin(), out->end(), farther);
-            max_d2 = out->front().distance_squared;
-          }
-        }
-      }
-      r = near_side;
-    }
-  }
+  tree_.k_nearest(
+      p, k, max_radius, [flag_mask](const Photon& ph) { return (ph.flags & flag_mask) != 0; }, out);
 }
 
 int64_t PhotonMap::nearest(const Vec3& p, float max_radius, uint8_t flag_mask) const {
@@ -348,7 +262,7 @@ Vec3 PhotonMap::estimate(const Vec3& p, const Vec3& n, size_t k, float max_radiu
   const float r = std::sqrt(r2);
   Vec3 sum(0.0f);
   for (const PhotonNeighbor& nb : *scratch) {
-    const Photon& ph = photons_[nb.index];
+    const Photon& ph = tree_[nb.index];
     const float d = std::sqrt(nb.distance_squared);
     if (!photon_on_surface(ph, p, n, d)) continue;
     const float w = 1.0f - d / (kConeFilterC * r);
@@ -375,15 +289,15 @@ bool on_same_surface(const Vec3& p, const Vec3& n, const Vec3& q, const Vec3& nq
 }
 
 float PhotonMap::median_kth_distance(size_t k, uint8_t flag_mask, size_t samples) const {
-  if (photons_.empty() || k == 0 || samples == 0) return 0.0f;
+  if (tree_.empty() || k == 0 || samples == 0) return 0.0f;
   // The tree is stored in order (each range's median is its node), so evenly spaced indices
   // are spread over the photons' extent.
-  const size_t step = std::max<size_t>(1, photons_.size() / samples);
+  const size_t step = std::max<size_t>(1, tree_.size() / samples);
   std::vector<float> distances;
   std::vector<PhotonNeighbor> scratch;
-  for (size_t i = step / 2; i < photons_.size(); i += step) {
-    if (!(photons_[i].path_flags() & flag_mask)) continue;
-    k_nearest(photons_[i].pos(), k, INFINITY, flag_mask, &scratch);
+  for (size_t i = step / 2; i < tree_.size(); i += step) {
+    if (!(tree_[i].path_flags() & flag_mask)) continue;
+    k_nearest(tree_[i].pos(), k, INFINITY, flag_mask, &scratch);
     if (scratch.size() == k) distances.push_back(std::sqrt(scratch.front().distance_squared));
   }
   if (distances.empty()) return 0.0f;

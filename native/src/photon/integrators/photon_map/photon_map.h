@@ -1,7 +1,7 @@
 // Photon storage and k-nearest-neighbour lookup (Jensen 2001, "Realistic Image Synthesis Using
-// Photon Mapping", ch. 6): a compact 20-byte photon record and a balanced kd-tree stored
-// implicitly in the photon array (the median of every range is its node), so the tree costs no
-// memory beyond the photons themselves.
+// Photon Mapping", ch. 6): a compact 20-byte photon record in a balanced kd-tree stored
+// implicitly in the photon array (base/point_kdtree.h), its split axis packed into the record,
+// so the tree costs no memory beyond the photons themselves.
 #pragma once
 
 #include <atomic>
@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "photon/base/math.h"
+#include "photon/base/point_kdtree.h"
 #include "photon/spectral/rgb_uplift.h"
 
 namespace photon {
@@ -62,10 +63,19 @@ static_assert(sizeof(Photon) == 20, "the photon record is 20 bytes");
 void encode_rgbe(const Vec3& c, uint8_t out[4]);
 Vec3 decode_rgbe(const uint8_t in[4]);
 
-struct PhotonNeighbor {
-  uint32_t index;
-  float distance_squared;
+// The photon map's tree keeps each photon's split axis in the record's two low axis bits.
+template <>
+struct PointKdNode<Photon> {
+  static float coordinate(const Photon& p, int axis) { return p.position[axis]; }
+  static Vec3 position(const Photon& p) { return p.pos(); }
+  static constexpr bool kAxisInNode = true;
+  static int axis(const Photon& p) { return p.split_axis(); }
+  static void set_axis(Photon& p, int axis) {
+    p.axis = static_cast<uint8_t>((p.axis & ~3u) | static_cast<unsigned>(axis));
+  }
 };
+
+using PhotonNeighbor = KdNeighbor;
 
 class PhotonMap {
  public:
@@ -84,12 +94,12 @@ class PhotonMap {
   // A photon's power in linear Rec.709 (a spectral photon's share of the XYZ estimate).
   Vec3 power(const Photon& ph) const;
 
-  size_t size() const { return photons_.size(); }
-  bool empty() const { return photons_.empty(); }
-  const Photon& operator[](size_t i) const { return photons_[i]; }
-  size_t memory_bytes() const { return photons_.capacity() * sizeof(Photon); }
+  size_t size() const { return tree_.size(); }
+  bool empty() const { return tree_.empty(); }
+  const Photon& operator[](size_t i) const { return tree_[i]; }
+  size_t memory_bytes() const { return tree_.memory_bytes(); }
   // The photons in balanced order (the implicit kd-tree).
-  const std::vector<Photon>& photons() const { return photons_; }
+  const std::vector<Photon>& photons() const { return tree_.nodes(); }
 
   // The `k` nearest photons to `p` within `max_radius` whose flags intersect `flag_mask`,
   // written to `out` (cleared first) as a max-heap on distance: out->front() is the farthest.
@@ -118,13 +128,12 @@ class PhotonMap {
   float median_kth_distance(size_t k, uint8_t flag_mask, size_t samples = 256) const;
 
  private:
-  void build(size_t lo, size_t hi, int depth, const std::atomic<bool>* cancel);
   // The cone-filtered sum of the k nearest photons' `value(photon)` as radiance (the shared part
   // of both estimates).
   template <class Value>
   Vec3 estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius, uint8_t flag_mask,
                 std::vector<PhotonNeighbor>* scratch, Value&& value) const;
-  std::vector<Photon> photons_;
+  PointKdTree<Photon> tree_;
   bool spectral_ = false;
 };
 
