@@ -226,7 +226,8 @@ class FinalRender:
         for line in render_report.prepare_lines(stats.integrator):
             reporter.info(line)
         if stats.iterations.iterations:
-            reporter.info(render_report.iterations_line(settings.integrator, stats.iterations))
+            reporter.info(render_report.iterations_line(settings.integrator.name,
+                                                        stats.iterations))
         line = render_report.persistent_data_line(sync_stats, stats)
         if line is not None:
             reporter.info(line)

@@ -7,7 +7,7 @@ and users read them: their wording is kept."""
 def _samples_label(settings, stats):
     """'64 spp', or 'N SPPM iterations' / 'N VCM iterations' for the iterative ones."""
     if stats.iterations.iterations:
-        return f"{stats.iterations.iterations} {settings.integrator} iterations"
+        return f"{stats.iterations.iterations} {settings.integrator.name} iterations"
     return f"{settings.samples} spp"
 
 
