@@ -5,7 +5,7 @@ REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 BUILD="${PHOTON_BUILD_DIR:-$REPO/build}"
 
 PACKAGES=(
-  cmake g++ make pkg-config
+  cmake g++ make pkg-config clang-format
   blender
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools python3-openimageio
   pybind11-dev python3-dev python3-numpy python3-pytest python3-pytest-xdist

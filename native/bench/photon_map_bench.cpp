@@ -1,18 +1,17 @@
 // Photon map kernels: balancing the kd-tree, k-nearest queries, radiance estimates, and the
 // same queries through nanoflann (Debian's libnanoflann-dev) for comparison when it is present.
 #include <benchmark/benchmark.h>
-
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
 #include <random>
 
-#include "photon/session/scene_resources.h"
+#include "photon/base/rng.h"
+#include "photon/base/sampling.h"
 #include "photon/integrators/photon_map/photon_map.h"
 #include "photon/integrators/photon_map/photon_tracer.h"
 #include "photon/integrators/photon_map/radiance_cache.h"
-#include "photon/base/rng.h"
-#include "photon/base/sampling.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 #if __has_include(<nanoflann.hpp>)
@@ -30,7 +29,7 @@ std::vector<Photon> box_photons(size_t n) {
     const uint64_t h = mix64(i);
     const float a = to_unit_float(h) * 2 - 1, b = to_unit_float(h << 24) * 2 - 1;
     const int face = static_cast<int>(mix64(h) % 6);
-    Vec3 p = face < 2 ? Vec3(a, b, face ? 1.0f : -1.0f)
+    Vec3 p = face < 2   ? Vec3(a, b, face ? 1.0f : -1.0f)
              : face < 4 ? Vec3(a, face == 3 ? 1.0f : -1.0f, b)
                         : Vec3(face == 5 ? 1.0f : -1.0f, a, b);
     photons[i] = Photon::make(p, -p, Vec3(1e-6f), kPhotonIndirect, p);
@@ -64,8 +63,8 @@ void BM_KNearest(benchmark::State& state) {
     map.k_nearest(query_point(i++), k, 0.2f, kPhotonAny, &out);
     benchmark::DoNotOptimize(out.data());
   }
-  state.counters["queries/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                   benchmark::Counter::kIsRate);
+  state.counters["queries/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_KNearest)->Arg(8)->Arg(50)->Arg(100);
 
@@ -74,10 +73,11 @@ void BM_RadianceEstimate(benchmark::State& state) {
   std::vector<PhotonNeighbor> out;
   uint64_t i = 0;
   Vec3 sum(0.0f);
-  for (auto _ : state) sum += map.radiance_estimate(query_point(i++), Vec3(0, 0, 1), 100, 0.2f, kPhotonAny, &out);
+  for (auto _ : state)
+    sum += map.radiance_estimate(query_point(i++), Vec3(0, 0, 1), 100, 0.2f, kPhotonAny, &out);
   benchmark::DoNotOptimize(sum);
-  state.counters["queries/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                   benchmark::Counter::kIsRate);
+  state.counters["queries/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RadianceEstimate);
 
@@ -92,10 +92,16 @@ void BM_RadianceCacheLookup(benchmark::State& state) {
       // The inward normal of the record's face of the box.
       const Vec3 p = ph.pos();
       const int axis = std::fabs(p.x) >= std::fabs(p.y) && std::fabs(p.x) >= std::fabs(p.z) ? 0
-                       : std::fabs(p.y) >= std::fabs(p.z)                                  ? 1
+                       : std::fabs(p.y) >= std::fabs(p.z)                                   ? 1
                                                                                             : 2;
       r.n = Vec3(0.0f);
-      (axis == 0 ? r.n.x : axis == 1 ? r.n.y : r.n.z) = (axis == 0 ? p.x : axis == 1 ? p.y : p.z) > 0 ? -1.0f : 1.0f;
+      (axis == 0   ? r.n.x
+       : axis == 1 ? r.n.y
+                   : r.n.z) = (axis == 0   ? p.x
+                               : axis == 1 ? p.y
+                                           : p.z) > 0
+                                  ? -1.0f
+                                  : 1.0f;
       r.radiance = Vec3(1.0f);
       records.push_back(r);
     }
@@ -103,9 +109,10 @@ void BM_RadianceCacheLookup(benchmark::State& state) {
     return RadianceCache(std::move(records), 2.0f * std::sqrt(24.0f / 250000.0f));
   }();
   uint64_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(cache.nearest(query_point(i++), Vec3(0, 0, 1), 0.5f));
-  state.counters["queries/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                   benchmark::Counter::kIsRate);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(cache.nearest(query_point(i++), Vec3(0, 0, 1), 0.5f));
+  state.counters["queries/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RadianceCacheLookup);
 
@@ -113,8 +120,10 @@ BENCHMARK(BM_RadianceCacheLookup);
 // second and the fraction of the raw ray rate that tracing keeps.
 struct TraceScene {
   TraceScene()
-      : scene(make_caustic_box()), resources(scene, settings, &warnings),
-        context(resources.context()), accel(resources.accel()) {}
+      : scene(make_caustic_box()),
+        resources(scene, settings, &warnings),
+        context(resources.context()),
+        accel(resources.accel()) {}
   Scene scene;
   std::vector<std::string> warnings;
   RenderSettings settings;
@@ -136,8 +145,10 @@ void BM_TracePhotons(benchmark::State& state) {
     rays += r.rays;
     photons += r.global_emitted;
   }
-  state.counters["photons/s"] = benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
-  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
+  state.counters["photons/s"] =
+      benchmark::Counter(static_cast<double>(photons), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(static_cast<double>(rays), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_TracePhotons)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -154,14 +165,16 @@ void BM_BareIncoherentRays(benchmark::State& state) {
         Ray ray;
         ray.origin = Vec3(to_unit_float(h) * 1.8f - 0.9f, to_unit_float(h << 20) * 1.8f - 0.9f,
                           0.1f + to_unit_float(mix64(h)) * 1.8f);
-        ray.direction = sample_uniform_sphere(Vec2(to_unit_float(mix64(h + 1)), to_unit_float(mix64(h + 2))));
+        ray.direction =
+            sample_uniform_sphere(Vec2(to_unit_float(mix64(h + 1)), to_unit_float(mix64(h + 2))));
         Hit hit;
         benchmark::DoNotOptimize(t.accel.intersect(ray, kVisibleAll, &hit));
       }
     });
     total += kRays;
   }
-  state.counters["rays/s"] = benchmark::Counter(static_cast<double>(total), benchmark::Counter::kIsRate);
+  state.counters["rays/s"] =
+      benchmark::Counter(static_cast<double>(total), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_BareIncoherentRays)->Unit(benchmark::kMillisecond)->UseRealTime();
 
@@ -171,7 +184,9 @@ struct Cloud {
   size_t kdtree_get_point_count() const { return photons->size(); }
   float kdtree_get_pt(size_t i, size_t d) const { return (*photons)[i].position[d]; }
   template <class B>
-  bool kdtree_get_bbox(B&) const { return false; }
+  bool kdtree_get_bbox(B&) const {
+    return false;
+  }
 };
 using NanoTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Cloud>,
                                                      Cloud, 3, uint32_t>;
@@ -201,8 +216,8 @@ void BM_NanoflannKNearest(benchmark::State& state) {
     tree.knnSearch(p, k, idx.data(), d2.data());
     benchmark::DoNotOptimize(idx.data());
   }
-  state.counters["queries/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                   benchmark::Counter::kIsRate);
+  state.counters["queries/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_NanoflannKNearest)->Arg(8)->Arg(50)->Arg(100);
 #endif

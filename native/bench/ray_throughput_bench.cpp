@@ -7,11 +7,11 @@
 #include <atomic>
 #include <memory>
 
-#include "photon/session/scene_resources.h"
-#include "photon/render/accel.h"
-#include "photon/scene/camera.h"
 #include "photon/film/film.h"
 #include "photon/integrators/ray_trace/ray_trace_integrator.h"
+#include "photon/render/accel.h"
+#include "photon/scene/camera.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 using namespace photon;
@@ -117,10 +117,14 @@ void render_frame(benchmark::State& state, bool with_lights) {
 
 // Camera rays through the RAY_TRACE integrator: ray generation, coherent first-hit streams, hit
 // shading setup and material lookup, with no lights so that no shadow rays are traced.
-void BM_CameraRays_RayTraceIntegrator(benchmark::State& state) { render_frame(state, false); }
+void BM_CameraRays_RayTraceIntegrator(benchmark::State& state) {
+  render_frame(state, false);
+}
 
 // The full RAY_TRACE shading of one sample per pixel: camera ray plus one shadow ray.
-void BM_ShadedSamples_RayTraceIntegrator(benchmark::State& state) { render_frame(state, true); }
+void BM_ShadedSamples_RayTraceIntegrator(benchmark::State& state) {
+  render_frame(state, true);
+}
 
 }  // namespace
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "photon/render/material_eval.h"
-#include "photon/session/scene_resources.h"
 #include "photon/scene/camera.h"
+#include "photon/session/scene_resources.h"
 #include "photon/shading/program_eval.h"
 #include "photon/testing/test_scenes.h"
 
@@ -51,77 +51,142 @@ Material procedural_material() {
   const int32_t generated = b.vec(), object = b.vec();
   b.node({"ShaderNodeTexCoord", {}, {}, {}, {{"Generated", generated}, {"Object", object}}, {}});
   const int32_t mapped = b.vec();
-  b.node({"ShaderNodeMapping", {{"vector_type", "POINT"}}, {},
-          {{"Vector", object}, {"Location", b.reg({0.1f, 0.2f, 0.3f})},
-           {"Rotation", b.reg({0.2f, 0.0f, 0.5f})}, {"Scale", b.reg({2.0f, 2.0f, 2.0f})}},
-          {{"Vector", mapped}}, {}});
+  b.node({"ShaderNodeMapping",
+          {{"vector_type", "POINT"}},
+          {},
+          {{"Vector", object},
+           {"Location", b.reg({0.1f, 0.2f, 0.3f})},
+           {"Rotation", b.reg({0.2f, 0.0f, 0.5f})},
+           {"Scale", b.reg({2.0f, 2.0f, 2.0f})}},
+          {{"Vector", mapped}},
+          {}});
   const int32_t noise = b.scalar();
-  b.node({"ShaderNodeTexNoise", {{"noise_dimensions", "3D"}}, {},
-          {{"Vector", mapped}, {"Scale", b.reg({5})}, {"Detail", b.reg({4})},
-           {"Roughness", b.reg({0.5f})}, {"Distortion", b.reg({0.3f})}},
-          {{"Fac", noise}}, {}});
+  b.node({"ShaderNodeTexNoise",
+          {{"noise_dimensions", "3D"}},
+          {},
+          {{"Vector", mapped},
+           {"Scale", b.reg({5})},
+           {"Detail", b.reg({4})},
+           {"Roughness", b.reg({0.5f})},
+           {"Distortion", b.reg({0.3f})}},
+          {{"Fac", noise}},
+          {}});
   const int32_t ramp1 = b.vec();
-  b.node({"ShaderNodeValToRGB", {}, {}, {{"Fac", noise}}, {{"Color", ramp1}},
+  b.node({"ShaderNodeValToRGB",
+          {},
+          {},
+          {{"Fac", noise}},
+          {{"Color", ramp1}},
           ramp_table({0.2f, 0.1f, 0.05f}, {0.8f, 0.6f, 0.3f})});
   const int32_t cells = b.scalar();
-  b.node({"ShaderNodeTexVoronoi", {{"voronoi_dimensions", "3D"}, {"feature", "F1"},
-                                   {"distance", "EUCLIDEAN"}}, {},
+  b.node({"ShaderNodeTexVoronoi",
+          {{"voronoi_dimensions", "3D"}, {"feature", "F1"}, {"distance", "EUCLIDEAN"}},
+          {},
           {{"Vector", mapped}, {"Scale", b.reg({8})}, {"Randomness", b.reg({1})}},
-          {{"Distance", cells}}, {}});
+          {{"Distance", cells}},
+          {}});
   const int32_t ramp2 = b.vec();
-  b.node({"ShaderNodeValToRGB", {}, {}, {{"Fac", cells}}, {{"Color", ramp2}},
+  b.node({"ShaderNodeValToRGB",
+          {},
+          {},
+          {{"Fac", cells}},
+          {{"Color", ramp2}},
           ramp_table({0.0f, 0.0f, 0.0f}, {1.0f, 1.0f, 1.0f})});
   const int32_t mixed = b.vec();
-  b.node({"ShaderNodeMix", {{"data_type", "RGBA"}, {"blend_type", "MULTIPLY"}}, {},
+  b.node({"ShaderNodeMix",
+          {{"data_type", "RGBA"}, {"blend_type", "MULTIPLY"}},
+          {},
           {{"Factor_Float", b.reg({0.7f})}, {"A_Color", ramp1}, {"B_Color", ramp2}},
-          {{"Result_Color", mixed}}, {}});
+          {{"Result_Color", mixed}},
+          {}});
   int32_t value = noise;
   for (const char* op : {"MULTIPLY", "ADD", "SINE", "ABSOLUTE"}) {
     const int32_t out = b.scalar();
-    b.node({"ShaderNodeMath", {{"operation", op}}, {},
-            {{"Value", value}, {"Value_001", b.reg({1.7f})}}, {{"Value", out}}, {}});
+    b.node({"ShaderNodeMath",
+            {{"operation", op}},
+            {},
+            {{"Value", value}, {"Value_001", b.reg({1.7f})}},
+            {{"Value", out}},
+            {}});
     value = out;
   }
   const int32_t wave = b.scalar();
-  b.node({"ShaderNodeTexWave", {{"wave_type", "RINGS"}}, {},
-          {{"Vector", mapped}, {"Scale", b.reg({3})}, {"Distortion", b.reg({2})},
+  b.node({"ShaderNodeTexWave",
+          {{"wave_type", "RINGS"}},
+          {},
+          {{"Vector", mapped},
+           {"Scale", b.reg({3})},
+           {"Distortion", b.reg({2})},
            {"Detail", b.reg({2})}},
-          {{"Fac", wave}}, {}});
+          {{"Fac", wave}},
+          {}});
   const int32_t mixed2 = b.vec();
-  b.node({"ShaderNodeMix", {{"data_type", "RGBA"}, {"blend_type", "OVERLAY"}}, {},
+  b.node({"ShaderNodeMix",
+          {{"data_type", "RGBA"}, {"blend_type", "OVERLAY"}},
+          {},
           {{"Factor_Float", value}, {"A_Color", mixed}, {"B_Color", ramp1}},
-          {{"Result_Color", mixed2}}, {}});
+          {{"Result_Color", mixed2}},
+          {}});
   const int32_t offset = b.vec();
-  b.node({"ShaderNodeVectorMath", {{"operation", "ADD"}}, {},
-          {{"Vector", generated}, {"Vector_001", mixed2}}, {{"Vector", offset}}, {}});
+  b.node({"ShaderNodeVectorMath",
+          {{"operation", "ADD"}},
+          {},
+          {{"Vector", generated}, {"Vector_001", mixed2}},
+          {{"Vector", offset}},
+          {}});
   const int32_t red = b.scalar();
-  b.node({"ShaderNodeSeparateColor", {{"mode", "RGB"}}, {}, {{"Color", offset}},
-          {{"Red", red}}, {}});
+  b.node(
+      {"ShaderNodeSeparateColor", {{"mode", "RGB"}}, {}, {{"Color", offset}}, {{"Red", red}}, {}});
   const int32_t gradient = b.scalar();
-  b.node({"ShaderNodeTexGradient", {{"gradient_type", "SPHERICAL"}}, {}, {{"Vector", offset}},
-          {{"Fac", gradient}}, {}});
+  b.node({"ShaderNodeTexGradient",
+          {{"gradient_type", "SPHERICAL"}},
+          {},
+          {{"Vector", offset}},
+          {{"Fac", gradient}},
+          {}});
   const int32_t ranged = b.scalar();
-  b.node({"ShaderNodeMapRange", {{"data_type", "FLOAT"}, {"interpolation_type", "SMOOTHSTEP"}},
-          {}, {{"Value", gradient}, {"From Min", b.reg({0})}, {"From Max", b.reg({1})},
-               {"To Min", b.reg({0.2f})}, {"To Max", b.reg({0.9f})}},
-          {{"Result", ranged}}, {}});
+  b.node({"ShaderNodeMapRange",
+          {{"data_type", "FLOAT"}, {"interpolation_type", "SMOOTHSTEP"}},
+          {},
+          {{"Value", gradient},
+           {"From Min", b.reg({0})},
+           {"From Max", b.reg({1})},
+           {"To Min", b.reg({0.2f})},
+           {"To Max", b.reg({0.9f})}},
+          {{"Result", ranged}},
+          {}});
   const int32_t checker = b.vec();
-  b.node({"ShaderNodeTexChecker", {}, {},
-          {{"Vector", mapped}, {"Color1", b.reg({0.9f, 0.9f, 0.9f})},
-           {"Color2", b.reg({0.1f, 0.1f, 0.1f})}, {"Scale", b.reg({4})}},
-          {{"Color", checker}}, {}});
+  b.node({"ShaderNodeTexChecker",
+          {},
+          {},
+          {{"Vector", mapped},
+           {"Color1", b.reg({0.9f, 0.9f, 0.9f})},
+           {"Color2", b.reg({0.1f, 0.1f, 0.1f})},
+           {"Scale", b.reg({4})}},
+          {{"Color", checker}},
+          {}});
   const int32_t albedo = b.vec();
-  b.node({"ShaderNodeMix", {{"data_type", "RGBA"}, {"blend_type", "MIX"}}, {},
+  b.node({"ShaderNodeMix",
+          {{"data_type", "RGBA"}, {"blend_type", "MIX"}},
+          {},
           {{"Factor_Float", ranged}, {"A_Color", mixed2}, {"B_Color", checker}},
-          {{"Result_Color", albedo}}, {}});
+          {{"Result_Color", albedo}},
+          {}});
   b.node({"PhotonBlockBegin", {}, {}, {}, {}, {}});
   const int32_t height = b.scalar();
-  b.node({"ShaderNodeTexNoise", {{"noise_dimensions", "3D"}}, {},
-          {{"Scale", b.reg({12})}, {"Detail", b.reg({2})}}, {{"Fac", height}}, {}});
+  b.node({"ShaderNodeTexNoise",
+          {{"noise_dimensions", "3D"}},
+          {},
+          {{"Scale", b.reg({12})}, {"Detail", b.reg({2})}},
+          {{"Fac", height}},
+          {}});
   const int32_t bumped = b.vec();
-  b.node({"ShaderNodeBump", {{"invert", "False"}}, {{"block", 1}},
+  b.node({"ShaderNodeBump",
+          {{"invert", "False"}},
+          {{"block", 1}},
           {{"Strength", b.reg({0.5f})}, {"Distance", b.reg({0.1f})}, {"Height", height}},
-          {{"Normal", bumped}}, {}});
+          {{"Normal", bumped}},
+          {}});
   b.program.registers.resize(b.program.registers.size() + 2, 0.0f);
 
   Material m = Material::diffuse(Vec3(0.8f), "procedural");
@@ -155,8 +220,8 @@ struct Fixture {
     // Shading points where camera rays meet the box's walls and blocks.
     for (int y = 0; y < 32; ++y)
       for (int x = 0; x < 32; ++x) {
-        Ray ray = generate_camera_ray(scene.camera, (x + 0.5f) / 32, (y + 0.5f) / 32,
-                                      Vec2(0.5f, 0.5f));
+        Ray ray =
+            generate_camera_ray(scene.camera, (x + 0.5f) / 32, (y + 0.5f) / 32, Vec2(0.5f, 0.5f));
         Hit hit;
         if (resources->accel().intersect(ray, kVisibleCamera, &hit))
           hits.push_back(resources->accel().interaction(hit));
@@ -179,7 +244,9 @@ void shade_all(benchmark::State& state, Material material) {
   state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(f.hits.size()));
 }
 
-void BM_Shade_ConstantMaterial(benchmark::State& state) { shade_all(state, constant_material()); }
+void BM_Shade_ConstantMaterial(benchmark::State& state) {
+  shade_all(state, constant_material());
+}
 void BM_Shade_Procedural20Nodes(benchmark::State& state) {
   shade_all(state, procedural_material());
 }

@@ -9,9 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "photon/shading/texture_convert.h"
 #include "photon/scene/material_params.h"
 #include "photon/session/image_io.h"
+#include "photon/shading/texture_convert.h"
 #include "program_binding.h"
 
 namespace py = pybind11;

@@ -11,13 +11,13 @@
 #include "material_binding.h"
 #include "photon/integrators/registry.h"
 #include "photon/integrators/render_params.h"
-#include "photon/shading/texture_convert.h"
 #include "photon/scene/mesh_attribute.h"
 #include "photon/scene/mesh_import.h"
 #include "photon/scene/scene.h"
 #include "photon/scene/vertex_normals.h"
 #include "photon/session/render_session.h"
 #include "photon/shading/program_eval.h"
+#include "photon/shading/texture_convert.h"
 #include "program_binding.h"
 #include "sppm_bindings.h"
 #include "stats_bindings.h"
@@ -96,7 +96,6 @@ py::array_t<float> to_numpy(std::vector<float>&& data, int height, int width) {
   py::capsule owner(heap, [](void* p) { delete static_cast<std::vector<float>*>(p); });
   return py::array_t<float>({height, width, 4}, heap->data(), owner);
 }
-
 
 // Every schema'd parameter as a property of RenderSettings, typed as in the schema: ints, floats,
 // bools, and the Integrator enum (set from the enum or from an item id such as "RADIOSITY").

@@ -23,8 +23,8 @@ class CheckFailure : public std::logic_error {
 
 }  // namespace photon
 
-#define CHECK(cond)                                               \
-  do {                                                            \
+#define CHECK(cond)                                                 \
+  do {                                                              \
     if (!(cond)) ::photon::check_failed(#cond, __FILE__, __LINE__); \
   } while (false)
 #define CHECK_LE(a, b) CHECK((a) <= (b))
@@ -33,10 +33,10 @@ class CheckFailure : public std::logic_error {
 
 #ifdef NDEBUG
 // Not evaluated, but still compiled, so a DCHECK cannot rot.
-#define DCHECK(cond)          \
-  do {                        \
+#define DCHECK(cond)       \
+  do {                     \
     if (false && (cond)) { \
-    }                         \
+    }                      \
   } while (false)
 #else
 #define DCHECK(cond) CHECK(cond)

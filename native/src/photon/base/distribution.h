@@ -13,22 +13,19 @@ class Distribution1D {
   Distribution1D() = default;
   explicit Distribution1D(const std::vector<double>& weights) {
     cdf_.resize(weights.size() + 1, 0.0);
-    for (size_t i = 0; i < weights.size(); ++i)
-      cdf_[i + 1] = cdf_[i] + std::max(weights[i], 0.0);
+    for (size_t i = 0; i < weights.size(); ++i) cdf_[i + 1] = cdf_[i] + std::max(weights[i], 0.0);
     total_ = cdf_.back();
   }
   size_t size() const { return cdf_.empty() ? 0 : cdf_.size() - 1; }
   double total() const { return total_; }
   bool empty() const { return !(total_ > 0.0); }
-  float probability(size_t i) const {
-    return static_cast<float>((cdf_[i + 1] - cdf_[i]) / total_);
-  }
+  float probability(size_t i) const { return static_cast<float>((cdf_[i + 1] - cdf_[i]) / total_); }
   // Picks an item for u in [0, 1); `remapped` (optional) receives u rescaled to [0, 1) inside
   // the item's interval, so one random number can serve two decisions.
   size_t sample(float u, float* remapped = nullptr) const {
     const double target = static_cast<double>(u) * total_;
-    size_t i = static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), target) -
-                                   cdf_.begin());
+    size_t i =
+        static_cast<size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), target) - cdf_.begin());
     i = std::clamp<size_t>(i, 1, size()) - 1;
     // Skip zero-weight items that upper_bound can land on at interval ends.
     while (i + 1 < size() && cdf_[i + 1] <= cdf_[i]) ++i;

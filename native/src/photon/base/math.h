@@ -34,32 +34,63 @@ struct Vec3 {
   Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
   Vec3 operator/(float s) const { return *this * (1.0f / s); }
   Vec3 operator-() const { return {-x, -y, -z}; }
-  Vec3& operator+=(const Vec3& b) { x += b.x; y += b.y; z += b.z; return *this; }
-  Vec3& operator*=(const Vec3& b) { x *= b.x; y *= b.y; z *= b.z; return *this; }
-  Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  Vec3& operator+=(const Vec3& b) {
+    x += b.x;
+    y += b.y;
+    z += b.z;
+    return *this;
+  }
+  Vec3& operator*=(const Vec3& b) {
+    x *= b.x;
+    y *= b.y;
+    z *= b.z;
+    return *this;
+  }
+  Vec3& operator*=(float s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
 };
 
-inline Vec3 operator*(float s, const Vec3& v) { return v * s; }
-inline float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3 operator*(float s, const Vec3& v) {
+  return v * s;
+}
+inline float dot(const Vec3& a, const Vec3& b) {
+  return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 inline Vec3 cross(const Vec3& a, const Vec3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(const Vec3& v) { return std::sqrt(dot(v, v)); }
-inline float length_squared(const Vec3& v) { return dot(v, v); }
+inline float length(const Vec3& v) {
+  return std::sqrt(dot(v, v));
+}
+inline float length_squared(const Vec3& v) {
+  return dot(v, v);
+}
 inline Vec3 normalize(const Vec3& v) {
   float l = length(v);
   return l > 0.0f ? v / l : Vec3(0.0f, 0.0f, 1.0f);
 }
-inline float max_component(const Vec3& v) { return std::max(v.x, std::max(v.y, v.z)); }
+inline float max_component(const Vec3& v) {
+  return std::max(v.x, std::max(v.y, v.z));
+}
 inline float max_abs_component(const Vec3& v) {
   return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
 }
 inline bool is_finite(const Vec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
-inline bool is_black(const Vec3& v) { return v.x <= 0.0f && v.y <= 0.0f && v.z <= 0.0f; }
-inline float luminance(const Vec3& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-inline Vec3 lerp(const Vec3& a, const Vec3& b, float t) { return a * (1.0f - t) + b * t; }
+inline bool is_black(const Vec3& v) {
+  return v.x <= 0.0f && v.y <= 0.0f && v.z <= 0.0f;
+}
+inline float luminance(const Vec3& c) {
+  return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z;
+}
+inline Vec3 lerp(const Vec3& a, const Vec3& b, float t) {
+  return a * (1.0f - t) + b * t;
+}
 inline Vec3 min(const Vec3& a, const Vec3& b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }

@@ -36,8 +36,8 @@ TEST(Refract, ObeysSnellsLaw) {
     Vec3 wt;
     ASSERT_TRUE(refract(wi, n, eta, &wt));
     EXPECT_NEAR(length(wt), 1.0f, 1e-5f);
-    EXPECT_LT(wt.z, 0.0f);                       // goes through the surface
-    EXPECT_LE(wt.x, 0.0f);                       // and continues on the other side of the normal
+    EXPECT_LT(wt.z, 0.0f);  // goes through the surface
+    EXPECT_LE(wt.x, 0.0f);  // and continues on the other side of the normal
     const float sin_t = std::sqrt(wt.x * wt.x + wt.y * wt.y);
     EXPECT_NEAR(std::sin(a), eta * sin_t, 1e-5f);  // n1 sin(i) = n2 sin(t)
   }

@@ -21,7 +21,7 @@ Vec2 invert_concentric_disk(Vec2 d) {
   if (r == 0.0f) return {0.5f, 0.5f};
   float phi = std::atan2(d.y, d.x);
   if (phi < -kPi / 4.0f) phi += 2.0f * kPi;  // phi in [-pi/4, 7pi/4)
-  float a, b;  // the square point in [-1, 1]^2
+  float a, b;                                // the square point in [-1, 1]^2
   if (phi < kPi / 4.0f) {
     a = r;
     b = phi * (4.0f / kPi) * r;

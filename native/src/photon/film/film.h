@@ -77,8 +77,8 @@ class Film {
   // The camera ray of the sample `sampler` (seeded with (seed, pixel, sample)) through frame
   // pixel (px, py).
   Ray camera_ray(int px, int py, Sampler& sampler) const {
-    return camera_sample_ray(filter_, frame_.camera, frame_.full_width, frame_.full_height, px,
-                             py, sampler);
+    return camera_sample_ray(filter_, frame_.camera, frame_.full_width, frame_.full_height, px, py,
+                             sampler);
   }
 
   // The share of its pixel a sample covers: its alpha with a transparent film, else all of it
@@ -102,7 +102,9 @@ class Film {
   // The data passes: data_floats() resolved floats per pixel (pass_layout.h), written a row at a
   // time by whoever traces them.
   int data_floats() const { return data_floats_; }
-  float* data_row(int row) { return data_.data() + static_cast<size_t>(row) * width_ * data_floats_; }
+  float* data_row(int row) {
+    return data_.data() + static_cast<size_t>(row) * width_ * data_floats_;
+  }
 
   // Pixel values of `rect` after `samples` samples: RGBA rows (top first, 4 floats a pixel).
   void resolve_rgba(const FilmRect& rect, int samples, float* rgba) const;
@@ -116,9 +118,9 @@ class Film {
   PixelFilter filter_;
   int width_ = 0, height_ = 0;
   int data_floats_ = 0;
-  std::vector<float> sums_;        // per pixel: light RGB, then coverage
-  std::vector<Vec3> pass_sums_;    // per pixel: kPassCount light passes (with light_passes)
-  std::vector<float> data_;        // per pixel: data_floats_ resolved data-pass floats
+  std::vector<float> sums_;      // per pixel: light RGB, then coverage
+  std::vector<Vec3> pass_sums_;  // per pixel: kPassCount light passes (with light_passes)
+  std::vector<float> data_;      // per pixel: data_floats_ resolved data-pass floats
   std::atomic<uint64_t> non_finite_{0};
 };
 

@@ -1,8 +1,8 @@
 #include "photon/integrators/camera_path.h"
 
+#include "photon/integrators/matte.h"
 #include "photon/lights/direct_lighting.h"
 #include "photon/lights/emitter_set.h"
-#include "photon/integrators/matte.h"
 #include "photon/render/world_shader.h"
 #include "photon/spectral/rgb_uplift.h"
 

@@ -5,11 +5,11 @@
 
 #include "photon/base/optics.h"
 #include "photon/base/ray_offset.h"
+#include "photon/integrators/denoising_features.h"
 #include "photon/lights/emitter_set.h"
 #include "photon/render/accel.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
-#include "photon/integrators/denoising_features.h"
 
 namespace photon {
 namespace {

@@ -12,8 +12,8 @@
 #include "photon/base/sampling.h"
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/photon_map/irradiance_cache_build.h"
-#include "photon/session/scene_resources.h"
 #include "photon/scene/camera.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

@@ -79,8 +79,9 @@ int render_tile(const RenderContext& context, const PixelIntegrator* integrator,
         const CameraHit hit = tracer.first_hit(i);
         if (data_row) data_row->add(i, k, film.frame_pixel(col, row), tracer.ray(i), hit);
         if (integrator)
-          film.add_sample(film.index(col, row), integrator->radiance_from_hit(
-                                                    context, tracer.ray(i), hit, tracer.sampler(i)));
+          film.add_sample(
+              film.index(col, row),
+              integrator->radiance_from_hit(context, tracer.ray(i), hit, tracer.sampler(i)));
       }
     }
     if (data_row) {

@@ -1,7 +1,6 @@
 #include "photon/integrators/registry.h"
 
 #include "photon/base/check.h"
-
 #include "photon/integrators/photon_map/photon_map_integrator.h"
 #include "photon/integrators/radiosity/radiosity_integrator.h"
 #include "photon/integrators/ray_trace/ray_trace_integrator.h"

@@ -98,9 +98,10 @@ std::string spec_json(const ParamSpec& s) {
 
 const std::vector<RenderParamGroup>& render_param_groups() {
   static const std::vector<RenderParamGroup> groups{
-      make_group(sampling_schema()),   make_group(film_schema()), make_group(photon_map_schema()),
-      make_group(radiosity_schema()),  make_group(sppm_schema()), make_group(vcm_schema()), make_group(spectral_schema()),
-      make_group(performance_schema())};
+      make_group(sampling_schema()),   make_group(film_schema()),
+      make_group(photon_map_schema()), make_group(radiosity_schema()),
+      make_group(sppm_schema()),       make_group(vcm_schema()),
+      make_group(spectral_schema()),   make_group(performance_schema())};
   return groups;
 }
 

@@ -48,7 +48,8 @@ Vec3 AreaLamp::power(float) const {
 }
 
 LightBounds AreaLamp::extent() const {
-  const Vec3 e(std::fabs(half_u_.x) + std::fabs(half_v_.x), std::fabs(half_u_.y) + std::fabs(half_v_.y),
+  const Vec3 e(std::fabs(half_u_.x) + std::fabs(half_v_.x),
+               std::fabs(half_u_.y) + std::fabs(half_v_.y),
                std::fabs(half_u_.z) + std::fabs(half_v_.z));
   LightBounds b;
   b.lo = position_ - e;

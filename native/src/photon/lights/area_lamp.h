@@ -21,8 +21,8 @@ class AreaLamp final : public Lamp {
   bool has_area() const override { return true; }
   bool eval_li(const Vec3& p, const Vec3& wi, LightHit* out) const override;
   bool intersect(const Ray& ray, float tmax, bool bidirectional, LightHit* out) const override;
-  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                 bool bidirectional, EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                 EmittedPhoton* out) const override;
   bool sample_le_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,
                          float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler& sampler,
                          EmittedPhoton* out) const override;
@@ -38,9 +38,9 @@ class AreaLamp final : public Lamp {
 
   AreaShape shape_;
   Vec3 position_;
-  Vec3 axis_;            // emission direction (world -Z of the lamp), unit
+  Vec3 axis_;             // emission direction (world -Z of the lamp), unit
   Vec3 half_u_, half_v_;  // half extents in world space
-  Vec3 radiance_;        // W/m^2/sr
+  Vec3 radiance_;         // W/m^2/sr
   float area_;
   float radius_;  // Blender's lamp radius, widening the cone of caustic aiming
 };

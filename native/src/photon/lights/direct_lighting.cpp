@@ -109,7 +109,8 @@ typename P::Color bsdf_sample_term(const P& colours, const RenderContext& contex
       LightHit h;
       if (!e.eval_li(si.p, bs.wi, &h)) return P::zero();
       if (!unoccluded(context, si, bs.wi, h.distance)) return P::zero();
-      return colours.emitted(e, h.radiance) * bs.weight * power_heuristic(bs.pdf, light_pmf * h.pdf);
+      return colours.emitted(e, h.radiance) * bs.weight *
+             power_heuristic(bs.pdf, light_pmf * h.pdf);
     }
     case EmitterKind::kSurface:  // found by the scene's BVH: emissive_hit_term
     case EmitterKind::kWorld:    // found by rays leaving the scene
@@ -172,10 +173,10 @@ typename P::Color every_light_radiance(const P& colours, const RenderContext& co
         l += bsdf_sample_term(colours, context, si, *e, bs, 1.0f);
         break;
       case EmitterKind::kSurface:
-        l += emissive_hit_term(
-            colours, context, si, bs, [&](const Hit& hit, const SurfaceInteraction& h) {
-              return surface_pdf(*e, hit, bs.wi, h.ng);
-            });
+        l += emissive_hit_term(colours, context, si, bs,
+                               [&](const Hit& hit, const SurfaceInteraction& h) {
+                                 return surface_pdf(*e, hit, bs.wi, h.ng);
+                               });
         break;
       case EmitterKind::kWorld:
         l += world_bsdf_term(colours, context, si, *e, bs);

@@ -7,8 +7,8 @@
 
 #include "photon/base/rng.h"
 #include "photon/render/accel.h"
-#include "photon/render/render_context.h"
 #include "photon/render/bsdf.h"
+#include "photon/render/render_context.h"
 #include "photon/render/spectral_bsdf.h"
 
 namespace photon {

@@ -112,9 +112,9 @@ bool EmissiveGroupEmitter::surface_hit(uint32_t instance, uint32_t primitive, fl
   if (bidirectional)
     return triangle_densities(meshes_.triangle(i), meshes_.pick_probability(i), cos_light, out);
   const float c = std::fabs(cos_light);
-  out->pdf = c > 1e-6f ? meshes_.pick_probability(i) / meshes_.triangle(i).area * distance *
-                             distance / c
-                       : 0.0f;
+  out->pdf = c > 1e-6f
+                 ? meshes_.pick_probability(i) / meshes_.triangle(i).area * distance * distance / c
+                 : 0.0f;
   return true;
 }
 

@@ -29,8 +29,8 @@ class EmissiveGroupEmitter final : public Emitter {
   bool has_area() const override { return true; }
   bool surface_hit(uint32_t instance, uint32_t primitive, float distance, float cos_light,
                    bool bidirectional, LightHit* out) const override;
-  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                 bool bidirectional, EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                 EmittedPhoton* out) const override;
   bool sample_le_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,
                          float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler& sampler,
                          EmittedPhoton* out) const override;
@@ -57,8 +57,8 @@ class TriangleEmitter final : public Emitter {
   bool has_area() const override { return true; }
   bool surface_hit(uint32_t instance, uint32_t primitive, float distance, float cos_light,
                    bool bidirectional, LightHit* out) const override;
-  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                 bool bidirectional, EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                 EmittedPhoton* out) const override;
 
  private:
   const EmissiveMeshes& meshes_;

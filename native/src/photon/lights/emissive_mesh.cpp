@@ -1,7 +1,7 @@
 #include "photon/lights/emissive_mesh.h"
 
-#include "photon/render/material_eval.h"
 #include "photon/base/sampling.h"
+#include "photon/render/material_eval.h"
 
 namespace photon {
 

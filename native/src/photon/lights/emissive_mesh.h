@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "photon/base/distribution.h"
-#include "photon/scene/scene.h"
 #include "photon/render/accel.h"
+#include "photon/scene/scene.h"
 #include "photon/shading/textures.h"
 
 namespace photon {

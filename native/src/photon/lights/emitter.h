@@ -36,8 +36,8 @@ enum class EmitterKind : uint8_t {
 
 // What an emitter is, for estimators that weigh its samples against other strategies.
 enum EmitterFlags : uint8_t {
-  kEmitterBidirectional = 1u << 0,  // gives bidirectional densities
-  kEmitterDeltaPosition = 1u << 1,  // a point: camera rays never meet it
+  kEmitterBidirectional = 1u << 0,   // gives bidirectional densities
+  kEmitterDeltaPosition = 1u << 1,   // a point: camera rays never meet it
   kEmitterDeltaDirection = 1u << 2,  // a parallel beam (sun of angle 0)
   kEmitterInfinite = 1u << 3,        // at infinity: sun, world
   // Direct lighting reaches it by BSDF sampling only (the uniform world): sample_li() draws
@@ -66,7 +66,7 @@ struct LightSampleU {
 
 // A light sample towards a receiving point.
 struct LightSample {
-  Vec3 wi{0.0f};         // unit direction from the receiver towards the light
+  Vec3 wi{0.0f};          // unit direction from the receiver towards the light
   float distance = 0.0f;  // to the sampled point; INFINITY for lights at infinity
   Vec3 weight{0.0f};      // Le * G / pdf without the receiver cosine: irradiance per unit cos
   float pdf = 0.0f;       // solid-angle density of wi; 0 for delta lights (point, spot, sun)
@@ -74,9 +74,9 @@ struct LightSample {
   // triangle), so the shadow ray can stop short of that surface; zero for lamps.
   Vec3 surface_normal{0.0f};
   // Bidirectional densities, filled on request:
-  Vec3 radiance{0.0f};       // Le towards the receiver: W/m^2/sr; a point W/sr; a beam W/m^2
-  float direct_pdf = 0.0f;   // density of wi in the measure above (delta position: distance^2,
-                             // so radiance / direct_pdf is the irradiance; delta direction: 1)
+  Vec3 radiance{0.0f};        // Le towards the receiver: W/m^2/sr; a point W/sr; a beam W/m^2
+  float direct_pdf = 0.0f;    // density of wi in the measure above (delta position: distance^2,
+                              // so radiance / direct_pdf is the irradiance; delta direction: 1)
   float emission_pdf = 0.0f;  // pdf_pos * pdf_dir of sample_le() making the reverse ray
   float cos_light = 1.0f;     // |cos| at the light's surface (1: none)
 };
@@ -163,7 +163,8 @@ class Emitter {
   }
   // Lights at infinity: radiance arriving along a ray that left the scene in `direction`, and
   // sample_li()'s solid-angle density of it (0 when that sample never draws it).
-  virtual Vec3 radiance_at_infinity(const Vec3& /*direction*/, bool /*bidirectional*/ = false) const {
+  virtual Vec3 radiance_at_infinity(const Vec3& /*direction*/,
+                                    bool /*bidirectional*/ = false) const {
     return Vec3(0.0f);
   }
   virtual float pdf_at_infinity(const Vec3& /*direction*/, bool /*bidirectional*/ = false) const {

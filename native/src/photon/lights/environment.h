@@ -58,8 +58,8 @@ class EnvironmentEmitter final : public Emitter {
   Vec3 power(float scene_radius) const override;
   // Jensen 2001 sec. 5.1 for lights at infinity: a direction w from the table, a point on the
   // disc of the scene's bounding sphere perpendicular to it, flux L(w) / pdf(w) x pi R^2.
-  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                 bool bidirectional, EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                 EmittedPhoton* out) const override;
   // Caustic photons: a direction from the table, then a point of the targets' discs across it
   // (as the sun's beam, sun_lamp.h): flux L(w) / (pdf(w) x area density).
   bool sample_le_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,

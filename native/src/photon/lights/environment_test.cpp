@@ -17,8 +17,8 @@
 #include "photon/integrators/photon_map/photon_sources.h"
 #include "photon/lights/direct_lighting.h"
 #include "photon/lights/world_light.h"
-#include "photon/session/scene_resources.h"
 #include "photon/session/render_session.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
@@ -476,7 +476,8 @@ TEST(Environment, ConstantFunctionEmitsWhatTheUniformWorldEmits) {
   for (int i = 0; i < 1000; ++i) {
     Sampler sampler(1, 2, static_cast<uint32_t>(i), 1000);
     EmittedPhoton photon;
-    env.sample_le(PhotonFrame{Vec3(0.0f), 3.0f}, 0.5f, sampler.get_2d(), sampler.get_2d(), false, &photon);
+    env.sample_le(PhotonFrame{Vec3(0.0f), 3.0f}, 0.5f, sampler.get_2d(), sampler.get_2d(), false,
+                  &photon);
     for (int k = 0; k < 3; ++k)
       ASSERT_NEAR(photon.power[k], uniform.power(3.0f)[k], 1e-4 * uniform.power(3.0f)[k]);
   }

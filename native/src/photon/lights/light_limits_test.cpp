@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "photon/integrators/photon_map/photon_map.h"
 #include "photon/lights/lights.h"
 #include "photon/scene/material.h"
-#include "photon/integrators/photon_map/photon_map.h"
 
 namespace photon {
 namespace {
@@ -38,7 +38,8 @@ TEST(LightLimits, HugePowerIsClampedToTheEmitterBoundWithAWarning) {
     EXPECT_TRUE(is_finite(power));
     EXPECT_EQ(power.x, bound.lamp(0).power(10.0f).x);
     LightSample s;
-    ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &s));
+    ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)},
+                                      nullptr, &s));
     EXPECT_TRUE(is_finite(s.weight));
     EXPECT_GT(s.weight.x, 0.0f);
   }

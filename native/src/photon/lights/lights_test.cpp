@@ -38,7 +38,9 @@ Vec3 average_over_grid(const LightSet& set, size_t index, const Vec3& p, int n,
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       LightSample ls;
-      if (!set.lamp(index).sample_li(p, LightSampleU{0.0f, Vec2((i + 0.5f) / n, (j + 0.5f) / n)}, nullptr, &ls)) continue;
+      if (!set.lamp(index).sample_li(p, LightSampleU{0.0f, Vec2((i + 0.5f) / n, (j + 0.5f) / n)},
+                                     nullptr, &ls))
+        continue;
       const Vec3 v = f(ls);
       sx += v.x;
       sy += v.y;
@@ -121,7 +123,9 @@ TEST(SpotLight, IsZeroOutsideTheConeAndCosineWeightedInside) {
   };
   auto weight_at = [&](double angle) {
     LightSample ls;
-    if (!set.lamp(0).sample_li(receiver_at(angle), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls)) return 0.0;
+    if (!set.lamp(0).sample_li(receiver_at(angle), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr,
+                               &ls))
+      return 0.0;
     return static_cast<double>(ls.weight.x);
   };
   // On the axis: the point light value.
@@ -136,10 +140,13 @@ TEST(SpotLight, IsZeroOutsideTheConeAndCosineWeightedInside) {
   // Outside the cone nothing arrives.
   for (double deg : {30.5, 45.0, 80.0}) {
     LightSample ls;
-    EXPECT_FALSE(set.lamp(0).sample_li(receiver_at(deg * kPiD / 180.0), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls)) << deg;
+    EXPECT_FALSE(set.lamp(0).sample_li(receiver_at(deg * kPiD / 180.0),
+                                       LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls))
+        << deg;
   }
   LightSample ls;
-  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, 2.0f * d), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));  // behind
+  EXPECT_FALSE(set.lamp(0).sample_li(
+      Vec3(0.0f, 0.0f, 2.0f * d), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));  // behind
 
   // Blend region: smoothstep in (cos - cos_half) / smooth, halfway = half of the full value.
   const double c_mid = cos_half + 0.5 * smooth, a_mid = std::acos(c_mid);
@@ -167,11 +174,15 @@ TEST(SpotLight, PointsAlongTheTransformedAxis) {
   light.spot_size = 1.0f;
   LightSet set({light}, nullptr);
   LightSample ls;
-  ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f, 3.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
+  ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f, 3.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)},
+                                    nullptr, &ls));
   EXPECT_NEAR(ls.weight.x, 10.0 / (4.0 * kPiD) / 9.0, 1e-6);
-  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, -3.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
-  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, -3.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
-  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(3.0f, 0.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
+  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, -3.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)},
+                                     nullptr, &ls));
+  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(0.0f, 0.0f, -3.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)},
+                                     nullptr, &ls));
+  EXPECT_FALSE(set.lamp(0).sample_li(Vec3(3.0f, 0.0f, 0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)},
+                                     nullptr, &ls));
 }
 
 TEST(SunLight, GivesItsStrengthFromWithinItsAngularDisc) {
@@ -189,8 +200,9 @@ TEST(SunLight, GivesItsStrengthFromWithinItsAngularDisc) {
   for (int j = 0; j < 32; ++j)
     for (int i = 0; i < 32; ++i) {
       LightSample ls;
-      ASSERT_TRUE(
-          set.lamp(0).sample_li(Vec3(0.3f, 0.2f, 0.1f), LightSampleU{0.0f, Vec2((i + 0.5f) / 32, (j + 0.5f) / 32)}, nullptr, &ls));
+      ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.3f, 0.2f, 0.1f),
+                                        LightSampleU{0.0f, Vec2((i + 0.5f) / 32, (j + 0.5f) / 32)},
+                                        nullptr, &ls));
       EXPECT_FALSE(std::isfinite(ls.distance));
       EXPECT_TRUE(VecNear(ls.weight, light.color * 3.0f, 1e-6f));
       EXPECT_NEAR(length(ls.wi), 1.0f, 1e-5f);
@@ -204,7 +216,8 @@ TEST(SunLight, GivesItsStrengthFromWithinItsAngularDisc) {
   light.sun_angle = 0.0f;
   LightSet sharp({light}, nullptr);
   LightSample ls;
-  ASSERT_TRUE(sharp.lamp(0).sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.9f, 0.1f)}, nullptr, &ls));
+  ASSERT_TRUE(
+      sharp.lamp(0).sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.9f, 0.1f)}, nullptr, &ls));
   EXPECT_TRUE(VecNear(ls.wi, -forward, 1e-6f));
 }
 
@@ -303,12 +316,14 @@ TEST(AreaLight, EmitsOnlyDownItsAxis) {
     for (int j = 0; j < 16; ++j)
       for (int i = 0; i < 16; ++i) {
         LightSample ls;
-        EXPECT_FALSE(set.lamp(0).sample_li(p, LightSampleU{0.0f, Vec2((i + 0.5f) / 16, (j + 0.5f) / 16)}, nullptr, &ls))
+        EXPECT_FALSE(set.lamp(0).sample_li(
+            p, LightSampleU{0.0f, Vec2((i + 0.5f) / 16, (j + 0.5f) / 16)}, nullptr, &ls))
             << p.x << " " << p.y << " " << p.z;
       }
   }
   LightSample ls;
-  EXPECT_TRUE(set.lamp(0).sample_li(Vec3(3.0f, 0.0f, 0.5f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
+  EXPECT_TRUE(set.lamp(0).sample_li(Vec3(3.0f, 0.0f, 0.5f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)},
+                                    nullptr, &ls));
 }
 
 TEST(LightSet, SkipsZeroSizeAndZeroPowerLights) {
@@ -327,7 +342,8 @@ TEST(LightSet, SkipsZeroSizeAndZeroPowerLights) {
   EXPECT_NE(warnings[0].find("flat_area"), std::string::npos) << warnings[0];
   EXPECT_NE(warnings[0].find("zero size"), std::string::npos) << warnings[0];
   LightSample ls;
-  ASSERT_TRUE(set.lamp(0).sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
+  ASSERT_TRUE(
+      set.lamp(0).sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls));
   EXPECT_NEAR(ls.weight.x, 8.0 / (4.0 * kPiD) / 4.0, 1e-6);  // the surviving light is `good`
 
   Light broken = good;

@@ -268,8 +268,7 @@ bool PointLamp::sample_le_towards(const std::vector<BoundingSphere>& targets, co
   }
   // Directions inside both the lamp's cone and a target's; a spot with a radius emits from a
   // disc, so its targets are widened by that radius.
-  const Cap region =
-      spot_ ? Cap(axis_, std::acos(double(cos_half_spot_))) : Cap::whole_sphere();
+  const Cap region = spot_ ? Cap(axis_, std::acos(double(cos_half_spot_))) : Cap::whole_sphere();
   if (!ConeMixture(position_, targets, region, radius_).sample(u_pick, u_dir, &d, &pdf))
     return false;
   Vec3 origin = position_;
@@ -288,8 +287,7 @@ bool PointLamp::sample_le_towards(const std::vector<BoundingSphere>& targets, co
 float PointLamp::coverage(const std::vector<BoundingSphere>& targets, float) const {
   if (targets.empty()) return 0.0f;
   // The share of the lamp's cone (seen from its centre) that heads into targets.
-  const Cap region =
-      spot_ ? Cap(axis_, std::acos(double(cos_half_spot_))) : Cap::whole_sphere();
+  const Cap region = spot_ ? Cap(axis_, std::acos(double(cos_half_spot_))) : Cap::whole_sphere();
   return ConeMixture(position_, targets, region, radius_).coverage();
 }
 

@@ -31,8 +31,8 @@ class PointLamp final : public Lamp {
   bool has_area() const override { return radius_ > 0.0f; }
   bool eval_li(const Vec3& p, const Vec3& wi, LightHit* out) const override;
   bool intersect(const Ray& ray, float tmax, bool bidirectional, LightHit* out) const override;
-  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                 bool bidirectional, EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                 EmittedPhoton* out) const override;
   bool sample_le_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,
                          float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler& sampler,
                          EmittedPhoton* out) const override;
@@ -47,17 +47,19 @@ class PointLamp final : public Lamp {
   // density of its emitted rays, and its radiance along a direction of travel d.
   bool sphere() const { return radius_ > 0.0f && area_ > 0.0f; }
   float direction_pdf(const Vec3& d) const;
-  Vec3 sphere_radiance(const Vec3& d) const { return spot_ ? radiance_ * attenuation(d) : radiance_; }
+  Vec3 sphere_radiance(const Vec3& d) const {
+    return spot_ ? radiance_ * attenuation(d) : radiance_;
+  }
   bool sample_sphere_li(const Vec3& p, Vec2 u, LightSample* out) const;
   bool emit_from_sphere(Vec2 u_pos, Vec2 u_dir, EmittedPhoton* out) const;
 
   bool spot_;
   Vec3 position_;
-  Vec3 axis_;        // the spot's direction (world -Z of the lamp), unit
-  Vec3 intensity_;   // W/sr
-  Vec3 radiance_;    // of the disc or sphere of the lamp's radius, W/m^2/sr
+  Vec3 axis_;       // the spot's direction (world -Z of the lamp), unit
+  Vec3 intensity_;  // W/sr
+  Vec3 radiance_;   // of the disc or sphere of the lamp's radius, W/m^2/sr
   float radius_;
-  float area_;       // pi r^2
+  float area_;  // pi r^2
   float cos_half_spot_;
   float spot_smooth_;
 };

@@ -63,16 +63,16 @@ float SunLamp::pdf_at_infinity(const Vec3& direction, bool bidirectional) const 
   return uniform_cone_pdf(sun_cos_max_);
 }
 
-bool SunLamp::sample_le(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir,
-                        bool bidirectional, EmittedPhoton* out) const {
+bool SunLamp::sample_le(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                        EmittedPhoton* out) const {
   const Frame beam(axis_);
   if (bidirectional) {
     const Vec3 d = delta() ? beam.n : beam.to_world(sample_uniform_cone(u_dir, sun_cos_max_));
     const Frame across(d);
     const Vec2 q = sample_concentric_disk(u_pos);
-    set_emitted_ray(frame.center + (across.t * q.x + across.b * q.y) * frame.radius -
-                        d * (2.0f * frame.radius),
-                    d, &out->ray);
+    set_emitted_ray(
+        frame.center + (across.t * q.x + across.b * q.y) * frame.radius - d * (2.0f * frame.radius),
+        d, &out->ray);
     const float cone = delta() ? 1.0f : uniform_cone_pdf(sun_cos_max_);
     out->radiance = irradiance_ * cone;
     out->pdf_pos = scene_disc_pdf(frame);
@@ -84,8 +84,8 @@ bool SunLamp::sample_le(const PhotonFrame& frame, float, Vec2 u_pos, Vec2 u_dir,
   const Vec3 d =
       sun_cos_max_ < 1.0f ? beam.to_world(sample_uniform_cone(u_dir, sun_cos_max_)) : beam.n;
   const Vec2 q = sample_concentric_disk(u_pos);
-  const Vec3 origin = frame.center + (beam.t * q.x + beam.b * q.y) * frame.radius -
-                      beam.n * (2.0f * frame.radius);
+  const Vec3 origin =
+      frame.center + (beam.t * q.x + beam.b * q.y) * frame.radius - beam.n * (2.0f * frame.radius);
   set_emitted_ray(origin, d, &out->ray);
   out->power = irradiance_ * (kPi * frame.radius * frame.radius);
   return true;

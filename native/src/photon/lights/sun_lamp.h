@@ -25,8 +25,8 @@ class SunLamp final : public Lamp {
   bool has_area() const override { return false; }
   Vec3 radiance_at_infinity(const Vec3& direction, bool bidirectional) const override;
   float pdf_at_infinity(const Vec3& direction, bool bidirectional) const override;
-  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                 bool bidirectional, EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                 EmittedPhoton* out) const override;
   bool sample_le_towards(const std::vector<BoundingSphere>& targets, const PhotonFrame& frame,
                          float u_pick, Vec2 u_pos, Vec2 u_dir, Sampler& sampler,
                          EmittedPhoton* out) const override;
@@ -36,9 +36,9 @@ class SunLamp final : public Lamp {
   LightBounds extent() const override;
   bool delta() const { return sun_cos_max_ >= 1.0f; }
 
-  Vec3 axis_;        // the direction the light travels (world -Z of the lamp), unit
-  Vec3 irradiance_;  // W/m^2
-  Vec3 radiance_;    // of the sun's disc, W/m^2/sr (0 for a parallel beam)
+  Vec3 axis_;          // the direction the light travels (world -Z of the lamp), unit
+  Vec3 irradiance_;    // W/m^2
+  Vec3 radiance_;      // of the sun's disc, W/m^2/sr (0 for a parallel beam)
   float sun_cos_max_;  // cos of half the sun's angular diameter
 };
 

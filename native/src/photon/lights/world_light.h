@@ -29,8 +29,8 @@ class WorldEmitter final : public Emitter {
   float pdf_at_infinity(const Vec3&, bool bidirectional = false) const override {
     return bidirectional ? kInv4Pi : 0.0f;
   }
-  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir,
-                 bool bidirectional, EmittedPhoton* out) const override;
+  bool sample_le(const PhotonFrame& frame, float u_rest, Vec2 u_pos, Vec2 u_dir, bool bidirectional,
+                 EmittedPhoton* out) const override;
 
  private:
   Vec3 color_;

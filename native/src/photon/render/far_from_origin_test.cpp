@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "photon/render/accel.h"
 #include "photon/base/ray_offset.h"
+#include "photon/render/accel.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

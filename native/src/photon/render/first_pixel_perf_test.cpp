@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "photon/render/accel.h"
-#include "photon/session/scene_resources.h"
 #include "photon/scene/mesh_import.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

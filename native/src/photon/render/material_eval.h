@@ -12,7 +12,7 @@ namespace photon {
 
 struct ShadingPoint {
   Bsdf bsdf;
-  Vec3 emission{0.0f};  // emitted radiance, both sides (as in Cycles)
+  Vec3 emission{0.0f};   // emitted radiance, both sides (as in Cycles)
   float holdout = 0.0f;  // summed weight of Holdout closures, in [0, 1]
 };
 

@@ -1,7 +1,7 @@
 #include "photon/render/material_eval.h"
 
-#include <gtest/gtest.h>
 #include <OpenImageIO/imagebuf.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 
@@ -20,14 +20,16 @@ std::string write_quad_png(const std::string& name) {
   fs::create_directories(dir);
   const std::string path = (dir / name).string();
   const unsigned char px[16] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 128};
-  OIIO::ImageBuf buf(OIIO::ImageSpec(2, 2, 4, OIIO::TypeDesc::UINT8), const_cast<unsigned char*>(px));
+  OIIO::ImageBuf buf(OIIO::ImageSpec(2, 2, 4, OIIO::TypeDesc::UINT8),
+                     const_cast<unsigned char*>(px));
   EXPECT_TRUE(buf.write(path));
   return path;
 }
 
 struct TextureFixture : ::testing::Test {
   void SetUp() override {
-    setenv("PHOTON_TEXTURE_CACHE", (fs::temp_directory_path() / "photon_material_eval_cache").c_str(), 1);
+    setenv("PHOTON_TEXTURE_CACHE",
+           (fs::temp_directory_path() / "photon_material_eval_cache").c_str(), 1);
   }
 };
 
@@ -148,7 +150,7 @@ TEST(MaterialEval, PrincipledDefaultsSplitIntoDiffuseAndSpecular) {
   EXPECT_EQ(sp.bsdf.lobe(0).type, LobeType::kTransparent);
   EXPECT_NEAR(sp.bsdf.lobe(0).weight.x, 0.25f, 1e-6f);
   EXPECT_TRUE(VecNear(sp.bsdf.diffuse_reflectance(), Vec3(0.8f * 0.75f), 1e-5f));
-  EXPECT_TRUE(VecNear(sp.bsdf.lobe(2).f0, Vec3(0.04f), 1e-6f));  // 0.08 x specular 0.5
+  EXPECT_TRUE(VecNear(sp.bsdf.lobe(2).f0, Vec3(0.04f), 1e-6f));       // 0.08 x specular 0.5
   EXPECT_TRUE(VecNear(sp.emission, Vec3(1.5f, 0.75f, 0.0f), 1e-5f));  // emission x alpha
 }
 
@@ -194,7 +196,8 @@ TEST(MaterialEval, TangentSpaceNormalMapBendsTheShadingNormal) {
   diffuse.normal.texture = 0;
   diffuse.normal.strength = 1.0f;
   ShadeFixture f(Material{"bumpy", {diffuse}});
-  f.scene.textures.push_back({path, false, TextureExtension::kRepeat, TextureInterpolation::kLinear});
+  f.scene.textures.push_back(
+      {path, false, TextureExtension::kRepeat, TextureInterpolation::kLinear});
   TextureSet textures(f.scene.textures, nullptr);
   const ShadingPoint sp = shade_surface(f.at(0.2f, 0.3f), Vec3(0, 0, 1), *f.accel, &textures);
   // u runs along +x on this quad, so the normal tilts towards +x by 0.5 rad.

@@ -46,8 +46,8 @@ ShaderGlobals surface_globals(const SurfaceInteraction& si, const Vec3& wo, cons
     const Vec3 safe{size.x != 0.0f ? size.x : 1.0f, size.y != 0.0f ? size.y : 1.0f,
                     size.z != 0.0f ? size.z : 1.0f};
     g.generated_scale = Vec3(0.5f) / safe;
-    g.generated = (g.world_to_object.point(si.p) - (si.mesh->texspace_location - safe)) *
-                  g.generated_scale;
+    g.generated =
+        (g.world_to_object.point(si.p) - (si.mesh->texspace_location - safe)) * g.generated_scale;
   }
   if (si.mat) g.material_pass_index = si.mat->pass_index;
   if (si.scene) {

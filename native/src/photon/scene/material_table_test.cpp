@@ -11,8 +11,8 @@
 
 #include "photon/render/accel.h"
 #include "photon/render/material_eval.h"
-#include "photon/shading/textures.h"
 #include "photon/scene/material_params.h"
+#include "photon/shading/textures.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

@@ -26,11 +26,11 @@
 #include <string>
 #include <vector>
 
+#include "photon/scene/mesh_import.h"
+#include "photon/scene/scene.h"
 #include "photon/session/bake.h"
 #include "photon/session/image_io.h"
-#include "photon/scene/mesh_import.h"
 #include "photon/session/render_session.h"
-#include "photon/scene/scene.h"
 
 #ifndef PHOTON_FUZZ_SEEDS
 #error "PHOTON_FUZZ_SEEDS must name the regression seed file"

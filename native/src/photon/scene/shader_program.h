@@ -29,12 +29,12 @@ enum class NodeFamily : uint16_t {
 
 struct Instruction {
   NodeFamily family = NodeFamily::kConvert;
-  uint16_t kind = 0;   // which node of the family (family-defined)
-  uint32_t mode = 0;   // family-defined: an operation, a dimension count, flags
+  uint16_t kind = 0;  // which node of the family (family-defined)
+  uint32_t mode = 0;  // family-defined: an operation, a dimension count, flags
   int32_t in[8] = {-1, -1, -1, -1, -1, -1, -1, -1};  // first register of each input
   int32_t out[5] = {-1, -1, -1, -1, -1};             // first register of each output, -1 unused
   float param[4] = {0.0f, 0.0f, 0.0f, 0.0f};         // family-defined constants
-  int32_t data = -1;                                  // offset into ShaderProgram::data
+  int32_t data = -1;                                 // offset into ShaderProgram::data
   int32_t data_size = 0;
   int32_t skip = 0;  // kNormal Bump: instructions of the height block that precede it
 };
@@ -47,16 +47,16 @@ struct ProgramAttribute {
 
 struct ShaderProgram {
   std::vector<Instruction> code;
-  std::vector<float> registers;  // initial values; size() is the register count
-  std::vector<float> data;       // tables
+  std::vector<float> registers;              // initial values; size() is the register count
+  std::vector<float> data;                   // tables
   std::vector<ProgramAttribute> attributes;  // named mesh attributes, by slot
 
   bool empty() const { return code.empty(); }
 };
 
 // Checks that every register an instruction names lies inside the register file (with room for a
-// vector where one may be read) and that Bump blocks lie inside the code; false with `error` if not.
-// Programs from Python are checked before they are rendered.
+// vector where one may be read) and that Bump blocks lie inside the code; false with `error` if
+// not. Programs from Python are checked before they are rendered.
 bool validate_program(const ShaderProgram& program, std::string* error);
 
 }  // namespace photon

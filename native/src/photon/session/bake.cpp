@@ -1,4 +1,3 @@
-#include "photon/integrators/registry.h"
 #include "photon/session/bake.h"
 
 #include <tbb/blocked_range.h>
@@ -6,8 +5,9 @@
 
 #include <chrono>
 
-#include "photon/session/scene_resources.h"
+#include "photon/integrators/registry.h"
 #include "photon/session/render_session.h"
+#include "photon/session/scene_resources.h"
 
 namespace photon {
 namespace {

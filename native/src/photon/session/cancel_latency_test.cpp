@@ -10,10 +10,10 @@
 #include <string>
 #include <thread>
 
+#include "photon/base/rng.h"
 #include "photon/integrators/photon_map/photon_map.h"
 #include "photon/integrators/photon_map/radiance_cache.h"
 #include "photon/session/render_session.h"
-#include "photon/base/rng.h"
 #include "photon/testing/test_scenes.h"
 #include "photon/testing/timing_slack.h"
 

@@ -11,7 +11,7 @@ bool write_rgba_image(const std::string& path, const std::vector<float>& rgba, i
   OIIO::ImageBuf buf(spec, const_cast<float*>(rgba.data()));
   // Float formats keep scene-linear values; 8-bit formats get sRGB encoding and clamping.
   const bool is_float_format = path.size() > 4 && (path.substr(path.size() - 4) == ".exr" ||
-                                                  path.substr(path.size() - 4) == ".hdr");
+                                                   path.substr(path.size() - 4) == ".hdr");
   bool ok;
   if (is_float_format) {
     ok = buf.write(path);

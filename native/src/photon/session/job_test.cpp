@@ -1,7 +1,6 @@
 // The Job base that runs renders and bakes: cancellation latency, an exception in the work
 // becoming an error status, progress that never goes back while work units are counted, and the
 // integrator capabilities the sessions and the add-on ask instead of testing types.
-#include "photon/integrators/registry.h"
 #include "photon/session/job.h"
 
 #include <gtest/gtest.h>
@@ -11,9 +10,10 @@
 #include <stdexcept>
 #include <thread>
 
-#include "photon/session/scene_resources.h"
+#include "photon/integrators/registry.h"
 #include "photon/session/bake.h"
 #include "photon/session/render_session.h"
+#include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 #include "photon/testing/timing_slack.h"
 

@@ -1,4 +1,3 @@
-#include "photon/integrators/registry.h"
 #include "photon/session/progressive_session.h"
 
 #include <tbb/blocked_range.h>
@@ -9,8 +8,9 @@
 #include <chrono>
 #include <cmath>
 
-#include "photon/session/scene_resources.h"
+#include "photon/integrators/registry.h"
 #include "photon/session/render_session.h"
+#include "photon/session/scene_resources.h"
 
 namespace photon {
 namespace {
@@ -218,8 +218,7 @@ void ProgressiveSession::publish(const ProgressiveView& view, int samples, bool 
   image.coarse_photons = coarse_photons;
   image.view_serial = serial;
   image.rgba.resize(film_->pixel_count() * 4);
-  film_->resolve_rgba(FilmRect{0, 0, film_->width(), film_->height()}, samples,
-                      image.rgba.data());
+  film_->resolve_rgba(FilmRect{0, 0, film_->width(), film_->height()}, samples, image.rgba.data());
   std::lock_guard<std::mutex> lock(mutex_);
   image_ = std::move(image);
   // Converged together with the last pass's image, so a reader never sees one without the other.

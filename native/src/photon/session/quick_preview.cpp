@@ -34,9 +34,9 @@ std::vector<float> render_quick_preview(const RenderContext& context,
   const int cx0 = full.x0 / block, cy0 = full.y0 / block;
   const int cx1 = (full.x1 + block - 1) / block, cy1 = (full.y1 + block - 1) / block;
   const int cw = cx1 - cx0, ch = cy1 - cy0;
-  Film film(film_frame(context.scene->camera, coarse.full_width, coarse.full_height, cx0, cy0, cx1,
-                       cy1),
-            film_options(coarse));
+  Film film(
+      film_frame(context.scene->camera, coarse.full_width, coarse.full_height, cx0, cy0, cx1, cy1),
+      film_options(coarse));
   RayTraceIntegrator integrator;
   RenderControl control;
   control.end_pass = kPreviewSamples;

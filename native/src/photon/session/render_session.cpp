@@ -1,4 +1,3 @@
-#include "photon/integrators/registry.h"
 #include "photon/session/render_session.h"
 
 #include <pmmintrin.h>
@@ -9,10 +8,11 @@
 #include <tbb/task_scheduler_observer.h>
 #include <xmmintrin.h>
 
+#include "photon/integrators/registry.h"
 #include "photon/integrators/render_params.h"
-#include "photon/session/scene_resources.h"
 #include "photon/render/camera_clip_check.h"
 #include "photon/session/quick_preview.h"
+#include "photon/session/scene_resources.h"
 
 namespace photon {
 namespace {
@@ -78,8 +78,8 @@ RenderSettings sanitize(RenderSettings s, std::vector<std::string>* warnings) {
   const IntegratorCapabilities caps = integrator_capabilities(s.integrator);
   if (s.spectral && !caps.spectral) {
     if (warnings)
-      warnings->push_back(std::string("Spectral rendering is not available with the ") +
-                          caps.name + " integrator: rendering in RGB");
+      warnings->push_back(std::string("Spectral rendering is not available with the ") + caps.name +
+                          " integrator: rendering in RGB");
     s.spectral = false;
   }
   return s;
@@ -204,9 +204,8 @@ void RenderSession::run() {
   set_preparing(true);
   PreparedStateStats prepared_state;
   arena.execute([&] {
-    prepare_with_state_files(context, resources->textures(), settings_.integrator,
-                             integrator.get(), control, prepared_files_, &prepared_state,
-                             &warnings);
+    prepare_with_state_files(context, resources->textures(), settings_.integrator, integrator.get(),
+                             control, prepared_files_, &prepared_state, &warnings);
   });
   set_preparing(false);
   const double prepare_seconds = seconds_since(t0);
@@ -278,8 +277,8 @@ int RenderSession::render_film(const RenderContext& context, Integrator& integra
     return tile;
   };
   control.update = [&](const FilmRect& rect, int passes, bool last) {
-    const bool whole_film = rect.x == 0 && rect.y == 0 && rect.width == whole.width &&
-                            rect.height == whole.height;
+    const bool whole_film =
+        rect.x == 0 && rect.y == 0 && rect.width == whole.width && rect.height == whole.height;
     if (!whole_film) {
       deliver_tile(deliver(rect, passes));
       return;

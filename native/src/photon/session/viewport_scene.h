@@ -13,8 +13,8 @@
 
 #include "photon/integrators/integrator.h"
 #include "photon/render/blas_cache.h"
-#include "photon/session/scene_resources.h"
 #include "photon/scene/scene.h"
+#include "photon/session/scene_resources.h"
 
 namespace photon {
 

@@ -10,7 +10,9 @@
 
 namespace photon::hash {
 
-inline uint32_t rotl(uint32_t x, int k) { return (x << k) | (x >> (32 - k)); }
+inline uint32_t rotl(uint32_t x, int k) {
+  return (x << k) | (x >> (32 - k));
+}
 
 // lookup3's mix() and final() on (a, b, c).
 inline void mix(uint32_t& a, uint32_t& b, uint32_t& c) {
@@ -75,9 +77,15 @@ inline uint32_t float_bits(float f) {
 }
 
 // Hashes to [0, 1].
-inline float uint_to_float(uint32_t h) { return static_cast<float>(h) / static_cast<float>(0xFFFFFFFFu); }
-inline float hash_uint_to_float(uint32_t kx) { return uint_to_float(hash_uint(kx)); }
-inline float hash_uint2_to_float(uint32_t kx, uint32_t ky) { return uint_to_float(hash_uint2(kx, ky)); }
+inline float uint_to_float(uint32_t h) {
+  return static_cast<float>(h) / static_cast<float>(0xFFFFFFFFu);
+}
+inline float hash_uint_to_float(uint32_t kx) {
+  return uint_to_float(hash_uint(kx));
+}
+inline float hash_uint2_to_float(uint32_t kx, uint32_t ky) {
+  return uint_to_float(hash_uint2(kx, ky));
+}
 inline float hash_uint3_to_float(uint32_t kx, uint32_t ky, uint32_t kz) {
   return uint_to_float(hash_uint3(kx, ky, kz));
 }
@@ -85,7 +93,9 @@ inline float hash_uint4_to_float(uint32_t kx, uint32_t ky, uint32_t kz, uint32_t
   return uint_to_float(hash_uint4(kx, ky, kz, kw));
 }
 
-inline float hash_float_to_float(float k) { return hash_uint_to_float(float_bits(k)); }
+inline float hash_float_to_float(float k) {
+  return hash_uint_to_float(float_bits(k));
+}
 inline float hash_float2_to_float(float x, float y) {
   return hash_uint2_to_float(float_bits(x), float_bits(y));
 }

@@ -133,8 +133,8 @@ CompileStatus compile_image_node(const NodeDesc& desc, ShaderProgram*, Instructi
     out->mode = projection == "MIRROR_BALL" ? kMirrorBall : kEquirect;
   } else if (projection == "BOX") {
     out->mode = kBox;
-    out->param[1] = std::clamp(static_cast<float>(number_value(desc, "projection_blend", 0.0)),
-                               0.0f, 1.0f);
+    out->param[1] =
+        std::clamp(static_cast<float>(number_value(desc, "projection_blend", 0.0)), 0.0f, 1.0f);
   } else if (projection == "SPHERE") {
     out->mode = kSphere;
   } else if (projection == "TUBE") {

@@ -31,15 +31,19 @@ struct OutputList {
 
 const std::vector<OutputList>& output_lists() {
   static const std::vector<OutputList> lists = {
-      {"ShaderNodeTexCoord", kTexCoord,
+      {"ShaderNodeTexCoord",
+       kTexCoord,
        {"Generated", "Normal", "UV", "Object", "Camera", "Window", "Reflection"}},
-      {"ShaderNodeNewGeometry", kGeometry,
+      {"ShaderNodeNewGeometry",
+       kGeometry,
        {"Position", "Normal", "Tangent", "True Normal", "Incoming", "Parametric", "Backfacing",
         "Pointiness", "Random Per Island"}},
       {"ShaderNodeUVMap", kUvMap, {"UV"}},
-      {"ShaderNodeObjectInfo", kObjectInfo,
+      {"ShaderNodeObjectInfo",
+       kObjectInfo,
        {"Location", "Color", "Alpha", "Object Index", "Material Index", "Random"}},
-      {"ShaderNodeLightPath", kLightPath,
+      {"ShaderNodeLightPath",
+       kLightPath,
        {"Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray", "Is Singular Ray",
         "Is Reflection Ray", "Is Transmission Ray", "Ray Length", "Ray Depth", "Diffuse Depth",
         "Glossy Depth", "Transparent Depth", "Transmission Depth"}},
@@ -50,7 +54,9 @@ const std::vector<OutputList>& output_lists() {
   return lists;
 }
 
-Vec3 cycles_camera_point(const ShaderGlobals& g, const Vec3& p) { return g.world_to_camera.point(p); }
+Vec3 cycles_camera_point(const ShaderGlobals& g, const Vec3& p) {
+  return g.world_to_camera.point(p);
+}
 
 Vec3 window_coordinates(const ShaderGlobals& g) {
   if (!g.camera) return Vec3(0.0f);
@@ -92,8 +98,8 @@ void eval_tex_coord(const Instruction& ins, const ShaderProgram& program, const 
     store3(r, ins.out[0], d);
     store3(r, ins.out[1], -d);
     store3(r, ins.out[2], Vec3(0.0f));
-    store3(r, ins.out[3], ins.data >= 0 ? Transform::from_rows(&program.data[ins.data]).vector(d)
-                                        : d);
+    store3(r, ins.out[3],
+           ins.data >= 0 ? Transform::from_rows(&program.data[ins.data]).vector(d) : d);
     return;
   }
   if (ins.mode == 0) {
@@ -102,8 +108,9 @@ void eval_tex_coord(const Instruction& ins, const ShaderProgram& program, const 
     store3(r, ins.out[2], Vec3(g.uv.x, g.uv.y, 0.0f));
     // Object: this object's space, or that of the node's chosen object (its inverse matrix
     // in the table).
-    store3(r, ins.out[3], ins.data >= 0 ? Transform::from_rows(&program.data[ins.data]).point(g.p)
-                                        : g.world_to_object.point(g.p));
+    store3(r, ins.out[3],
+           ins.data >= 0 ? Transform::from_rows(&program.data[ins.data]).point(g.p)
+                         : g.world_to_object.point(g.p));
     store3(r, ins.out[4], cycles_camera_point(g, g.p));
   } else {
     store3(r, ins.out[0], window_coordinates(g));
@@ -234,8 +241,8 @@ CompileStatus compile_input_node(const NodeDesc& desc, ShaderProgram* program, I
   return CompileStatus::kCompiled;
 }
 
-void eval_input_node(const Instruction& ins, const ShaderProgram& program,
-                     const ShaderGlobals& g, float* r) {
+void eval_input_node(const Instruction& ins, const ShaderProgram& program, const ShaderGlobals& g,
+                     float* r) {
   switch (ins.kind) {
     case kTexCoord:
       eval_tex_coord(ins, program, g, r);

@@ -19,8 +19,8 @@ void eval_input_node(const Instruction& ins, const ShaderProgram& program,
 //   "PhotonColorToFloat" (Rec.709 luminance, Blender's colour-to-float conversion),
 //   each with input "In" and output "Out"; and "PhotonBlockBegin", a marker (no effect) where
 //   the code a Bump node re-runs at offset positions (its Height's nodes) begins.
-CompileStatus compile_convert_node(const NodeDesc& desc, ShaderProgram* program,
-                                   Instruction* out, std::string* error);
+CompileStatus compile_convert_node(const NodeDesc& desc, ShaderProgram* program, Instruction* out,
+                                   std::string* error);
 void eval_convert_node(const Instruction& ins, const ShaderProgram& program,
                        const ShaderGlobals& globals, float* registers);
 

@@ -12,8 +12,7 @@ namespace photon {
 
 using CompileNodeFn = CompileStatus (*)(const NodeDesc&, ShaderProgram*, Instruction*,
                                         std::string*);
-using EvalNodeFn = void (*)(const Instruction&, const ShaderProgram&, const ShaderGlobals&,
-                            float*);
+using EvalNodeFn = void (*)(const Instruction&, const ShaderProgram&, const ShaderGlobals&, float*);
 
 struct NodeFamilyEntry {
   NodeFamily family;

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <vector>
 
+#include "photon/scene/scene.h"
 #include "photon/shading/attribute_nodes.h"
 #include "photon/shading/input_nodes.h"
 #include "photon/shading/node_registry.h"
-#include "photon/scene/scene.h"
 
 namespace photon {
 namespace {
@@ -196,8 +196,8 @@ CompileStatus compile_normal_node(const NodeDesc& desc, ShaderProgram* program, 
   return CompileStatus::kUnknownNode;
 }
 
-void eval_normal_node(const Instruction& ins, const ShaderProgram& program,
-                      const ShaderGlobals& g, float* r) {
+void eval_normal_node(const Instruction& ins, const ShaderProgram& program, const ShaderGlobals& g,
+                      float* r) {
   if (ins.kind == kBump) {
     const size_t index = static_cast<size_t>(&ins - program.code.data());
     eval_bump(ins, program, g, r, index);

@@ -1,6 +1,7 @@
 // Compiling and running shader programs (scene/shader_program.h): the node descriptions the
-// add-on sends, what a program reads at a shading point, and the register helpers. Each node family (maths, colour, textures, ...) compiles its
-// nodes from a NodeDesc and evaluates its instructions in its own file.
+// add-on sends, what a program reads at a shading point, and the register helpers. Each node family
+// (maths, colour, textures, ...) compiles its nodes from a NodeDesc and evaluates its instructions
+// in its own file.
 #pragma once
 
 #include <cstdint>
@@ -19,24 +20,24 @@ struct Mesh;
 
 // One node as the add-on describes it (see addon/photon/sync/shader_program.py).
 struct NodeDesc {
-  std::string type;                             // bl_idname, e.g. "ShaderNodeMath"
-  std::map<std::string, std::string> enums;     // enum and bool properties ("ADD", "True")
-  std::map<std::string, double> numbers;        // int and float properties
-  std::map<std::string, int32_t> inputs;        // socket identifier -> first register
-  std::map<std::string, int32_t> outputs;       // socket identifier -> first register (used ones)
-  std::vector<float> table;                     // node-specific tables (ramps, curves)
+  std::string type;                          // bl_idname, e.g. "ShaderNodeMath"
+  std::map<std::string, std::string> enums;  // enum and bool properties ("ADD", "True")
+  std::map<std::string, double> numbers;     // int and float properties
+  std::map<std::string, int32_t> inputs;     // socket identifier -> first register
+  std::map<std::string, int32_t> outputs;    // socket identifier -> first register (used ones)
+  std::vector<float> table;                  // node-specific tables (ramps, curves)
 };
 
 // What input nodes read at a shading point (world space unless named otherwise).
 struct ShaderGlobals {
-  Vec3 p{0.0f};          // position
-  Vec3 n{0.0f, 0.0f, 1.0f};   // shading normal, on the incoming ray's side
-  Vec3 ng{0.0f, 0.0f, 1.0f};  // true (geometric) normal, on the incoming ray's side
+  Vec3 p{0.0f};                     // position
+  Vec3 n{0.0f, 0.0f, 1.0f};         // shading normal, on the incoming ray's side
+  Vec3 ng{0.0f, 0.0f, 1.0f};        // true (geometric) normal, on the incoming ray's side
   Vec3 incoming{0.0f, 0.0f, 1.0f};  // towards where the ray came from (Cycles' I)
-  Vec2 uv{0.0f, 0.0f};   // the active UV map
-  Vec3 dpdu{0.0f}, dpdv{0.0f};  // UV tangents (zero when unknown)
+  Vec2 uv{0.0f, 0.0f};              // the active UV map
+  Vec3 dpdu{0.0f}, dpdv{0.0f};      // UV tangents (zero when unknown)
   bool backfacing = false;
-  Vec3 generated{0.0f};  // Generated coordinates (mesh texture space, [0, 1]^3)
+  Vec3 generated{0.0f};        // Generated coordinates (mesh texture space, [0, 1]^3)
   Vec3 generated_scale{1.0f};  // d generated / d object position (per axis)
   Transform object_to_world;
   Transform world_to_object;
@@ -51,8 +52,8 @@ struct ShaderGlobals {
   // Light Path: the ray that reached this point.
   uint32_t ray_flags = 1;  // LightPathFlag bits
   float ray_length = 0.0f;
-  float ray_depth = 0.0f, diffuse_depth = 0.0f, glossy_depth = 0.0f,
-        transparent_depth = 0.0f, transmission_depth = 0.0f;
+  float ray_depth = 0.0f, diffuse_depth = 0.0f, glossy_depth = 0.0f, transparent_depth = 0.0f,
+        transmission_depth = 0.0f;
   bool is_background = false;  // a world shader: p is irrelevant, incoming is -direction
   const TextureSet* textures = nullptr;
   // The mesh point: named attributes are interpolated on triangle `primitive` of `mesh` at
@@ -89,8 +90,12 @@ enum class CompileStatus { kUnknownNode, kCompiled, kError };
 // The program's evaluator (program_eval.cpp) dispatches on Instruction::family.
 
 // Register access: a vector input or output is three consecutive floats.
-inline float load1(const float* r, int32_t i) { return r[i]; }
-inline Vec3 load3(const float* r, int32_t i) { return Vec3(r[i], r[i + 1], r[i + 2]); }
+inline float load1(const float* r, int32_t i) {
+  return r[i];
+}
+inline Vec3 load3(const float* r, int32_t i) {
+  return Vec3(r[i], r[i + 1], r[i + 2]);
+}
 inline void store1(float* r, int32_t i, float v) {
   if (i >= 0) r[i] = v;
 }

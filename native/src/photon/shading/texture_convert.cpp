@@ -342,8 +342,8 @@ bool write_mip_chain(const BandSource& src, bool linearize, TextureAlpha alpha, 
       return false;
     }
     if (!src.fetch(y0, y1, rows, error)) return false;
-    if (nch == 4 && (alpha == TextureAlpha::kIgnore ||
-                     (alpha == TextureAlpha::kAssociate && src.unassociated)))
+    if (nch == 4 &&
+        (alpha == TextureAlpha::kIgnore || (alpha == TextureAlpha::kAssociate && src.unassociated)))
       apply_alpha(rows, static_cast<size_t>(y1 - y0) * w, alpha, byte_source);
     if (linearize) {
       // sRGB -> linear on the colour channels only (alpha is not colour), in place.
@@ -513,11 +513,11 @@ uint64_t texture_key(const ConvertRequest& request, const std::atomic<bool>* can
     *error = "cancelled";
     return 0;
   }
-  const std::string settings =
-      std::string(kTextureFormatVersion) + "|" + what + "|" + (request.srgb ? "srgb" : "linear") +
-      (request.alpha == TextureAlpha::kAssociate ? "|premultiplied"
-       : request.alpha == TextureAlpha::kIgnore  ? "|ignore-alpha"
-                                                 : "");
+  const std::string settings = std::string(kTextureFormatVersion) + "|" + what + "|" +
+                               (request.srgb ? "srgb" : "linear") +
+                               (request.alpha == TextureAlpha::kAssociate ? "|premultiplied"
+                                : request.alpha == TextureAlpha::kIgnore  ? "|ignore-alpha"
+                                                                          : "");
   const uint64_t key = OIIO::xxhash::XXH64(settings.data(), settings.size(), content);
   return key ? key : 1;
 }

@@ -122,8 +122,8 @@ TextureSet::TextureSet(const std::vector<ImageTexture>& textures,
   std::vector<uint64_t> keys(n, 0);
   std::vector<std::string> errors(n);
   for (size_t i = 0; i < n; ++i)
-    requests[i] = ConvertRequest{textures[i].path, textures[i].pixels, textures[i].srgb,
-                                 textures[i].alpha};
+    requests[i] =
+        ConvertRequest{textures[i].path, textures[i].pixels, textures[i].srgb, textures[i].alpha};
   // Content keys (hashing reads every byte), then one conversion per distinct key; both in
   // parallel over textures, and each conversion is itself parallel.
   tbb::parallel_for(size_t(0), n,

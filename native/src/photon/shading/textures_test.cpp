@@ -11,8 +11,8 @@
 
 #include "photon/render/material_eval.h"
 #include "photon/session/scene_resources.h"
-#include "photon/testing/test_scenes.h"
 #include "photon/shading/texture_convert.h"
+#include "photon/testing/test_scenes.h"
 #include "photon/testing/timing_slack.h"
 
 namespace photon {

@@ -26,9 +26,9 @@ std::vector<Checkpoint> render_checkpoints(const Scene& scene, const RenderSetti
   const RenderContext& context = resources.context();
   const std::unique_ptr<Integrator> integrator = make_integrator(s.integrator);
   integrator->prepare(context, PrepareControl{});
-  Film film(film_frame(scene.camera, s.full_width, s.full_height, 0, 0, s.full_width,
-                       s.full_height),
-            film_options(s));
+  Film film(
+      film_frame(scene.camera, s.full_width, s.full_height, 0, 0, s.full_width, s.full_height),
+      film_options(s));
   const std::atomic<bool> cancel{false};
   std::vector<Checkpoint> out;
   RenderControl control;

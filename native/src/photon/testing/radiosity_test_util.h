@@ -4,17 +4,19 @@
 #include <string>
 #include <vector>
 
-#include "photon/session/scene_resources.h"
 #include "photon/integrators/integrator.h"
 #include "photon/integrators/radiosity/radiosity_material.h"
 #include "photon/integrators/radiosity/radiosity_mesh.h"
+#include "photon/session/scene_resources.h"
 
 namespace photon {
 
 struct RadiosityFixture {
   explicit RadiosityFixture(Scene s)
-      : scene(std::move(s)), resources(scene, settings, &warnings),
-        context(resources.context()), accel(resources.accel()) {}
+      : scene(std::move(s)),
+        resources(scene, settings, &warnings),
+        context(resources.context()),
+        accel(resources.accel()) {}
   RadiosityMesh mesh(float patch_size) {
     RadiosityMeshSettings ms;
     ms.patch_size = patch_size;

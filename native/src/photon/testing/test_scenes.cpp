@@ -77,8 +77,8 @@ Camera make_look_at_camera(const Vec3& eye, const Vec3& target, float fov_y, flo
   const Vec3 up = cross(right, forward);
   // Columns: camera +X = right, +Y = up, +Z = -forward, translation = eye.
   const Vec3 z = -forward;
-  const float rows[12] = {right.x, up.x, z.x, eye.x, right.y, up.y, z.y, eye.y,
-                          right.z, up.z, z.z, eye.z};
+  const float rows[12] = {right.x, up.x,  z.x,     eye.x, right.y, up.y,
+                          z.y,     eye.y, right.z, up.z,  z.z,     eye.z};
   cam.camera_to_world = Transform::from_rows(rows);
   const float half_h = std::tan(fov_y * 0.5f);
   cam.window_min_y = -half_h;
@@ -101,11 +101,11 @@ Scene make_cornell_box(float light_power) {
   const int32_t green = material("green", Vec3(0.12f, 0.45f, 0.15f));
 
   // Room: x in [-1, 1], y in [-1, 1], z in [0, 2]; open towards -y where the camera is.
-  add_mesh_instance(&scene, make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}), white);   // floor
-  add_mesh_instance(&scene, make_quad({-1, -1, 2}, {0, 2, 0}, {2, 0, 0}), white);   // ceiling
-  add_mesh_instance(&scene, make_quad({-1, 1, 0}, {2, 0, 0}, {0, 0, 2}), white);    // back
-  add_mesh_instance(&scene, make_quad({-1, -1, 0}, {0, 2, 0}, {0, 0, 2}), red);     // left
-  add_mesh_instance(&scene, make_quad({1, -1, 0}, {0, 0, 2}, {0, 2, 0}), green);    // right
+  add_mesh_instance(&scene, make_quad({-1, -1, 0}, {2, 0, 0}, {0, 2, 0}), white);  // floor
+  add_mesh_instance(&scene, make_quad({-1, -1, 2}, {0, 2, 0}, {2, 0, 0}), white);  // ceiling
+  add_mesh_instance(&scene, make_quad({-1, 1, 0}, {2, 0, 0}, {0, 0, 2}), white);   // back
+  add_mesh_instance(&scene, make_quad({-1, -1, 0}, {0, 2, 0}, {0, 0, 2}), red);    // left
+  add_mesh_instance(&scene, make_quad({1, -1, 0}, {0, 0, 2}, {0, 2, 0}), green);   // right
   add_mesh_instance(&scene, make_box({-0.6f, -0.1f, 0.0f}, {-0.05f, 0.5f, 1.2f}), white);
   add_mesh_instance(&scene, make_box({0.1f, -0.6f, 0.0f}, {0.65f, -0.05f, 0.6f}), white);
 

@@ -25,7 +25,6 @@ Scene make_caustic_box(float light_power = 60.0f);
 
 // A camera at `eye` looking at `target` (world +Z up) with the given vertical field of view
 // for an image of aspect width / height.
-Camera make_look_at_camera(const Vec3& eye, const Vec3& target, float fov_y_radians,
-                           float aspect);
+Camera make_look_at_camera(const Vec3& eye, const Vec3& target, float fov_y_radians, float aspect);
 
 }  // namespace photon

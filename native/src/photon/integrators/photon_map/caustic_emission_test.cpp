@@ -8,10 +8,10 @@
 #include <cstdio>
 #include <cstring>
 
-#include "photon/integrators/photon_map/caustic_targets.h"
-#include "photon/lights/photon_aim.h"
-#include "photon/integrators/photon_map/photon_tracer.h"
 #include "photon/base/sampling.h"
+#include "photon/integrators/photon_map/caustic_targets.h"
+#include "photon/integrators/photon_map/photon_tracer.h"
+#include "photon/lights/photon_aim.h"
 #include "photon/session/scene_resources.h"
 #include "photon/testing/test_scenes.h"
 

@@ -34,7 +34,7 @@ class GuidedSquare {
   Vec2 sample(Vec2 u, float* density) const;
 
  private:
-  float cell_[kGuideCells];               // probability of each cell, [column][row]
+  float cell_[kGuideCells];  // probability of each cell, [column][row]
   float column_cdf_[kGuideResolution + 1];
 };
 

@@ -65,7 +65,8 @@ uint32_t IrradianceCache::build(uint32_t begin, uint32_t end) {
   // Median split on the widest axis of the centres; ties broken by index, so the tree depends
   // only on the records.
   const Vec3 extent = chi - clo;
-  const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
+  const int axis =
+      extent.x >= extent.y && extent.x >= extent.z ? 0 : (extent.y >= extent.z ? 1 : 2);
   const uint32_t mid = begin + (end - begin) / 2;
   std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end,
                    [&](uint32_t a, uint32_t b) {

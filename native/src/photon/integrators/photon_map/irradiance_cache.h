@@ -22,8 +22,8 @@ namespace photon {
 
 struct IrradianceRecord {
   Vec3 p;
-  Vec3 n;          // unit shading normal on the side the gather rays left
-  Vec3 value;      // reflected radiance for albedo 1 (multiply by the diffuse reflectance)
+  Vec3 n;               // unit shading normal on the side the gather rays left
+  Vec3 value;           // reflected radiance for albedo 1 (multiply by the diffuse reflectance)
   float radius = 0.0f;  // Ward's R_i, world units
 };
 

@@ -5,9 +5,9 @@
 
 #include <cmath>
 
+#include "photon/base/rng.h"
 #include "photon/integrators/photon_map/photon_map.h"
 #include "photon/integrators/photon_map/radiance_cache.h"
-#include "photon/base/rng.h"
 
 namespace photon {
 namespace {

@@ -539,10 +539,10 @@ void PhotonMapIntegrator::shade_diffuse_spectral(const RenderContext& context, c
   } else if (gather) {
     add_incident(final_gather(context, x, bsdf, s.final_gather_rays, sampler), &sv.light->indirect);
   } else if (!state_.global.empty()) {
-    add_reflected(
-        state_.global.reflected_estimate(x.p, bsdf.ng(), static_cast<size_t>(std::max(s.gather_count, 1)),
-                                   state_.global_radius, kPhotonIndirect, albedo, &scratch),
-        &result->indirect, &sv.light->indirect);
+    add_reflected(state_.global.reflected_estimate(
+                      x.p, bsdf.ng(), static_cast<size_t>(std::max(s.gather_count, 1)),
+                      state_.global_radius, kPhotonIndirect, albedo, &scratch),
+                  &result->indirect, &sv.light->indirect);
   }
 }
 

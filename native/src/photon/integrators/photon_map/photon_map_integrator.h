@@ -12,8 +12,8 @@
 #pragma once
 
 #include "photon/integrators/camera_path.h"
-#include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/photon_map/prepared_state_io.h"
+#include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/registry.h"
 
 namespace photon {

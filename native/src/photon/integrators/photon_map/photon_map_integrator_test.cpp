@@ -52,7 +52,8 @@ Scene emissive_furnace(float rho, float le) {
 
 TEST(PhotonMapIntegrator, EmissiveFurnaceConvergesToLeOverOneMinusAlbedo) {
   // Final gathering through the irradiance cache, per sample, and the preview.
-  for (auto [final_gather, cache] : {std::pair{16, true}, std::pair{16, false}, std::pair{0, false}}) {
+  for (auto [final_gather, cache] :
+       {std::pair{16, true}, std::pair{16, false}, std::pair{0, false}}) {
     const Scene scene = emissive_furnace(0.6f, 1.0f);
     RenderSettings s = settings_for(24, 8);
     s.photons = 100000;

@@ -56,8 +56,8 @@ bool PhotonSources::emit_caustic(Sampler& sampler, EmittedPhoton* out) const {
   float u_pick;
   const size_t k = caustic_.sample(sampler.get_1d(), &u_pick);
   const Vec2 u_pos = sampler.get_2d(), u_dir = sampler.get_2d();
-  if (!sources_[k]->sample_le_towards(targets_, PhotonFrame{center_, radius_}, u_pick, u_pos,
-                                      u_dir, sampler, out))
+  if (!sources_[k]->sample_le_towards(targets_, PhotonFrame{center_, radius_}, u_pick, u_pos, u_dir,
+                                      sampler, out))
     return false;
   out->power = out->power / caustic_.probability(k);
   out->emitter = sources_[k];

@@ -9,9 +9,9 @@
 #include "photon/base/distribution.h"
 #include "photon/integrators/integrator.h"
 #include "photon/integrators/photon_map/caustic_targets.h"
-#include "photon/lights/photon_aim.h"
 #include "photon/lights/emissive_mesh.h"
 #include "photon/lights/emitter_set.h"
+#include "photon/lights/photon_aim.h"
 
 namespace photon {
 

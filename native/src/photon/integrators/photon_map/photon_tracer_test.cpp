@@ -14,8 +14,10 @@ namespace {
 // Everything a trace needs, built from a scene.
 struct Fixture {
   explicit Fixture(Scene s)
-      : scene(std::move(s)), resources(scene, settings, &warnings),
-        context(resources.context()), emissive(resources.emissive()) {}
+      : scene(std::move(s)),
+        resources(scene, settings, &warnings),
+        context(resources.context()),
+        emissive(resources.emissive()) {}
   PhotonTraceResult trace(const PhotonTraceSettings& ts, int threads = 0) {
     const PhotonSources sources(context);
     PrepareControl control;
@@ -112,8 +114,10 @@ TEST(PhotonTracer, MapsDoNotDependOnThreadCount) {
   ASSERT_EQ(one.global.size(), two.global.size());
   ASSERT_EQ(one.caustic.size(), two.caustic.size());
   ASSERT_GT(one.caustic.size(), 0u);
-  EXPECT_EQ(0, std::memcmp(one.global.data(), two.global.data(), one.global.size() * sizeof(Photon)));
-  EXPECT_EQ(0, std::memcmp(one.caustic.data(), two.caustic.data(), one.caustic.size() * sizeof(Photon)));
+  EXPECT_EQ(0,
+            std::memcmp(one.global.data(), two.global.data(), one.global.size() * sizeof(Photon)));
+  EXPECT_EQ(
+      0, std::memcmp(one.caustic.data(), two.caustic.data(), one.caustic.size() * sizeof(Photon)));
   ts.seed = 6;
   const PhotonTraceResult other = f.trace(ts, 2);
   EXPECT_NE(0, std::memcmp(one.global.data(), other.global.data(),

@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "photon/base/cancel_poll.h"
-#include "photon/integrators/photon_map/photon_map.h"
 #include "photon/base/rng.h"
+#include "photon/integrators/photon_map/photon_map.h"
 
 namespace photon {
 

@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "photon/integrators/photon_map/gather_guide.h"
 #include "photon/base/math.h"
+#include "photon/integrators/photon_map/gather_guide.h"
 
 namespace photon {
 

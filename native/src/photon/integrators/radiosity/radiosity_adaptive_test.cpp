@@ -5,11 +5,11 @@
 
 #include <cstring>
 
+#include "photon/base/rng.h"
 #include "photon/integrators/radiosity/radiosity_field.h"
 #include "photon/integrators/radiosity/radiosity_mesh.h"
 #include "photon/integrators/radiosity/radiosity_solver.h"
 #include "photon/testing/radiosity_test_util.h"
-#include "photon/base/rng.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

@@ -3,10 +3,10 @@
 #include <chrono>
 
 #include "photon/integrators/camera_path.h"
-#include "photon/render/material_eval.h"
 #include "photon/integrators/radiosity/radiosity_material.h"
 #include "photon/integrators/radiosity/radiosity_refine.h"
 #include "photon/integrators/radiosity/radiosity_solver.h"
+#include "photon/render/material_eval.h"
 
 namespace photon {
 

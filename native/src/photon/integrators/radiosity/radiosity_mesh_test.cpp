@@ -2,9 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include "photon/base/rng.h"
 #include "photon/integrators/radiosity/radiosity_field.h"
 #include "photon/testing/radiosity_test_util.h"
-#include "photon/base/rng.h"
 #include "photon/testing/test_scenes.h"
 #include "photon/testing/test_util.h"
 

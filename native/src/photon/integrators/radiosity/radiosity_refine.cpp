@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "photon/integrators/radiosity/radiosity_material.h"
 #include "photon/base/rng.h"
+#include "photon/integrators/radiosity/radiosity_material.h"
 
 namespace photon {
 namespace {

@@ -5,11 +5,11 @@
 #include <chrono>
 #include <cstdio>
 
+#include "photon/base/sampling.h"
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/photon_map/photon_sources.h"
 #include "photon/integrators/radiosity/radiosity_material.h"
 #include "photon/integrators/radiosity/radiosity_params.h"
-#include "photon/base/sampling.h"
 
 namespace photon {
 namespace {

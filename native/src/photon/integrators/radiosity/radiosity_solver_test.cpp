@@ -7,8 +7,8 @@
 
 #include "photon/integrators/radiosity/radiosity_field.h"
 #include "photon/integrators/radiosity/radiosity_integrator.h"
-#include "photon/testing/radiosity_test_util.h"
 #include "photon/session/render_session.h"
+#include "photon/testing/radiosity_test_util.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {

@@ -62,12 +62,12 @@ void SppmIntegrator::prepare(const RenderContext& context, const PrepareControl&
   const double records = static_cast<double>(pilot.photons.size()) / kPilotPhotons;
   photons_per_iteration_ = sppm_photons_that_fit(requested, records, budget);
   if (photons_per_iteration_ < requested && control.warn)
-    control.warn(
-        "sppm_photons_per_iteration = " + std::to_string(requested) + " would need about " +
-        bytes_text(static_cast<double>(requested) * records * kSppmPeakBytesPerRecord) +
-        " for one iteration's photons, more than half of the memory available (" +
-        bytes_text(2.0 * budget) + "): " + std::to_string(photons_per_iteration_) +
-        " photons per iteration are traced instead");
+    control.warn("sppm_photons_per_iteration = " + std::to_string(requested) +
+                 " would need about " +
+                 bytes_text(static_cast<double>(requested) * records * kSppmPeakBytesPerRecord) +
+                 " for one iteration's photons, more than half of the memory available (" +
+                 bytes_text(2.0 * budget) + "): " + std::to_string(photons_per_iteration_) +
+                 " photons per iteration are traced instead");
 }
 
 void SppmIntegrator::initial_radii(const RenderContext& context, const Film& film,

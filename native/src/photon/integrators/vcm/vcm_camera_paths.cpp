@@ -198,8 +198,8 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
   const Vec2 jitter = camera.filter().sample(sampler.get_2d());
   const Vec2 lens = sampler.get_2d();
   const float inv_w = 1.0f / camera.full_width(), inv_h = 1.0f / camera.full_height();
-  Ray ray = generate_camera_ray(camera.camera(), (px + jitter.x) * inv_w,
-                                (py + jitter.y) * inv_h, lens);
+  Ray ray =
+      generate_camera_ray(camera.camera(), (px + jitter.x) * inv_w, (py + jitter.y) * inv_h, lens);
   const float filter_pdf = camera.filter_pdf(jitter.x - 0.5f, jitter.y - 0.5f);
   const float cos_axis = camera.cos_axis(ray.direction);
   if (!(filter_pdf > 0.0f) || !(cos_axis > 0.0f)) return out;

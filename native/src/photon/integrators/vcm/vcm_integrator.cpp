@@ -85,9 +85,8 @@ float VcmIntegrator::radius(int iteration) const {
 bool VcmIntegrator::iterate(const RenderContext& context, Film& film, uint32_t iteration,
                             const std::atomic<bool>& cancel) {
   const RenderSettings& s = *context.settings;
-  const VcmMis mis =
-      VcmMis::make(s.vcm_mode, radius(static_cast<int>(iteration)),
-                   std::max<uint64_t>(s.vcm_light_paths, 1), kMaxPathLength);
+  const VcmMis mis = VcmMis::make(s.vcm_mode, radius(static_cast<int>(iteration)),
+                                  std::max<uint64_t>(s.vcm_light_paths, 1), kMaxPathLength);
   // Spectral mode: one set of wavelengths for the iteration's light and camera subpaths, so
   // connections and merges join them at the same wavelengths; stratified over the iterations.
   SampledWavelengths wavelengths;

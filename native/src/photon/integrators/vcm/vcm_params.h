@@ -14,11 +14,11 @@ namespace photon {
 enum class VcmMode : uint8_t { kVcm, kBpt, kPpm };
 
 struct VcmParams {
-  int vcm_iterations = 64;              // light and camera passes
-  uint64_t vcm_light_paths = 100000;    // light subpaths traced per iteration
-  float vcm_initial_radius = 0.0f;      // merging radius of the first iteration; 0 = automatic
-  float vcm_alpha = 2.0f / 3.0f;        // radius shrinking, r_i = r_1 i^((alpha - 1) / 2)
-  float vcm_time = 0.0f;                // > 0: stop after this many seconds
+  int vcm_iterations = 64;            // light and camera passes
+  uint64_t vcm_light_paths = 100000;  // light subpaths traced per iteration
+  float vcm_initial_radius = 0.0f;    // merging radius of the first iteration; 0 = automatic
+  float vcm_alpha = 2.0f / 3.0f;      // radius shrinking, r_i = r_1 i^((alpha - 1) / 2)
+  float vcm_time = 0.0f;              // > 0: stop after this many seconds
   VcmMode vcm_mode = VcmMode::kVcm;
 };
 
