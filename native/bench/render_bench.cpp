@@ -29,6 +29,8 @@ RenderSettings frame_settings(IntegratorType integrator) {
   s.caustic_photons = 50000;
   s.sppm_iterations = 16;
   s.sppm_photons_per_iteration = 50000;
+  s.vcm_iterations = 16;
+  s.vcm_light_paths = 50000;
   return s;
 }
 
