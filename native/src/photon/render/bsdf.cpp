@@ -1,6 +1,7 @@
 #include "photon/render/bsdf.h"
 
 #include "photon/render/bsdf_lobes.h"
+#include "photon/render/bsdf_mixture.h"
 
 namespace photon {
 
@@ -174,117 +175,31 @@ int Bsdf::selection_probabilities(const Vec3& wo_local, uint8_t mask, float* pro
   return selected;
 }
 
-void Bsdf::eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
-                        uint8_t mask, const float* probs, Vec3* f, float* pdf) const {
-  *f = Vec3(0.0f);
-  *pdf = 0.0f;
-  const bool reflect = dot(wi_world, ng_) * dot(wo_world, ng_) > 0.0f;
-  for (int i = 0; i < count_; ++i) {
-    const Lobe& l = lobes_[i];
-    if (!(l.flags() & mask) || is_delta(l)) continue;
-    Vec3 lwo, lwi;
-    if (!lobe_local(i, wo_world, wo, wi_world, wi, &lwo, &lwi)) continue;
-    const LobeEval<Vec3> e = eval_lobe(l, l.weight, l.f0, lwo, lwi, reflect, eta(l));
-    // Each diffuse lobe is shadowed by how far its own normal bends from the smooth one.
-    const Vec3& ln = own_frame_[i] ? lobe_frames_[i].n : frame_.n;
-    const bool shadowed =
-        is_diffuse_type(l) &&
-        (own_frame_[i] ? has_smooth_ && length_squared(smooth_n_ - ln) > 0.0f : bumped_);
-    *f += shadowed ? e.f * bump_shadowing(reflect ? smooth_n_ : -smooth_n_, ln, wi_world) : e.f;
-    if (probs) *pdf += probs[i] * e.pdf;
-  }
-}
+namespace {
+
+// The lobes' own RGB colours (bsdf_mixture.h's colour model).
+struct RgbColours {
+  using Color = Vec3;
+  using Sample = BsdfSample;
+  static constexpr bool kSpectral = false;
+  const Lobe* lobes;
+  const Vec3& weight(int i) const { return lobes[i].weight; }
+  const Vec3& f0(int i) const { return lobes[i].f0; }
+  bool dispersive(int) const { return false; }
+};
+
+}  // namespace
 
 Vec3 Bsdf::eval(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
-  Vec3 wo_l, wo_w;
-  if (!to_local(wo, &wo_l, &wo_w) || !is_unit_direction(wi)) return Vec3(0.0f);
-  const Vec3 wi_w = unit(wi);
-  Vec3 f;
-  float pdf;
-  eval_mixture(wo_w, wo_l, wi_w, frame_.to_local(wi_w), mask, nullptr, &f, &pdf);
-  return is_finite(f) ? f : Vec3(0.0f);
+  return BsdfMixture::eval(*this, RgbColours{lobes_}, wo, wi, mask);
 }
 
 float Bsdf::pdf(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
-  Vec3 wo_l, wo_w;
-  if (!to_local(wo, &wo_l, &wo_w) || !is_unit_direction(wi)) return 0.0f;
-  float probs[kMaxLobes];
-  if (selection_probabilities(wo_l, mask, probs) == 0) return 0.0f;
-  const Vec3 wi_w = unit(wi);
-  Vec3 f;
-  float pdf;
-  eval_mixture(wo_w, wo_l, wi_w, frame_.to_local(wi_w), mask, probs, &f, &pdf);
-  return std::isfinite(pdf) ? pdf : 0.0f;
+  return BsdfMixture::pdf(*this, RgbColours{lobes_}, wo, wi, mask);
 }
 
 bool Bsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample* out) const {
-  Vec3 wo_l, wo_w;
-  if (!to_local(wo, &wo_l, &wo_w)) return false;
-  if (!std::isfinite(u_lobe) || !std::isfinite(u.x) || !std::isfinite(u.y)) return false;
-  u_lobe = std::clamp(u_lobe, 0.0f, 0.99999994f);
-  u = Vec2(std::clamp(u.x, 0.0f, 0.99999994f), std::clamp(u.y, 0.0f, 0.99999994f));
-  float probs[kMaxLobes];
-  if (selection_probabilities(wo_l, mask, probs) == 0) return false;
-
-  // Choose a lobe and remap u_lobe to [0, 1) within its interval for the lobe's own choice.
-  int k = -1;
-  float cdf = 0.0f;
-  for (int i = 0; i < count_; ++i) {
-    if (probs[i] <= 0.0f) continue;
-    k = i;
-    if (u_lobe < cdf + probs[i]) break;
-    cdf += probs[i];
-  }
-  const float u_choice = std::clamp((u_lobe - cdf) / probs[k], 0.0f, 0.99999994f);
-  const Lobe& lobe = lobes_[k];
-  const float lobe_eta = eta(lobe);
-  const float wo_ng = dot(wo_w, ng_);
-  // wo in the chosen lobe's frame (its selection probability is zero when wo is below it).
-  const Frame& lobe_frame = own_frame_[k] ? lobe_frames_[k] : frame_;
-  const Vec3 lobe_wo = own_frame_[k] ? lobe_frame.to_local(wo_w) : wo_l;
-
-  if (is_delta(lobe)) {
-    DeltaSample<Vec3> s;
-    if (!sample_delta_lobe(lobe, lobe.weight, lobe.f0, lobe_wo, lobe_eta, u_choice, &s))
-      return false;
-    const Vec3 wi = normalize(lobe_frame.to_world(s.wi));
-    // The geometric normal must agree with the event (Veach 1997, sec. 5.3).
-    const bool reflect = dot(wi, ng_) * wo_ng > 0.0f;
-    if (reflect != ((s.flags & kLobeReflection) != 0)) return false;
-    const float pdf = probs[k] * s.prob;
-    if (!(pdf > 0.0f)) return false;
-    out->wi = wi;
-    out->pdf = pdf;
-    out->weight = s.f / pdf;
-    out->flags = s.flags;
-    out->transparent = lobe.type == LobeType::kTransparent;
-    return is_finite(out->weight);
-  }
-
-  Vec3 wi_l;
-  bool reflection;
-  if (!sample_lobe(lobe, lobe_wo, lobe_eta, u_choice, u, &wi_l, &reflection)) return false;
-  const Vec3 wi = normalize(lobe_frame.to_world(wi_l));
-  wi_l = frame_.to_local(wi);
-  const Vec3 lobe_wi = own_frame_[k] ? lobe_frame.to_local(wi) : wi_l;
-  const bool reflect = dot(wi, ng_) * wo_ng > 0.0f;
-  // An event that ends on the wrong side of the shading or the geometric surface (a microfacet
-  // reflection below the horizon, say) is not returned: eval() and pdf() count neither, so
-  // sample() follows pdf() exactly. Glass must check the event itself, since a reflection
-  // below the surface lands where its own refraction density is not zero.
-  if (reflect != reflection || (reflection ? lobe_wi.z <= 0.0f : lobe_wi.z >= 0.0f)) return false;
-  if (!(eval_lobe(lobe, lobe.weight, lobe.f0, lobe_wo, lobe_wi, reflect, lobe_eta).pdf > 0.0f))
-    return false;
-  Vec3 f;
-  float pdf;
-  eval_mixture(wo_w, wo_l, wi, wi_l, mask, probs, &f, &pdf);
-  if (!(pdf > 0.0f) || !std::isfinite(pdf)) return false;
-  out->wi = wi;
-  out->pdf = pdf;
-  out->weight = f * (std::fabs(wi_l.z) / pdf);
-  // The lobe's flags, narrowed to the event that happened (reflection or transmission).
-  out->flags = lobe.flags() & ~(reflect ? kLobeTransmission : kLobeReflection);
-  return is_finite(out->weight);
+  return BsdfMixture::sample(*this, RgbColours{lobes_}, wo, u_lobe, u, mask, out);
 }
 
 Vec3 Bsdf::diffuse_reflectance() const {

@@ -148,6 +148,7 @@ class Bsdf {
 
  private:
   friend class SpectralBsdf;  // the same lobes at sampled wavelengths (spectral_bsdf.h)
+  friend struct BsdfMixture;  // eval, pdf and sample for both colour models (bsdf_mixture.h)
   // Normalises wo and maps it to the shading frame; false when it cannot be shaded (NaN,
   // zero, at or below the shading or geometric horizon, or no lobes).
   bool to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const;
@@ -155,9 +156,6 @@ class Bsdf {
   float eta(const Lobe& lobe) const;
   // Lobe choice probabilities at wo over the lobes in `mask`; returns how many are non-zero.
   int selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const;
-  // Sum of f over the masked non-delta lobes and, when `probs` is given, the mixture pdf.
-  void eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
-                    uint8_t mask, const float* probs, Vec3* f, float* pdf) const;
 
   Frame frame_{Vec3(0.0f, 0.0f, 1.0f)};
   Vec3 ng_{0.0f, 0.0f, 1.0f};

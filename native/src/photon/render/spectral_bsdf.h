@@ -56,10 +56,19 @@ class SpectralBsdf {
   // Hemispherical reflectance of the diffuse lobes at the wavelengths.
   SampledSpectrum diffuse_reflectance() const;
 
- private:
-  void eval_mixture(const Vec3& wo_world, const Vec3& wo, const Vec3& wi_world, const Vec3& wi,
-                    uint8_t mask, const float* probs, SampledSpectrum* f, float* pdf) const;
+  // Its colour model for the lobe mixture (bsdf_mixture.h): the lobes' colours uplifted at the
+  // wavelengths, and the dispersive lobes' indices per wavelength.
+  using Color = SampledSpectrum;
+  using Sample = SpectralBsdfSample;
+  static constexpr bool kSpectral = true;
+  const SampledSpectrum& weight(int lobe) const { return weight_[lobe]; }
+  const SampledSpectrum& f0(int lobe) const { return f0_[lobe]; }
+  bool dispersive(int lobe) const { return dispersive_[lobe]; }
+  float eta(int lobe, int lane) const { return eta_[lobe][lane]; }
+  int active_count() const { return active_count_; }
+  int active(int k) const { return active_[k]; }
 
+ private:
   const Bsdf* bsdf_ = nullptr;
   SampledWavelengths wl_;
   SampledSpectrum weight_[Bsdf::kMaxLobes];
