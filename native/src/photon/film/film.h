@@ -11,6 +11,9 @@
 // the same samples give the same bits whichever thread or tile added them.
 #pragma once
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -104,6 +107,20 @@ class Film {
   int data_floats() const { return data_floats_; }
   float* data_row(int row) {
     return data_.data() + static_cast<size_t>(row) * width_ * data_floats_;
+  }
+
+  // Calls f(col, row) for every film pixel, rows spread over the calling TBB arena, each pixel
+  // by one thread; stops between rows once `cancel` is set. For integrators that refine every
+  // pixel once per iteration (SPPM, VCM); the pixel integrators' loop is pixel_integrator.h's.
+  template <class F>
+  void for_each_pixel(const std::atomic<bool>& cancel, F&& f) const {
+    tbb::parallel_for(tbb::blocked_range<int>(0, height_, 1),
+                      [&](const tbb::blocked_range<int>& rows) {
+                        for (int row = rows.begin(); row != rows.end(); ++row) {
+                          if (cancel.load(std::memory_order_relaxed)) return;
+                          for (int col = 0; col < width_; ++col) f(col, row);
+                        }
+                      });
   }
 
   // Pixel values of `rect` after `samples` samples: RGBA rows (top first, 4 floats a pixel).

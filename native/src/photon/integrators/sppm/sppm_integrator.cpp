@@ -74,7 +74,6 @@ void SppmIntegrator::initial_radii(const RenderContext& context, const Film& fil
                                    const std::atomic<bool>& cancel) {
   const RenderSettings& s = *context.settings;
   const FilmFrame& f = film.frame();
-  const int width = film.width(), height = film.height();
   const float floor_radius = 1e-6f * context.accel->length_scale();
   if (s.sppm_initial_radius > 0.0f) {
     // A disc wider than the scene gathers no more photons, only reads them all at every pixel.
@@ -96,12 +95,8 @@ void SppmIntegrator::initial_radii(const RenderContext& context, const Film& fil
     const float r = kAutoRadiusPixels * length(d);
     return std::isfinite(r) ? r : 0.0f;
   };
-  tbb::parallel_for(tbb::blocked_range<int>(0, height, 1), [&](const auto& rows) {
-    for (int row = rows.begin(); row != rows.end(); ++row) {
-      if (cancel.load(std::memory_order_relaxed)) return;
-      for (int col = 0; col < width; ++col)
-        pixels_[film.index(col, row)].radius = centre_radius(film.frame_x(col), film.frame_y(row));
-    }
+  film.for_each_pixel(cancel, [&](int col, int row) {
+    pixels_[film.index(col, row)].radius = centre_radius(film.frame_x(col), film.frame_y(row));
   });
   // Pixels that see nothing at their centre take the median radius of the whole frame's pixels
   // that see something, so a render border does not change it (a band of a frame equals the
@@ -157,33 +152,27 @@ bool SppmIntegrator::iterate(const RenderContext& context, Film& film, uint32_t 
   t0 = Clock::now();
   const float alpha = s.sppm_alpha;
   std::atomic<uint64_t> non_finite{0};
-  tbb::parallel_for(tbb::blocked_range<int>(0, film.height(), 1), [&](const auto& rows) {
-    for (int row = rows.begin(); row != rows.end(); ++row) {
-      if (cancel.load(std::memory_order_relaxed)) return;
-      for (int col = 0; col < film.width(); ++col) {
-        SppmPixel& pixel = pixels_[film.index(col, row)];
-        Sampler sampler(s.seed, hash_combine(kCameraStream, film.frame_pixel(col, row)), iteration,
-                        static_cast<uint32_t>(s.sppm_iterations));
-        const Ray ray = film.camera_ray(film.frame_x(col), film.frame_y(row), sampler);
-        const SppmCameraSample c =
-            trace_sppm_camera(context, ray, sampler, photons, pixel.radius, wl);
-        if (!is_finite(c.direct) || !is_finite(c.phi)) {
-          non_finite.fetch_add(1, std::memory_order_relaxed);
-          continue;
-        }
-        pixel.direct += c.direct;
-        pixel.alpha += film.coverage(c.alpha, c.holdout);
-        if (c.photons > 0) {
-          // Eqs. 6-8: keep alpha of the new photons, shrink the disc to match, and scale the
-          // flux gathered so far to the smaller disc.
-          const float m = static_cast<float>(c.photons);
-          const float n_new = pixel.n + alpha * m;
-          const float r_new = pixel.radius * std::sqrt(n_new / (pixel.n + m));
-          pixel.tau = (pixel.tau + c.phi) * ((r_new * r_new) / (pixel.radius * pixel.radius));
-          pixel.n = n_new;
-          pixel.radius = r_new;
-        }
-      }
+  film.for_each_pixel(cancel, [&](int col, int row) {
+    SppmPixel& pixel = pixels_[film.index(col, row)];
+    Sampler sampler(s.seed, hash_combine(kCameraStream, film.frame_pixel(col, row)), iteration,
+                    static_cast<uint32_t>(s.sppm_iterations));
+    const Ray ray = film.camera_ray(film.frame_x(col), film.frame_y(row), sampler);
+    const SppmCameraSample c = trace_sppm_camera(context, ray, sampler, photons, pixel.radius, wl);
+    if (!is_finite(c.direct) || !is_finite(c.phi)) {
+      non_finite.fetch_add(1, std::memory_order_relaxed);
+      return;
+    }
+    pixel.direct += c.direct;
+    pixel.alpha += film.coverage(c.alpha, c.holdout);
+    if (c.photons > 0) {
+      // Eqs. 6-8: keep alpha of the new photons, shrink the disc to match, and scale the
+      // flux gathered so far to the smaller disc.
+      const float m = static_cast<float>(c.photons);
+      const float n_new = pixel.n + alpha * m;
+      const float r_new = pixel.radius * std::sqrt(n_new / (pixel.n + m));
+      pixel.tau = (pixel.tau + c.phi) * ((r_new * r_new) / (pixel.radius * pixel.radius));
+      pixel.n = n_new;
+      pixel.radius = r_new;
     }
   });
   stats_.camera_seconds += seconds_since(t0);

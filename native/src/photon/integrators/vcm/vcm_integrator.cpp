@@ -111,26 +111,21 @@ bool VcmIntegrator::iterate(const RenderContext& context, Film& film, uint32_t i
 
   t0 = Clock::now();
   std::atomic<uint64_t> non_finite{0};
-  tbb::parallel_for(tbb::blocked_range<int>(0, film.height(), 1), [&](const auto& rows) {
-    for (int row = rows.begin(); row != rows.end(); ++row) {
-      if (cancel.load(std::memory_order_relaxed)) return;
-      for (int col = 0; col < film.width(); ++col) {
-        const size_t i = film.index(col, row);
-        const uint64_t pixel_index = film.frame_pixel(col, row);
-        Sampler sampler(s.seed, hash_combine(kCameraStream, pixel_index), iteration,
-                        static_cast<uint32_t>(s.vcm_iterations));
-        const VcmCameraSample c = trace_vcm_camera_path(
-            context, *lights_, *camera_, mis, pass, pixel_index % mis.light_paths, grid,
-            film.frame_x(col), film.frame_y(row), sampler, colours);
-        // Holdouts are not rendered by VCM: the coverage is the camera ray's alone.
-        const Vec3 estimate = c.radiance + light_image[i];
-        if (!is_finite(estimate)) {
-          non_finite.fetch_add(1, std::memory_order_relaxed);
-          continue;
-        }
-        film.add_light(i, estimate, film.coverage(c.alpha, 0.0f));
-      }
+  film.for_each_pixel(cancel, [&](int col, int row) {
+    const size_t i = film.index(col, row);
+    const uint64_t pixel_index = film.frame_pixel(col, row);
+    Sampler sampler(s.seed, hash_combine(kCameraStream, pixel_index), iteration,
+                    static_cast<uint32_t>(s.vcm_iterations));
+    const VcmCameraSample c =
+        trace_vcm_camera_path(context, *lights_, *camera_, mis, pass, pixel_index % mis.light_paths,
+                              grid, film.frame_x(col), film.frame_y(row), sampler, colours);
+    // Holdouts are not rendered by VCM: the coverage is the camera ray's alone.
+    const Vec3 estimate = c.radiance + light_image[i];
+    if (!is_finite(estimate)) {
+      non_finite.fetch_add(1, std::memory_order_relaxed);
+      return;
     }
+    film.add_light(i, estimate, film.coverage(c.alpha, 0.0f));
   });
   stats_.camera_seconds += seconds_since(t0);
   if (cancel.load()) return false;
