@@ -4,6 +4,7 @@
 // lists them, --print-schema writes the schema as JSON (staged with the add-on).
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 #include <map>
 #include <string>
 
+#include "photon/integrators/photon_map/photon_memory.h"
 #include "photon/integrators/render_params.h"
 #include "photon/session/image_io.h"
 #include "photon/session/render_session.h"
@@ -93,9 +95,46 @@ bool set_param(RenderSettings* settings, const RenderParam& p, const std::string
   return true;
 }
 
+// A whole number of pixels from 1 to kMaxSide in `text`, strictly (no sign, no fraction, no
+// trailing characters): atoi read "1e9" as 1 and "-5" as -5.
+constexpr int kMaxSide = 65536;
+bool parse_side(const char* text, int* out) {
+  char* end = nullptr;
+  errno = 0;
+  const long v = std::strtol(text, &end, 10);
+  if (end == text || *end != '\0' || errno != 0 || v < 1 || v > kMaxSide) return false;
+  *out = static_cast<int>(v);
+  return true;
+}
+
+// Peak bytes a render of `s` holds for its pixels: the film's sums, the session's image, the
+// tiles handed over and kept here to write the passes (16 bytes of RGBA each, plus the light
+// passes' 12 bytes per pass).
+double frame_bytes(const RenderSettings& s) {
+  const double pixels = static_cast<double>(s.full_width) * s.full_height;
+  const double per_pixel = 16.0 * 3 + (s.light_passes ? kPassFloats * 4.0 * 3 : 0.0);
+  return pixels * per_pixel;
+}
+
+int render(int argc, char** argv);
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Nothing escapes as an abort: a failure is a message and a non-zero exit.
+  try {
+    return render(argc, argv);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: out of memory\n");
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+  }
+  return 1;
+}
+
+namespace {
+
+int render(int argc, char** argv) {
   RenderSettings settings;
   settings.full_width = settings.full_height = 256;
   std::string scene_name = "cornell", out, passes_prefix;
@@ -124,10 +163,13 @@ int main(int argc, char** argv) {
       return 0;
     } else if (arg == "--scene") {
       scene_name = next("--scene");
-    } else if (arg == "--width") {
-      settings.full_width = std::atoi(next("--width"));
-    } else if (arg == "--height") {
-      settings.full_height = std::atoi(next("--height"));
+    } else if (arg == "--width" || arg == "--height") {
+      const char* text = next(arg.c_str());
+      if (!parse_side(text, arg == "--width" ? &settings.full_width : &settings.full_height)) {
+        std::fprintf(stderr, "%s: '%s' is not a whole number of pixels from 1 to %d\n", arg.c_str(),
+                     text, kMaxSide);
+        return 2;
+      }
     } else if (arg == "--passes") {
       passes_prefix = next("--passes");
       settings.light_passes = true;
@@ -176,6 +218,18 @@ int main(int argc, char** argv) {
   }
   settings.x1 = settings.full_width;
   settings.y1 = settings.full_height;
+  const double needed = frame_bytes(settings), available = available_memory_bytes();
+  if (available > 0.0 && needed > available) {
+    std::fprintf(stderr,
+                 "error: a %dx%d image needs about %s of memory, more than the %s available\n",
+                 settings.full_width, settings.full_height, bytes_text(needed).c_str(),
+                 bytes_text(available).c_str());
+    return 1;
+  }
+  // Clamped settings are said before the render, not after it.
+  std::vector<std::string> early;
+  sanitized_settings(settings, &early);
+  for (const std::string& w : early) std::fprintf(stderr, "warning: %s\n", w.c_str());
   const float aspect = static_cast<float>(settings.full_width) / settings.full_height;
   scene->camera.window_min_x = scene->camera.window_min_y * aspect;
   scene->camera.window_max_x = scene->camera.window_max_y * aspect;
@@ -189,7 +243,9 @@ int main(int argc, char** argv) {
   }
   for (Tile& t : session.take_tiles(0.0)) tiles.push_back(std::move(t));
   session.wait();
-  for (const std::string& w : session.warnings()) std::fprintf(stderr, "warning: %s\n", w.c_str());
+  for (const std::string& w : session.warnings())
+    if (std::find(early.begin(), early.end(), w) == early.end())
+      std::fprintf(stderr, "warning: %s\n", w.c_str());
   const RenderStats stats = session.stats();
   std::printf("rendered %dx%d, %d spp, %d threads: build %.3f s, prepare %.3f s, render %.3f s\n",
               settings.full_width, settings.full_height, settings.samples, stats.threads,
@@ -242,3 +298,5 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+
+}  // namespace

@@ -1,6 +1,8 @@
 #include "photon/integrators/prepared_state_file.h"
 
 #include <OpenImageIO/hash.h>
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -33,11 +35,26 @@ std::string temporary_name(const std::string& path) {
   return path + ".partial-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
 }
 
+// Why `path` cannot be replaced by a prepared-state file ("" when it can): it exists and is not a
+// regular file (a device, a FIFO, a folder, a link), which renaming over it would destroy.
+std::string replace_refusal(const std::string& path) {
+  struct stat st;
+  if (::lstat(path.c_str(), &st) != 0) return "";  // nothing there yet
+  if (S_ISREG(st.st_mode)) return "";
+  return path + " exists and is not a regular file; refusing to replace it";
+}
+
 }  // namespace
 
 PreparedStateWriter::PreparedStateWriter(const std::string& path, IntegratorType type,
                                          uint64_t fingerprint)
     : path_(path), temp_path_(temporary_name(path)) {
+  error_ = replace_refusal(path);
+  if (!error_.empty()) {
+    failed_ = true;
+    temp_path_.clear();  // nothing created, nothing to remove
+    return;
+  }
   file_ = std::fopen(temp_path_.c_str(), "wb");
   if (!file_) {
     failed_ = true;
@@ -86,8 +103,10 @@ bool PreparedStateWriter::finish(std::string* error) {
   flush_block();
   if (!failed_) {
     const uint64_t tail[2] = {size_, combined_checksum(block_hashes_)};
+    // fsync: a full disk may refuse the blocks only when they are written out.
     if (std::fseek(file_, kSizeOffset, SEEK_SET) != 0 ||
-        std::fwrite(tail, sizeof tail, 1, file_) != 1 || std::fflush(file_) != 0) {
+        std::fwrite(tail, sizeof tail, 1, file_) != 1 || std::fflush(file_) != 0 ||
+        ::fsync(::fileno(file_)) != 0) {
       failed_ = true;
       error_ = "cannot write " + temp_path_ + ": " + errno_text();
     }
@@ -97,6 +116,14 @@ bool PreparedStateWriter::finish(std::string* error) {
     error_ = "cannot write " + temp_path_ + ": " + errno_text();
   }
   file_ = nullptr;
+  if (!failed_) {
+    // The path may have become a device or a folder while the state was written.
+    const std::string refusal = replace_refusal(path_);
+    if (!refusal.empty()) {
+      failed_ = true;
+      error_ = refusal;
+    }
+  }
   if (!failed_ && std::rename(temp_path_.c_str(), path_.c_str()) != 0) {
     failed_ = true;
     error_ = "cannot rename " + temp_path_ + " to " + path_ + ": " + errno_text();
@@ -125,8 +152,21 @@ bool PreparedStateReader::open(const std::string& path, IntegratorType type, uin
     if (error) *error = why;
     return false;
   };
-  file_ = std::fopen(path.c_str(), "rb");
-  if (!file_) return refuse("cannot open " + path + ": " + errno_text());
+  // Opened without blocking and checked on the open file: a FIFO with no writer would block
+  // fopen() for ever, and a device or a folder is no prepared state.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  if (fd < 0) return refuse("cannot open " + path + ": " + errno_text());
+  struct stat st;
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return refuse(path + " is not a regular file");
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  file_ = ::fdopen(fd, "rb");
+  if (!file_) {
+    ::close(fd);
+    return refuse("cannot open " + path + ": " + errno_text());
+  }
   char magic[8];
   uint32_t header[2];
   uint64_t rest[3];

@@ -3,12 +3,16 @@
 // border, threads or tile size.
 #include "photon/integrators/prepared_state_file.h"
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <future>
 #include <string>
 #include <vector>
 
@@ -101,6 +105,58 @@ TEST(PreparedStateFile, UnfinishedWriterLeavesNoFile) {
   EXPECT_FALSE(fs::exists(path));
   for (const auto& e : fs::directory_iterator(fs::temp_directory_path()))
     EXPECT_NE(e.path().string().rfind(path, 0), 0u) << e.path();
+}
+
+// A path that is a FIFO, a folder or a link is not replaced by a saved state (as root, a device
+// such as the null device would be destroyed), and loading from a FIFO with no writer returns at
+// once with a reason instead of blocking for ever.
+TEST(PreparedStateFile, NonRegularPathsAreRefusedWithoutBlocking) {
+  const std::string fifo = temp_path("state.fifo");
+  const std::string folder = temp_path("state_folder");
+  const std::string link = temp_path("state.link");
+  std::remove(fifo.c_str());
+  fs::remove_all(folder);
+  std::remove(link.c_str());
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  fs::create_directory(folder);
+  fs::create_symlink("/dev/null", link);
+  for (const std::string& path : {fifo, folder, link}) {
+    PreparedStateWriter w(path, IntegratorType::kPhotonMap, 1);
+    w.value<uint32_t>(5);
+    std::string error;
+    EXPECT_FALSE(w.finish(&error)) << path;
+    EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
+  }
+  struct stat st;
+  ASSERT_EQ(::lstat(fifo.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISFIFO(st.st_mode));
+  ASSERT_EQ(::lstat(folder.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISDIR(st.st_mode));
+  ASSERT_EQ(::lstat(link.c_str(), &st), 0);
+  EXPECT_TRUE(S_ISLNK(st.st_mode));
+
+  auto load = std::async(std::launch::async, [&] {
+    PreparedStateReader r;
+    std::string error;
+    const bool ok = r.open(fifo, IntegratorType::kPhotonMap, 1, &error);
+    return std::make_pair(ok, error);
+  });
+  if (load.wait_for(std::chrono::seconds(5)) != std::future_status::ready) {
+    // Blocked in open(): give it a writer so the test can end, and fail.
+    const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+    if (fd >= 0) ::close(fd);
+    ADD_FAILURE() << "loading a FIFO with no writer blocked";
+  }
+  const auto [ok, error] = load.get();
+  EXPECT_FALSE(ok);
+  EXPECT_NE(error.find("not a regular file"), std::string::npos) << error;
+  PreparedStateReader dir_reader;
+  std::string dir_error;
+  EXPECT_FALSE(dir_reader.open(folder, IntegratorType::kPhotonMap, 1, &dir_error));
+  EXPECT_NE(dir_error.find("not a regular file"), std::string::npos) << dir_error;
+  std::remove(fifo.c_str());
+  fs::remove_all(folder);
+  std::remove(link.c_str());
 }
 
 TEST(PreparedStateFingerprint, FollowsSceneAndSettingsButNotTheBorder) {
