@@ -91,6 +91,13 @@ uint64_t parse_mem_available(const std::string& meminfo) {
   return 0;
 }
 
+uint64_t count_that_fits(uint64_t requested, double bytes_each, double budget_bytes) {
+  if (!(budget_bytes > 0.0) || !(bytes_each > 0.0)) return requested;
+  const double fit = std::floor(budget_bytes / bytes_each);
+  return fit >= static_cast<double>(requested) ? requested
+                                               : std::max<uint64_t>(1, static_cast<uint64_t>(fit));
+}
+
 uint64_t available_memory_bytes() {
   std::ifstream file("/proc/meminfo");
   if (!file) return 0;

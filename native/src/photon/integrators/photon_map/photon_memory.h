@@ -35,6 +35,10 @@ struct PhotonMemoryPlan {
 // exceeds `budget_bytes`. A budget of 0 (unknown) leaves the counts unchanged.
 PhotonMemoryPlan plan_photon_memory(const PhotonMemoryRequest& request, double budget_bytes);
 
+// How many of `requested` items of `bytes_each` fit `budget_bytes`: all when they fit, else as
+// many as fit but at least one. An unknown budget or size (0) leaves the request unchanged.
+uint64_t count_that_fits(uint64_t requested, double bytes_each, double budget_bytes);
+
 // MemAvailable of /proc/meminfo in bytes (the kernel's estimate of memory available to a new
 // program without swapping); 0 when it cannot be read.
 uint64_t available_memory_bytes();

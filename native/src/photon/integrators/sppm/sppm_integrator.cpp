@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "photon/integrators/merge_radius.h"
 #include "photon/integrators/photon_map/photon_memory.h"
 #include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/spectral_path.h"
@@ -37,11 +38,7 @@ const std::atomic<bool>& cancel_flag(const RenderControl& control) {
 }  // namespace
 
 uint64_t sppm_photons_that_fit(uint64_t requested, double records_per_photon, double budget_bytes) {
-  const double per_photon = records_per_photon * kSppmPeakBytesPerRecord;
-  if (!(budget_bytes > 0.0) || !(per_photon > 0.0)) return requested;
-  const double fit = std::floor(budget_bytes / per_photon);
-  return fit >= static_cast<double>(requested) ? requested
-                                               : std::max<uint64_t>(1, static_cast<uint64_t>(fit));
+  return count_that_fits(requested, records_per_photon * kSppmPeakBytesPerRecord, budget_bytes);
 }
 
 void SppmIntegrator::prepare(const RenderContext& context, const PrepareControl& control) {
@@ -71,13 +68,19 @@ void SppmIntegrator::prepare(const RenderContext& context, const PrepareControl&
 }
 
 void SppmIntegrator::initial_radii(const RenderContext& context, const Film& film,
-                                   const std::atomic<bool>& cancel) {
+                                   const RenderControl& control) {
   const RenderSettings& s = *context.settings;
+  const std::atomic<bool>& cancel = cancel_flag(control);
   const FilmFrame& f = film.frame();
   const float floor_radius = 1e-6f * context.accel->length_scale();
   if (s.sppm_initial_radius > 0.0f) {
-    // A disc wider than the scene gathers no more photons, only reads them all at every pixel.
-    const float radius = std::min(s.sppm_initial_radius, 2.0f * sources_->scene_radius());
+    const float footprint = median_pixel_footprint(context, f);
+    const RadiusRange range =
+        meaningful_radius_range(footprint, sources_->scene_radius(), kAutoRadiusPixels * footprint);
+    std::string warning;
+    const float radius =
+        clamp_radius("sppm_initial_radius", s.sppm_initial_radius, range, &warning);
+    if (!warning.empty()) control.report_warning(warning);
     for (SppmPixel& p : pixels_) p.radius = std::max(radius, floor_radius);
     return;
   }
@@ -216,7 +219,7 @@ int SppmIntegrator::render(const RenderContext& context, Film& film, const Rende
     }
     pixels_.assign(film.pixel_count(), SppmPixel{});
     stats_ = IterationStats{};
-    initial_radii(context, film, cancel);
+    initial_radii(context, film, control);
     if (cancel.load()) return 0;
   }
   const double time_limit = s.sppm_time;

@@ -77,10 +77,10 @@ class SppmIntegrator final : public Integrator {
   const std::vector<SppmPixel>& pixels() const { return pixels_; }
 
  private:
-  // R for every pixel before the first iteration: the setting, or kAutoRadiusPixels pixel
-  // footprints at the surface the pixel's centre sees.
-  void initial_radii(const RenderContext& context, const Film& film,
-                     const std::atomic<bool>& cancel);
+  // R for every pixel before the first iteration: the setting (clamped to the meaningful
+  // range of merge_radius.h, with a warning), or kAutoRadiusPixels pixel footprints at the
+  // surface the pixel's centre sees.
+  void initial_radii(const RenderContext& context, const Film& film, const RenderControl& control);
   // Iteration `iteration` of the film's pixels; false when cancelled during it (its pixels are
   // then partly updated and the film is not to be iterated or read again).
   bool iterate(const RenderContext& context, Film& film, uint32_t iteration,

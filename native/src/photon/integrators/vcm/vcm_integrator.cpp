@@ -7,6 +7,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "photon/integrators/merge_radius.h"
+#include "photon/integrators/photon_map/photon_memory.h"
 #include "photon/integrators/photon_map/photon_sources.h"
 #include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/spectral_path.h"
@@ -53,40 +55,32 @@ IterationStats VcmIntegrator::render_stats() const {
   return use_fallback_ ? fallback_->render_stats() : stats_;
 }
 
-float VcmIntegrator::automatic_radius(const RenderContext& context, const Film& film) const {
-  // The distance between neighbouring pixels' centre rays at the depth each sees, on a grid of
-  // at most 64 x 64 pixels of the whole frame (not the rendered rectangle: a band of a frame
-  // must render with the full frame's radius); the median.
-  const FilmFrame& f = film.frame();
-  const Camera& camera = f.camera;
-  const float inv_w = 1.0f / f.full_width, inv_h = 1.0f / f.full_height;
-  const int step = std::max(1, std::max(f.full_width, f.full_height) / 64);
-  std::vector<float> seen;
-  for (int py = 0; py < f.full_height; py += step)
-    for (int px = 0; px < f.full_width; px += step) {
-      const Vec2 lens(0.5f, 0.5f);
-      const Ray a = generate_camera_ray(camera, (px + 0.5f) * inv_w, (py + 0.5f) * inv_h, lens);
-      const Ray b = generate_camera_ray(camera, (px + 1.5f) * inv_w, (py + 0.5f) * inv_h, lens);
-      Hit hit;
-      if (!context.accel->intersect(a, kVisibleCamera, &hit)) continue;
-      const float r = kAutoRadiusPixels *
-                      length((b.origin + hit.t * b.direction) - (a.origin + hit.t * a.direction));
-      if (std::isfinite(r) && r > 0.0f) seen.push_back(r);
-    }
-  if (seen.empty()) return 0.0f;
-  std::nth_element(seen.begin(), seen.begin() + seen.size() / 2, seen.end());
-  return seen[seen.size() / 2];
-}
-
 float VcmIntegrator::radius(int iteration) const {
   return initial_radius_ * std::pow(static_cast<float>(iteration + 1), 0.5f * (alpha_ - 1.0f));
+}
+
+void VcmIntegrator::plan_light_paths(const RenderContext& context, const RenderControl& control) {
+  const RenderSettings& s = *context.settings;
+  const uint64_t requested = std::max<uint64_t>(s.vcm_light_paths, 1);
+  const double budget = kVcmMemoryFraction * static_cast<double>(available_memory_bytes());
+  const VcmMis mis = VcmMis::make(s.vcm_mode, radius(0), requested, kMaxPathLength);
+  const VcmLightPathPlan plan =
+      plan_vcm_light_paths(context, *lights_, *camera_, mis, requested, budget);
+  light_paths_ = plan.light_paths;
+  if (light_paths_ < requested)
+    control.report_warning("vcm_light_paths = " + std::to_string(requested) + " would need about " +
+                           bytes_text(plan.requested_bytes) +
+                           " for one iteration's light subpaths, more than half of the memory "
+                           "available (" +
+                           bytes_text(2.0 * budget) + "): " + std::to_string(light_paths_) +
+                           " light subpaths per iteration are traced instead");
 }
 
 bool VcmIntegrator::iterate(const RenderContext& context, Film& film, uint32_t iteration,
                             const std::atomic<bool>& cancel) {
   const RenderSettings& s = *context.settings;
-  const VcmMis mis = VcmMis::make(s.vcm_mode, radius(static_cast<int>(iteration)),
-                                  std::max<uint64_t>(s.vcm_light_paths, 1), kMaxPathLength);
+  const VcmMis mis =
+      VcmMis::make(s.vcm_mode, radius(static_cast<int>(iteration)), light_paths_, kMaxPathLength);
   // Spectral mode: one set of wavelengths for the iteration's light and camera subpaths, so
   // connections and merges join them at the same wavelengths; stratified over the iterations.
   SampledWavelengths wavelengths;
@@ -180,11 +174,19 @@ int VcmIntegrator::render(const RenderContext& context, Film& film, const Render
     stats_ = IterationStats{};
     alpha_ = s.vcm_alpha;
     const float floor_radius = 1e-6f * context.accel->length_scale();
-    initial_radius_ = s.vcm_initial_radius > 0.0f
-                          ? std::min(s.vcm_initial_radius, 2.0f * scene_frame_.radius)
-                          : automatic_radius(context, film);
+    const float footprint = median_pixel_footprint(context, film.frame());
+    const float automatic = kAutoRadiusPixels * footprint;
+    initial_radius_ = automatic;
+    if (s.vcm_initial_radius > 0.0f) {
+      std::string warning;
+      initial_radius_ = clamp_radius(
+          "vcm_initial_radius", s.vcm_initial_radius,
+          meaningful_radius_range(footprint, scene_frame_.radius, automatic), &warning);
+      if (!warning.empty()) control.report_warning(warning);
+    }
     if (!(initial_radius_ > floor_radius))
       initial_radius_ = std::max(floor_radius, 0.01f * scene_frame_.radius);
+    plan_light_paths(context, control);
   }
   const double time_limit = s.vcm_time;
   int done = control.first_pass;

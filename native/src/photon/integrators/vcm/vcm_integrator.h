@@ -26,6 +26,11 @@
 // Normal, Cryptomatte, ...) are rendered once from the camera rays before the first iteration,
 // as for SPPM. Not rendered: the light passes (left black, with a warning), holdouts, shadow
 // catchers and ray-visibility flags other than the camera's.
+//
+// Memory: one iteration's light subpaths are held until its camera pass has read them; when
+// vcm_light_paths would not fit half of the memory available (estimated from a pilot,
+// vcm_light_paths.h), fewer are traced per iteration, with a warning. A requested initial
+// radius is clamped into the range where merging means something (merge_radius.h).
 #pragma once
 
 #include <atomic>
@@ -41,6 +46,9 @@
 
 namespace photon {
 
+// Share of the memory available at the start that one iteration's light subpaths may use.
+constexpr double kVcmMemoryFraction = 0.5;
+
 class VcmIntegrator final : public Integrator {
  public:
   VcmIntegrator();
@@ -55,15 +63,18 @@ class VcmIntegrator final : public Integrator {
   float radius(int iteration) const;
 
  private:
-  float automatic_radius(const RenderContext& context, const Film& film) const;
   bool iterate(const RenderContext& context, Film& film, uint32_t iteration,
                const std::atomic<bool>& cancel);
+  // light_paths_: vcm_light_paths, or fewer with a warning when one iteration's light subpaths
+  // would not fit kVcmMemoryFraction of the available memory.
+  void plan_light_paths(const RenderContext& context, const RenderControl& control);
 
   std::unique_ptr<VcmLights> lights_;
   PhotonFrame scene_frame_;
   std::unique_ptr<VcmCamera> camera_;  // of the film being rendered
   float initial_radius_ = 0.0f;
   float alpha_ = 2.0f / 3.0f;
+  uint64_t light_paths_ = 1;  // per iteration
   IterationStats stats_;
   // Cameras light tracing cannot reach (orthographic, depth of field) render with SPPM.
   std::unique_ptr<SppmIntegrator> fallback_;

@@ -3,10 +3,12 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "photon/integrators/camera_path.h"
 #include "photon/integrators/path_walker.h"
+#include "photon/integrators/photon_map/photon_memory.h"
 
 namespace photon {
 namespace {
@@ -189,6 +191,47 @@ VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights
     pass.rays += out.rays;
   }
   return pass;
+}
+
+double vcm_light_pass_peak_bytes(double paths, double vertices_per_path, double splats_per_path) {
+  // path_end in the pass and path_size in the chunks: 8 bytes each per subpath.
+  const double pass = paths * (vertices_per_path * sizeof(VcmLightVertex) +
+                               splats_per_path * sizeof(VcmSplat) + 8.0);
+  const double grid = paths * vertices_per_path * 24.0;
+  return std::max(2.0 * pass + 8.0 * paths, pass + grid);
+}
+
+VcmLightPathPlan plan_vcm_light_paths(const RenderContext& context, const VcmLights& lights,
+                                      const VcmCamera& camera, const VcmMis& mis,
+                                      uint64_t requested, double budget_bytes) {
+  VcmLightPathPlan plan;
+  plan.light_paths = requested;
+  // Below this bound (every subpath storing a vertex and a splat at every bounce) no pilot is
+  // needed.
+  const double bound = mis.max_path_length;
+  if (!(budget_bytes > 0.0) ||
+      vcm_light_pass_peak_bytes(static_cast<double>(requested), bound, bound) <= budget_bytes)
+    return plan;
+  constexpr uint64_t kPilotPaths = 4096;
+  constexpr uint32_t kPilotIteration = 0xFFFFFFFFu;
+  VcmMis pilot_mis = mis;
+  pilot_mis.light_paths = kPilotPaths;
+  const std::atomic<bool> no_cancel{false};
+  const VcmLightPass pilot =
+      trace_vcm_light_paths(context, lights, camera, pilot_mis, kPilotIteration, no_cancel);
+  const double vertices = static_cast<double>(pilot.vertices.size()) / kPilotPaths;
+  const double splats = static_cast<double>(pilot.splats.size()) / kPilotPaths;
+  plan.requested_bytes =
+      vcm_light_pass_peak_bytes(static_cast<double>(requested), vertices, splats);
+  plan.light_paths =
+      count_that_fits(requested, vcm_light_pass_peak_bytes(1.0, vertices, splats), budget_bytes);
+  // The grid indexes vertices with 32 bits; a tenth kept spare for subpaths longer than the
+  // pilot's.
+  if (vertices > 0.0)
+    plan.light_paths =
+        std::min<uint64_t>(plan.light_paths, static_cast<uint64_t>(0.9 * 4294967295.0 / vertices));
+  plan.light_paths = std::max<uint64_t>(plan.light_paths, 1);
+  return plan;
 }
 
 void apply_vcm_splats(const std::vector<VcmSplat>& splats, const VcmCamera& camera,

@@ -44,6 +44,25 @@ VcmLightPass trace_vcm_light_paths(const RenderContext& context, const VcmLights
                                    const std::atomic<bool>& cancel,
                                    const VcmColours& colours = VcmColours{});
 
+// Estimated peak bytes of one iteration's light pass for `paths` subpaths storing
+// `vertices_per_path` vertices and `splats_per_path` splats on average: the chunks' output and
+// the joined pass are alive together while they are joined, then the pass beside the merging
+// grid (vcm_grid.h, at most 24 bytes per vertex while it is built).
+double vcm_light_pass_peak_bytes(double paths, double vertices_per_path, double splats_per_path);
+
+struct VcmLightPathPlan {
+  uint64_t light_paths = 0;      // per iteration, at most the request
+  double requested_bytes = 0.0;  // estimated peak of the request (0 when no pilot was needed)
+};
+
+// Light subpaths per iteration whose pass fits `budget_bytes` (0 = unknown: the request). When
+// the request could exceed it, a pilot of a few thousand subpaths (from an iteration index no
+// render reaches) measures the vertices and splats per subpath. The count also stays below the
+// merging grid's 2^32 vertices. `mis` is the first iteration's.
+VcmLightPathPlan plan_vcm_light_paths(const RenderContext& context, const VcmLights& lights,
+                                      const VcmCamera& camera, const VcmMis& mis,
+                                      uint64_t requested, double budget_bytes);
+
 // Adds the splats to `image` (RGB per pixel of the region x0, y0 .. x1, y1 of the full frame)
 // in order.
 void apply_vcm_splats(const std::vector<VcmSplat>& splats, const VcmCamera& camera,

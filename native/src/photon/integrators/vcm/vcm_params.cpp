@@ -22,7 +22,7 @@ const ParamSchema<VcmParams>& vcm_schema() {
                  .soft_max = 4096,
                  .ui = {.column = 1}}),
           // A light subpath's vertices are stored until the iteration's camera pass has read
-          // them (about 80 bytes per vertex): 1e8 paths is already several GB.
+          // them: 1e8 paths is tens of GB, so the integrator traces fewer when they do not fit.
           param(&S::vcm_light_paths,
                 {.name = "vcm_light_paths",
                  .label = "Light Paths per Iteration",
