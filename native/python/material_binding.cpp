@@ -12,6 +12,7 @@
 #include "photon/scene/material_params.h"
 #include "photon/session/image_io.h"
 #include "photon/shading/texture_convert.h"
+#include "photon/spectral/dispersion.h"
 #include "program_binding.h"
 
 namespace py = pybind11;
@@ -109,9 +110,9 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   closure.params = default_params(closure.type);  // inputs the dict leaves out
   if (d.contains("sharp")) closure.sharp = d["sharp"].cast<bool>();
   if (d.contains("abbe")) {
-    // Non-finite or negative: no dispersion; glass catalogues stop near 100.
-    const float abbe = d["abbe"].cast<float>();
-    closure.abbe = std::isfinite(abbe) ? std::clamp(abbe, 0.0f, 1000.0f) : 0.0f;
+    // Non-finite or negative: no dispersion; others inside real materials' range (the add-on
+    // warns when it clamps).
+    closure.abbe = spectral::physical_abbe(d["abbe"].cast<float>());
   }
 
   if (d.contains("params")) {

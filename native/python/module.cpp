@@ -18,6 +18,7 @@
 #include "photon/session/render_session.h"
 #include "photon/shading/program_eval.h"
 #include "photon/shading/texture_convert.h"
+#include "photon/spectral/dispersion.h"
 #include "program_binding.h"
 #include "sppm_bindings.h"
 #include "stats_bindings.h"
@@ -688,6 +689,8 @@ PYBIND11_MODULE(_photon, m) {
 
   // Largest lamp power (W, a sun's W/m^2) and world radiance rendered; larger ones are clamped.
   m.attr("MAX_EMISSION") = emitter_range().hi;
+  // Abbe numbers of real materials; others are clamped into this range.
+  m.attr("ABBE_RANGE") = py::make_tuple(spectral::kMinAbbe, spectral::kMaxAbbe);
   m.attr("VISIBLE_CAMERA") = static_cast<uint32_t>(kVisibleCamera);
   m.attr("VISIBLE_DIFFUSE") = static_cast<uint32_t>(kVisibleDiffuse);
   m.attr("VISIBLE_GLOSSY") = static_cast<uint32_t>(kVisibleGlossy);

@@ -37,6 +37,14 @@ def test_spectral_settings_reach_the_native_scene(blender):
     assert [c.get("abbe") for c in closures["PlainGlass"]] == [None]
     assert result["native_abbe"]["Glass"] == [30.0]
     assert result["native_abbe"]["PlainGlass"] == [0.0]
+    # An Abbe number far below any material's (Cauchy's law then gave indices from -339 to
+    # 1137) is clamped to rutile's, with a warning naming the material.
+    assert [c.get("abbe") for c in closures["Absurd"]] == [9.0]
+    assert result["native_abbe"]["Absurd"] == [9.0]
+    assert result["native_abbe"]["raw_absurd"] == [9.0]
+    assert [w for w in result["warnings"] if "Abbe" in w] == [
+        "Material 'Absurd': Abbe number 0.001 is outside real materials' range (9 for rutile, "
+        "the most dispersive, to 200); rendering 9"]
 
     spectra = result["spectra"]
     assert spectra["plain"] == ["RGB", 6500.0, "D65"]

@@ -12,6 +12,7 @@ fall back to their nearest meaning (a shader: diffuse of its colour), never to s
 
 import math
 
+from .. import native
 from . import graph, nodes
 from .inputs import (DEFAULT_COLOR, MaterialContext, clamp_constant, closure_param,
                      closure_table, read_input, read_normal_map)
@@ -175,7 +176,7 @@ def _convert(material, reporter, textures):
         unique = list(dict.fromkeys(ctx.ignored_principled))
         reporter.warning(f"Material '{name}': Principled BSDF inputs not supported yet are "
                          f"rendered at their defaults: {', '.join(unique)}")
-    _add_dispersion(material, closures)
+    _add_dispersion(material, name, closures, reporter)
     scattering = sum(1 for c in closures if c["type"] not in ("EMISSION", "HOLDOUT"))
     if scattering > MAX_BSDF_LOBES:
         reporter.warning(f"Material '{name}': {scattering} BSDF closures; Photon shades the "
@@ -187,12 +188,24 @@ def _convert(material, reporter, textures):
 DISPERSIVE_CLOSURES = ("GLASS", "REFRACTION", "PRINCIPLED")
 
 
-def _add_dispersion(material, closures):
-    """The material's Abbe number on its glass closures (spectral mode disperses them)."""
+# Abbe numbers of real materials (the native module's; unbounded when it did not load).
+ABBE_RANGE = tuple(getattr(native.MODULE, "ABBE_RANGE", (0.0, math.inf)))
+
+
+def _add_dispersion(material, name, closures, reporter):
+    """The material's Abbe number on its glass closures (spectral mode disperses them), clamped
+    into real materials' range with a warning: near 0 Cauchy's law gives indices of hundreds."""
     settings = getattr(material, "photon", None)
     abbe = float(getattr(settings, "abbe_number", 0.0)) if settings is not None else 0.0
     if not math.isfinite(abbe) or abbe <= 0.0:
         return
+    low, high = ABBE_RANGE
+    if not low <= abbe <= high:
+        clamped = min(max(abbe, low), high)
+        reporter.warning(f"Material '{name}': Abbe number {abbe:g} is outside real materials' "
+                         f"range ({low:g} for rutile, the most dispersive, to {high:g}); "
+                         f"rendering {clamped:g}")
+        abbe = clamped
     for c in closures:
         if c["type"] in DISPERSIVE_CLOSURES:
             c["abbe"] = abbe

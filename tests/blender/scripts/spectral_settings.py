@@ -66,7 +66,8 @@ def main():
                              ("Refraction", "ShaderNodeBsdfRefraction", 40.0),
                              ("Principled", "ShaderNodeBsdfPrincipled", 20.0),
                              ("Diffuse", "ShaderNodeBsdfDiffuse", 20.0),
-                             ("PlainGlass", "ShaderNodeBsdfGlass", 0.0)):
+                             ("PlainGlass", "ShaderNodeBsdfGlass", 0.0),
+                             ("Absurd", "ShaderNodeBsdfGlass", 0.001)):
         _, found, _ = sync_materials.convert_material(glass_material(name, node, abbe), reporter,
                                                       textures)
         closures[name] = found
@@ -103,6 +104,9 @@ def main():
     result["native_abbe"] = {
         name: [c["abbe"] for c in _photon.describe_material(name, closures[name])["closures"]]
         for name in closures}
+    # An Abbe number that reaches the native module by another way than the add-on's sync.
+    result["native_abbe"]["raw_absurd"] = [c["abbe"] for c in _photon.describe_material(
+        "raw", [dict(closures["Glass"][0], abbe=0.001)])["closures"]]
     result["warnings"] = reporter.warnings
     result["panels"] = [name for name in ("PHOTON_PT_spectral", "PHOTON_PT_material")
                         if hasattr(bpy.types, name)]

@@ -1,15 +1,22 @@
 #include "photon/spectral/dispersion.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace photon::spectral {
 
+float physical_abbe(float abbe) {
+  if (!(abbe > 0.0f) || !std::isfinite(abbe)) return 0.0f;
+  return std::clamp(abbe, kMinAbbe, kMaxAbbe);
+}
+
 CauchyDispersion CauchyDispersion::from_abbe(float n_d, float abbe) {
   CauchyDispersion d;
   if (!std::isfinite(n_d)) return d;
   d.a = n_d;
-  if (!(abbe > 0.0f) || !std::isfinite(abbe)) return d;
+  abbe = physical_abbe(abbe);
+  if (abbe == 0.0f) return d;
   // n_F - n_C = B (1/F^2 - 1/C^2) = (n_d - 1) / V, then A from n(d) = n_d.
   const double f = kLambdaF, c = kLambdaC, dl = kLambdaD;
   d.b = (static_cast<double>(n_d) - 1.0) / (abbe * (1.0 / (f * f) - 1.0 / (c * c)));

@@ -10,11 +10,23 @@ constexpr float kLambdaD = 587.56f;  // helium d line, nm
 constexpr float kLambdaF = 486.13f;  // hydrogen F line, nm
 constexpr float kLambdaC = 656.27f;  // hydrogen C line, nm
 
+// The Abbe numbers of real transparent materials: rutile (TiO2, V about 9.8) disperses most of
+// those used in optics and jewellery, fluorite (CaF2, about 95) among the least; Blender's
+// slider stops at 200. Below about 0.76 Cauchy's law turns n(830 nm) - 1 against n_d - 1 (a glass
+// whose red index is below 1), and near 0 it gives indices of hundreds: such numbers are
+// clamped into this range (and the add-on says so).
+constexpr float kMinAbbe = 9.0f;
+constexpr float kMaxAbbe = 200.0f;
+
+// V inside [kMinAbbe, kMaxAbbe]; 0 (no dispersion) for V <= 0 or not finite.
+float physical_abbe(float abbe);
+
 struct CauchyDispersion {
   double a = 1.0;  // A
   double b = 0.0;  // B, nm^2
 
-  // V <= 0 or not finite (or n_d not finite) means no dispersion: n(lambda) = n_d.
+  // V <= 0 or not finite (or n_d not finite) means no dispersion: n(lambda) = n_d. Other V
+  // are taken through physical_abbe.
   static CauchyDispersion from_abbe(float n_d, float abbe);
   float ior(float lambda) const { return static_cast<float>(a + b / (double(lambda) * lambda)); }
 };

@@ -71,6 +71,26 @@ TEST(SpectralDispersion, CauchyReproducesNdAndAbbe) {
   }
 }
 
+// An Abbe number of 0.001 gave indices from -339 to 1137 across the visible range: numbers
+// outside real materials' range are taken at its ends, so every wavelength's index stays near n_d.
+TEST(SpectralDispersion, AbsurdAbbeNumbersAreTakenAtRealMaterialsEnds) {
+  EXPECT_FLOAT_EQ(physical_abbe(0.001f), kMinAbbe);
+  EXPECT_FLOAT_EQ(physical_abbe(1e6f), kMaxAbbe);
+  EXPECT_FLOAT_EQ(physical_abbe(55.0f), 55.0f);
+  EXPECT_FLOAT_EQ(physical_abbe(-1.0f), 0.0f);
+  for (float nd : {1.05f, 1.5f, 2.42f})
+    for (float v : {1e-3f, 0.5f, kMinAbbe}) {
+      const auto d = CauchyDispersion::from_abbe(nd, v);
+      const auto rutile = CauchyDispersion::from_abbe(nd, kMinAbbe);
+      for (float lambda : {360.0f, 450.0f, 650.0f, 830.0f}) {
+        EXPECT_FLOAT_EQ(d.ior(lambda), rutile.ior(lambda));
+        // Cauchy's law at V = 9: n - 1 stays within [0.9, 1.3] of n_d - 1.
+        EXPECT_GT(d.ior(lambda), 1.0f + 0.9f * (nd - 1.0f)) << nd << " " << v << " " << lambda;
+        EXPECT_LT(d.ior(lambda), 1.0f + 1.3f * (nd - 1.0f)) << nd << " " << v << " " << lambda;
+      }
+    }
+}
+
 TEST(SpectralDispersion, CauchyFitOfBk7MatchesSellmeier) {
   // Schott N-BK7: n_d = 1.5168, V = 64.17; Sellmeier indices 1.52532 (450 nm), 1.51452 (650 nm).
   const auto d = CauchyDispersion::from_abbe(1.5168f, 64.17f);
