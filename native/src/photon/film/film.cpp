@@ -102,17 +102,44 @@ void Film::clear() {
   non_finite_ = 0;
 }
 
+float gamut_blend(const Vec3& c) {
+  const float lowest = std::min(c.x, std::min(c.y, c.z));
+  if (lowest >= 0.0f) return 1.0f;
+  const float y = luminance(c);
+  if (!(y > 0.0f)) return 0.0f;
+  return y / (y - lowest);
+}
+
+float Film::pixel_gamut_blend(size_t pixel, float colour_scale) const {
+  if (!options_.into_gamut) return 1.0f;
+  const float* s = &sums_[4 * pixel];
+  return gamut_blend(Vec3(finite_average(s[0], colour_scale), finite_average(s[1], colour_scale),
+                          finite_average(s[2], colour_scale)));
+}
+
+Vec3 Film::resolved_colour(const Vec3& sum, float colour_scale, float blend) const {
+  const Vec3 c(finite_average(sum.x, colour_scale), finite_average(sum.y, colour_scale),
+               finite_average(sum.z, colour_scale));
+  if (blend == 1.0f) return c;
+  // The clamp takes rounding's last bits, a pixel whose luminance is not positive (noise about
+  // black) to black, and a pass more saturated than its pixel into the gamut.
+  return max(blend_towards_grey(c, blend), Vec3(0.0f));
+}
+
 void Film::resolve_rgba(const FilmRect& rect, int samples, float* rgba) const {
   check_inside(rect, width_, height_);
   const float inv_spp = 1.0f / static_cast<float>(std::max(samples, 1));
   const float colour_scale = inv_spp * options_.exposure;  // the exposure scales colour only
   for (int row = 0; row < rect.height; ++row)
     for (int col = 0; col < rect.width; ++col) {
-      const float* s = &sums_[4 * index(rect.x + col, rect.y + row)];
+      const size_t pixel = index(rect.x + col, rect.y + row);
+      const float* s = &sums_[4 * pixel];
       float* out = rgba + (static_cast<size_t>(row) * rect.width + col) * 4;
-      out[0] = finite_average(s[0], colour_scale);
-      out[1] = finite_average(s[1], colour_scale);
-      out[2] = finite_average(s[2], colour_scale);
+      const Vec3 c = resolved_colour(Vec3(s[0], s[1], s[2]), colour_scale,
+                                     pixel_gamut_blend(pixel, colour_scale));
+      out[0] = c.x;
+      out[1] = c.y;
+      out[2] = c.z;
       out[3] = s[3] * inv_spp;
     }
 }
@@ -127,11 +154,13 @@ std::vector<PassImage> Film::resolve_passes(const FilmRect& rect, int samples) c
       PassImage pass{light_pass_names()[k], 3, "RGB", std::vector<float>(pixels * 3)};
       for (int row = 0; row < rect.height; ++row)
         for (int col = 0; col < rect.width; ++col) {
-          const Vec3& sum = pass_sums_[index(rect.x + col, rect.y + row) * kPassCount + k];
+          const size_t pixel = index(rect.x + col, rect.y + row);
+          const Vec3 c = resolved_colour(pass_sums_[pixel * kPassCount + k], colour_scale,
+                                         pixel_gamut_blend(pixel, colour_scale));
           float* p = &pass.pixels[(static_cast<size_t>(row) * rect.width + col) * 3];
-          p[0] = finite_average(sum.x, colour_scale);
-          p[1] = finite_average(sum.y, colour_scale);
-          p[2] = finite_average(sum.z, colour_scale);
+          p[0] = c.x;
+          p[1] = c.y;
+          p[2] = c.z;
         }
       out.push_back(std::move(pass));
     }

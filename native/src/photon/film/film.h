@@ -43,6 +43,10 @@ struct FilmOptions {
   float exposure = 1.0f;  // scales light: Combined, the light passes and Emit
   bool transparent_background = false;
   bool light_passes = false;
+  // Spectral mode: a pixel whose colour lies outside the Rec.709 gamut (a deep red blackbody,
+  // a spectral line) averages to negative channels; resolved pixels are moved into the gamut
+  // keeping their luminance (into_rec709_gamut).
+  bool into_gamut = false;
   DataPassSettings data_passes;
 };
 
@@ -130,6 +134,10 @@ class Film {
   std::vector<PassImage> resolve_passes(const FilmRect& rect, int samples) const;
 
  private:
+  // The pixel's gamut_blend (1 without into_gamut), and a sum resolved and moved by it.
+  float pixel_gamut_blend(size_t pixel, float colour_scale) const;
+  Vec3 resolved_colour(const Vec3& sum, float colour_scale, float blend) const;
+
   FilmFrame frame_;
   FilmOptions options_;
   PixelFilter filter_;
@@ -140,6 +148,18 @@ class Film {
   std::vector<float> data_;      // per pixel: data_floats_ resolved data-pass floats
   std::atomic<uint64_t> non_finite_{0};
 };
+
+// How far a colour of luminance Y = luminance(c) > 0 must move towards grey (Y, Y, Y) to have no
+// negative channel: c' = Y + t (c - Y) with t = Y / (Y - min(c)) when a channel is negative, 1
+// when none is, 0 when Y <= 0. The hue stays, the saturation is the gamut's largest at that hue
+// (a luminance-keeping clip). Linear in c for a given t, so the light passes, moved by their
+// pixel's t, still sum to the pixel (unless one is more saturated than the pixel: it is clipped
+// at 0).
+float gamut_blend(const Vec3& c);
+inline Vec3 blend_towards_grey(const Vec3& c, float t) {
+  const float y = luminance(c);
+  return Vec3(y) + (c - Vec3(y)) * t;
+}
 
 // The film of a frame rendered with `camera` at full_width x full_height, of its rectangle
 // [x0, x1) x [y0, y1).

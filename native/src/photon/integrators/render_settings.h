@@ -39,6 +39,7 @@ inline FilmOptions film_options(const RenderSettings& settings) {
   o.exposure = settings.exposure;
   o.transparent_background = settings.transparent_background;
   o.light_passes = settings.light_passes;
+  o.into_gamut = settings.spectral;
   o.data_passes = settings.data_passes;
   return o;
 }

@@ -167,6 +167,26 @@ TEST(SpectralRender, BlackbodyLampHasItsColourInBothModes) {
   }
 }
 
+// An 800 K lamp's light lies outside the Rec.709 gamut (its colour there is 5.4, -0.20, -0.08 at
+// luminance 1): its pixels averaged to negative green and blue in 70-84% of the Cornell box.
+// They resolve into the gamut, as red as the gamut allows at their luminance.
+TEST(SpectralRender, DeepRedLampGivesNoNegativeChannels) {
+  Scene scene = make_cornell_box();
+  for (Light& l : scene.lights) {
+    l.spectrum = LightSpectrum::kBlackbody;
+    l.temperature = 800.0f;
+  }
+  for (IntegratorType type : {IntegratorType::kRayTrace, IntegratorType::kPhotonMap}) {
+    const std::vector<float> rgba = render(scene, settings_for(type, 24, 8, true));
+    size_t negative = 0;
+    for (size_t i = 0; i < rgba.size(); i += 4)
+      negative += rgba[i] < 0.0f || rgba[i + 1] < 0.0f || rgba[i + 2] < 0.0f;
+    EXPECT_EQ(negative, 0u) << static_cast<int>(type);
+    const Vec3 m = mean_rgb(rgba);
+    EXPECT_GT(m.x, 5.0f * (m.y + m.z)) << static_cast<int>(type);
+  }
+}
+
 // Dispersion moves light without creating or losing any: the caustic box's image mean with a
 // dispersive glass ball equals the plain ball's. A wrong weight on terminated wavelengths (the
 // hero counted once per subpath instead of once per path, in SPPM's and VCM's joins) would
