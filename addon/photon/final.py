@@ -9,14 +9,18 @@ import time
 import bpy
 import numpy as np
 
-from . import data_passes, passes, prepared_state, render_report, report, sync
+from . import (data_passes, passes, prepared_state, render_report, report, sync,
+               texture_cache)
 from . import progress as render_progress
 from .native import native_module
 from .render_settings import integrator_capabilities, make_settings
 from .sync import cache as sync_cache
 from .sync import camera as sync_camera
+from .sync.cancel import SyncCancelled
 
 POLL_SECONDS = 0.05  # tile poll interval; bounds Esc latency together with the per-row check
+SYNC_STAGE = "Syncing scene"  # the stats line's stage while the depsgraph is read
+NOTHING_RENDERED = "no image was rendered"
 
 # The render in progress as scripts may watch it from Blender's main thread (a timer): the
 # session's status, tiles finished of the total, whether the quick preview was shown and the
@@ -72,6 +76,7 @@ class FinalRender:
         self.native_scene = None
         self.sync_stats = None
         self.blas_cache = None  # the BlasCache of Persistent Data, or None
+        self.stage = SYNC_STAGE  # the stage the stats line shows
 
     def run(self, persistent):
         engine, native, reporter = self.engine, self.native, self.reporter
@@ -87,10 +92,15 @@ class FinalRender:
             reporter.warning("motion blur is not rendered by Photon (Render Properties > "
                              "Motion Blur is on); the frame is rendered without blur at its "
                              "current time")
-        engine.update_stats("", "Photon | Syncing scene")
+        engine.update_stats("", f"Photon | {SYNC_STAGE}")
         mesh_cache, self.blas_cache = persistent.caches(native, scene)
-        self.native_scene, self.sync_stats = sync.sync_scene(native, depsgraph, reporter,
-                                                             mesh_cache=mesh_cache)
+        try:
+            self.native_scene, self.sync_stats = sync.sync_scene(
+                native, depsgraph, reporter, mesh_cache=mesh_cache,
+                test_break=engine.test_break)
+        except SyncCancelled as cancelled:
+            self._report_cancel(SYNC_STAGE, cancelled.at, NOTHING_RENDERED)
+            return
         try:
             for view in views:
                 if view:
@@ -106,6 +116,12 @@ class FinalRender:
                 mesh_cache.reclaim(self.native_scene)
             # Packed and generated images were written for this render only.
             self.sync_stats.release()
+
+    def _report_cancel(self, stage, t_cancel, outcome):
+        """The warning of a render Esc stopped during `stage`: how long it took to stop after
+        test_break() was first seen true (at perf_counter `t_cancel`), and what is left."""
+        self.reporter.warning(f"render cancelled (Esc) during '{stage}', stopped "
+                              f"{time.perf_counter() - t_cancel:.3f} s later: {outcome}")
 
     def _views(self, scene):
         """Names of the views to render: [""] (all of the result's views, one) without
@@ -125,7 +141,8 @@ class FinalRender:
         engine, native, reporter = self.engine, self.native, self.reporter
         sync_stats = self.sync_stats
         scene = self.depsgraph.scene
-        if engine.test_break():
+        if engine.test_break():  # Esc after the sync's last poll, or between two views
+            self._report_cancel(self.stage, time.perf_counter(), NOTHING_RENDERED)
             return False
 
         width, height = sync_camera.render_size(scene.render)
@@ -182,6 +199,7 @@ class FinalRender:
                 engine.update_progress(fraction)
                 RENDER_STATUS.update(status=snapshot["status"], tiles_done=tiles_done,
                                      tiles_total=tiles_total, progress=fraction)
+                self.stage = snapshot["status"]
                 engine.update_stats("", render_progress.stats_line(
                     snapshot["status"], sync_stats, min(tiles_done, tiles_total), tiles_total,
                     self.t_start, time_left))
@@ -201,12 +219,12 @@ class FinalRender:
             writer.write(0, 0, region_w, region_h,
                          np.zeros((region_h, region_w, 4), dtype=np.float32), preview=True)
         if cancelled:
-            reporter.warning(f"render cancelled (Esc) during '{cancelled_during}', stopped "
-                             f"{time.perf_counter() - t_cancel:.3f} s later: the image keeps "
-                             f"what was finished ({tiles_done} tiles or parts of tiles of "
-                             f"{tiles_total})")
+            self._report_cancel(cancelled_during, t_cancel,
+                                f"the image keeps what was finished ({tiles_done} tiles or "
+                                f"parts of tiles of {tiles_total})")
 
-        for message in session.warnings:
+        for message in texture_cache.explain(session.warnings,
+                                              sync_stats.texture_redirect):
             reporter.warning(message)
         if writer.missing:
             reporter.warning(f"passes not written by Photon, left at zero: "

@@ -6,6 +6,7 @@ from . import render_settings, report, sync
 from .native import native_module
 from .passes import TileWriter
 from .sync import camera as sync_camera
+from .sync.cancel import SyncCancelled
 
 # Material/light/world thumbnails: a few photons are plenty at 128 px.
 PREVIEW_PHOTONS = 20000
@@ -31,7 +32,12 @@ def render(engine, depsgraph):
     scene = depsgraph.scene
     reporter = report.Reporter(None)
     width, height = sync_camera.render_size(scene.render)
-    native_scene, stats = sync.sync_scene(native, depsgraph, reporter)
+    try:
+        # Blender cancels a thumbnail's job when another one replaces it (test_break).
+        native_scene, stats = sync.sync_scene(native, depsgraph, reporter,
+                                              test_break=engine.test_break)
+    except SyncCancelled:
+        return
     try:
         settings = _settings(native, scene, width, height)
         session = native.ProgressiveSession(native_scene, settings)

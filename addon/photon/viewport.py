@@ -20,7 +20,7 @@ import gpu
 import numpy as np
 from gpu_extras.presets import draw_texture_2d
 
-from . import render_settings, report, schema, sync
+from . import render_settings, report, schema, sync, texture_cache
 from .sync import cache as sync_cache
 from .sync.origin import REBASE_RATIO, rebased_matrix
 from .sync.view import viewport_view
@@ -150,7 +150,8 @@ class ViewportRender:
         if self.session is not None:
             self.session.cancel()
             self.session.wait()
-            for message in self.session.warnings:
+            redirect = self.sync_stats.texture_redirect if self.sync_stats else None
+            for message in texture_cache.explain(self.session.warnings, redirect):
                 self.reporter.warning(message)
             self.session = None
 

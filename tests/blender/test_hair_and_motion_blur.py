@@ -1,6 +1,6 @@
 """Hair (particle hair systems, Curves objects) is rendered, as camera-facing ribbons with the
-hair's material and thickness, and motion blur, which Photon does not render, is reported
-instead of silently ignored."""
+hair's material and thickness, hair points with NaN coordinates are dropped with a warning, and
+motion blur, which Photon does not render, is reported instead of silently ignored."""
 
 import importlib.util
 import sys
@@ -54,6 +54,26 @@ def test_hair_is_rendered_with_its_material(blender, tmp_path, bald, case):
     # Tip slivers are removed before the native mesh cleanup: no bad-geometry warning.
     assert "degenerate" not in proc.stdout, proc.log
     assert "not supported" not in proc.stdout, proc.log
+
+
+def test_nan_hair_points_are_dropped_with_one_warning_per_object(blender, tmp_path, bald):
+    # 7 of the Curves object's points are NaN or infinite; the object shows twice (itself and
+    # a collection instance), and its warning once.
+    image, proc = render(blender, tmp_path, "curves_nan")
+    warnings = [line for line in proc.stdout.splitlines()
+                if line.startswith("Photon: warning:") and "hair points" in line]
+    message = ("Object 'Curves': 7 hair points in 7 strands with NaN or infinite coordinates; "
+               "the strand segments at them were dropped")
+    assert warnings == [f"Photon: warning: {message}"], proc.log
+    # Through RenderEngine.report too (the status bar and info log; in background mode Blender
+    # echoes it as "Warning: ...").
+    assert proc.stdout.count(f"Warning: Photon: {message}") == 1, proc.log
+    # The other strands render, in both places: the object's strands cover columns 3-37 (265
+    # of their 275 pixels left of column 32), the instance's lie 0.6 m to the right (about 165
+    # pixels right of column 38, where the object's strands have none).
+    covered = hair_pixels(image, bald)
+    assert covered[:, :32].sum() >= 100, (covered.sum(axis=0), proc.log)
+    assert covered[:, 38:].sum() >= 80, (covered.sum(axis=0), proc.log)
 
 
 def test_hair_of_an_instanced_object_follows_the_instance(blender, tmp_path, bald):
@@ -156,6 +176,15 @@ def test_ribbons_drop_non_finite_strands(sync_hair):
                                              _View(position=(0, -5, 0.5)))
     assert len(triangles) == 2
     assert np.isfinite(positions[triangles]).all()
+
+
+def test_non_finite_hair_points_are_counted_with_their_strands(sync_hair):
+    # Strands of 3, 0, 2 and 4 points: two bad points in the first, one in the last.
+    points = np.zeros((9, 3))
+    points[[0, 2], 0] = np.nan
+    points[7, 2] = -np.inf
+    assert sync_hair._non_finite(points, [3, 0, 2, 4]) == (3, 2)
+    assert sync_hair._non_finite(np.zeros((9, 3)), [3, 0, 2, 4]) == (0, 0)
 
 
 def test_strand_radius_follows_cycles_hair_shape(sync_hair):

@@ -12,7 +12,7 @@ import time
 
 import numpy as np
 
-from .. import report, sync
+from .. import report, sync, texture_cache
 from ..native import native_module
 from ..render_settings import make_settings
 from . import targets as bake_targets
@@ -125,7 +125,8 @@ class BakeJob:
         result = self.session.result()  # raises RuntimeError when the integrator cannot bake
         if result["cancelled"]:
             return None
-        for message in result["warnings"]:
+        for message in texture_cache.explain(result["warnings"],
+                                              self.sync_stats.texture_redirect):
             self.reporter.warning(message)
         for target in self.targets:
             if target.corners is not None:

@@ -20,6 +20,8 @@ MAX_HAIR_POINTS = 2_000_000
 ROUND_EDGE_DEGREES = 60.0
 # Radius of a Curves object's points without a "radius" attribute (Cycles 3.4's default).
 DEFAULT_CURVES_RADIUS = 0.005
+# Hair points read between two polls of the render's cancel (sync/cancel.py): ~0.1 s of co_hair.
+POINTS_PER_POLL = 40_000
 
 
 class HairView:
@@ -156,8 +158,9 @@ def has_hair(obj, render_mode):
     return obj.type == 'MESH' and any(True for _ in _hair_modifiers(obj, render_mode))
 
 
-def _particle_strands(obj, psys, settings, render_mode, reporter):
-    """(points (S*K, 3), radii, counts) of a hair system's rendered strands, or None."""
+def _particle_strands(obj, psys, settings, render_mode, reporter, poll):
+    """(points (S*K, 3), radii, counts) of a hair system's rendered strands, or None; poll()
+    is called every POINTS_PER_POLL points read."""
     parents = len(psys.particles)
     children = len(psys.child_particles)
     # As Cycles: with children, only the children are rendered.
@@ -176,12 +179,7 @@ def _particle_strands(obj, psys, settings, render_mode, reporter):
         reporter.warning(f"Object '{obj.name}': hair '{psys.name}' has {strands:,} strands; "
                          f"rendering {len(chosen):,} of them, evenly spread "
                          f"(Photon reads at most {MAX_HAIR_POINTS:,} hair points)")
-    # A flat list comprehension is the cheapest route from co_hair's Vectors (about 2.5 us a
-    # point in 3.4; assigning each Vector into a numpy row costs 4 us more).
-    co_hair = psys.co_hair
-    steps = range(keys)
-    points = np.array([c for particle in chosen.tolist() for step in steps
-                       for c in co_hair(obj, particle_no=particle, step=step)],
+    points = np.array(_co_hair(obj, psys, chosen.tolist(), keys, poll),
                       dtype=np.float64).reshape(len(chosen), keys, 3)
     t = np.linspace(0.0, 1.0, keys)
     scale = float(settings.radius_scale) * 0.5
@@ -198,6 +196,46 @@ def _particle_strands(obj, psys, settings, render_mode, reporter):
         keep = np.arange(keys)[None, :] < counts[:, None]
         return points[keep], np.broadcast_to(radius, points.shape[:2])[keep], counts
     return points.reshape(-1, 3), np.tile(radius, len(chosen)), counts
+
+
+def _co_hair(obj, psys, particles, keys, poll):
+    """Flat list of the coordinates of `keys` points of each of `particles`, polling between
+    runs of strands (two million points take five seconds)."""
+    # A flat list comprehension is the cheapest route from co_hair's Vectors (about 2.5 us a
+    # point in 3.4; assigning each Vector into a numpy row costs 4 us more).
+    co_hair = psys.co_hair
+    steps = range(keys)
+    per_poll = max(1, POINTS_PER_POLL // keys)
+    coords = []
+    for start in range(0, len(particles), per_poll):
+        coords += [c for particle in particles[start:start + per_poll] for step in steps
+                   for c in co_hair(obj, particle_no=particle, step=step)]
+        poll()
+    return coords
+
+
+def _non_finite(points, counts):
+    """(points, strands): how many of the (N, 3) points, stored strand after strand with
+    `counts` points each, have a NaN or infinite coordinate, and in how many strands."""
+    bad = ~np.isfinite(points).all(axis=1)
+    points_bad = int(np.count_nonzero(bad))
+    if not points_bad:
+        return 0, 0
+    counts = np.asarray(counts, dtype=np.int64)
+    starts = (np.cumsum(counts) - counts)[counts > 0]
+    strands_bad = int(np.count_nonzero(np.add.reduceat(bad.astype(np.int64), starts)))
+    return points_bad, strands_bad
+
+
+def _warn_non_finite(reporter, name, found):
+    """One warning per object for its hair points with NaN or infinite coordinates (`found`:
+    _non_finite's (points, strands)), which ribbons() leaves out with the segments touching
+    them; the rest of the hair renders."""
+    points, strands = found
+    if points:
+        reporter.warning(f"Object '{name}': {points} hair point{'s' if points != 1 else ''} "
+                         f"in {strands} strand{'s' if strands != 1 else ''} with NaN or "
+                         f"infinite coordinates; the strand segments at them were dropped")
 
 
 def _transformed(points, radii, matrix):
@@ -225,7 +263,7 @@ def relocation(instance_matrix, object_matrix):
 
 
 def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocate=None,
-                  cache=None, place=None):
+                  cache=None, place=None, poll=None):
     """Adds one ribbon mesh per hair system of `obj`: [(mesh index, triangles, slot list,
     anchor)]: each mesh holds its ribbons relative to its anchor (float64 (3,)), which the
     instance placing it adds back. `place(points)` gives the anchor of world points (zero
@@ -235,14 +273,17 @@ def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocat
     settings name (Particle Settings > Render > Material). co_hair gives the strands where the
     object itself stands; for an instance of the object (a collection instance, say),
     `relocate` is the 4x4 matrix from there to the instance. `cache` (a dict) keeps the
-    strands read for an object, so each of its instances reads them once."""
+    strands read for an object, so each of its instances reads them once. `poll()` is called
+    while strands are read (it raises to cancel the sync)."""
     out = []
+    non_finite = np.zeros(2, dtype=np.int64)  # (points, strands)
     for psys, settings in _hair_modifiers(obj, render_mode):
         key = (obj.name, psys.name)
         if cache is not None and key in cache:
             strands = cache[key]
         else:
-            strands = _particle_strands(obj, psys, settings, render_mode, reporter)
+            strands = _particle_strands(obj, psys, settings, render_mode, reporter,
+                                        poll or _no_poll)
             if cache is not None:
                 cache[key] = strands
         if strands is None:
@@ -250,6 +291,7 @@ def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocat
         points, radii, counts = strands
         if relocate is not None:
             points, radii = _transformed(points, radii, relocate)
+        non_finite += _non_finite(points, counts)
         anchor = _anchor(place, points)
         positions, triangles, normals = ribbons(points, radii, counts, view, anchor)
         if len(triangles) == 0:
@@ -260,7 +302,12 @@ def particle_hair(native_scene, obj, render_mode, view, slots, reporter, relocat
             continue
         slot = min(max(int(settings.material) - 1, 0), len(slots) - 1)
         out.append((info["index"], info["triangles"], [slots[slot]], anchor))
+    _warn_non_finite(reporter, obj.name, tuple(int(n) for n in non_finite))
     return out
+
+
+def _no_poll():
+    pass
 
 
 def curves_hair(native_scene, obj, matrix, view, slots, reporter, place=None):
@@ -288,6 +335,7 @@ def curves_hair(native_scene, obj, matrix, view, slots, reporter, place=None):
         radii = np.full(point_count, DEFAULT_CURVES_RADIUS, dtype=np.float32)
     # Radii live in object space: scaled by the transform's mean axis scale.
     points, radii = _transformed(positions.reshape(-1, 3), radii, matrix)
+    _warn_non_finite(reporter, obj.name, _non_finite(points, counts))
     anchor = _anchor(place, points)
     ribbon_positions, triangles, normals = ribbons(points, radii, counts, view, anchor)
     if len(triangles) == 0:

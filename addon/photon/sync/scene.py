@@ -5,7 +5,8 @@ import time
 import numpy as np
 
 from . import object_info
-from .. import cryptomatte
+from .cancel import SyncPoll
+from .. import cryptomatte, texture_cache
 from . import camera as sync_camera
 from . import hair as sync_hair
 from . import layers as sync_layers
@@ -37,6 +38,9 @@ class SyncStats:
         # The MaterialTable that converted the scene's materials (the viewport converts an
         # edited material again with it).
         self.material_table = None
+        # texture_cache.Redirect when the texture cache folder cannot be written and this
+        # scene's image textures go to a temporary folder, else None.
+        self.texture_redirect = None
         self._release = []
 
     def release(self):
@@ -46,8 +50,17 @@ class SyncStats:
         self._release = []
 
 
-def sync_scene(native, depsgraph, reporter, object_instances=None, mesh_cache=None):
+# Instances placed in the native scene per step once the loop has read them all (stacked,
+# bounded, rebased, added): each step of 50k takes ~0.05 s, and a cancel is polled between.
+PLACE_CHUNK = 50_000
+
+
+def sync_scene(native, depsgraph, reporter, object_instances=None, mesh_cache=None,
+               test_break=None):
     """Returns (native Scene, SyncStats); call stats.release() once the render has ended.
+
+    With `test_break` (RenderEngine.test_break) the sync stops with cancel.SyncCancelled soon
+    after it turns true (Esc, or Ctrl-C in background mode; cancel.py).
 
     With a `mesh_cache` (sync_cache.MeshCache, kept by the engine under Persistent Data),
     meshes unchanged since the previous sync with it are replayed from it.
@@ -57,21 +70,30 @@ def sync_scene(native, depsgraph, reporter, object_instances=None, mesh_cache=No
     (particles, collection instances); lighting bakes use it to address surface points.
     """
     stats = SyncStats()
+    native_scene = native.Scene()
+    poll = SyncPoll(test_break)
     try:
-        return _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache), stats
+        _sync(native, native_scene, depsgraph, reporter, stats, object_instances, mesh_cache,
+              poll)
+        return native_scene, stats
     except BaseException:
+        poll.drain()  # Blender's instance lists would leak
+        if mesh_cache is not None:
+            # The scene is dropped (cancelled, or an error): the kept meshes lent to it return.
+            mesh_cache.reclaim(native_scene)
         stats.release()
         raise
 
 
-def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None):
+def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, mesh_cache, poll):
+    """Fills `native_scene` and `stats` from the depsgraph; `poll` (a SyncPoll) is called
+    after each slow step and polls as it reads the instances."""
     t0 = time.perf_counter()
     export_mesh = sync_mesh.export_object_mesh
     if mesh_cache is not None:
         mesh_cache.begin(depsgraph)
         export_mesh = mesh_cache.export
     scene = depsgraph.scene
-    native_scene = native.Scene()
     materials = sync_materials.MaterialTable(native_scene, reporter,
                                              getattr(native, "TexturePixels", None))
     stats._release.append(materials.release)
@@ -108,7 +130,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         bounds.add(hair_bounds.lo, hair_bounds.hi)
         return hair_bounds.origin()
 
-    for inst in depsgraph.object_instances:
+    for inst in poll.instances(depsgraph):
         # Instance items die when iteration moves on: use them only inside this body.
         obj = inst.object
         obj_type = obj.type
@@ -136,7 +158,8 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
                             if inst.is_instance else None)
                 made = [] if relocate is False else sync_hair.particle_hair(
                     native_scene, obj, render_mode, hair_view, slots, reporter, relocate,
-                    hair_strands, place_hair)
+                    hair_strands, place_hair, poll)
+            poll()  # strands may have taken seconds to read
             visibility = layer_visibility.apply(inst, obj,
                                                 sync_lights.visibility_bits(native, obj))
             for index, triangles, hair_slots, anchor in filter(None, made):
@@ -178,6 +201,7 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
                 mesh_bounds[index] = local
                 stats.meshes += 1
                 stats.triangles += triangles
+            poll()  # a big mesh takes a good part of a second
         index = mesh_index[key]
         if index is None:
             continue
@@ -193,10 +217,11 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         stats.meshes_reused, stats.meshes_exported = mesh_cache.reused, mesh_cache.exported
 
     # The world origin offset, once every world-space quantity is known in double precision.
-    stacked = {key: np.stack([entry[0] for entry in entries])
-               for key, entries in pending.items()}
-    for key, matrices in stacked.items():
-        bounds.add_instances(*mesh_bounds[key[0]], matrices)
+    stacked = _stacked_matrices(pending, poll)
+    for key, chunks in stacked.items():
+        for matrices in chunks:
+            bounds.add_instances(*mesh_bounds[key[0]], matrices)
+            poll()
     origin = stats.origin = bounds.origin()
     if origin.any():
         reporter.info(f"world space rebased by ({origin[0]:.9g}, {origin[1]:.9g}, "
@@ -207,17 +232,11 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
         native_scene.add_light(**arguments)
 
     for key, entries in pending.items():
-        index, slots, visibility, (holdout, catcher) = key
-        first = native_scene.instance_count
-        stats.instances += native_scene.add_instances(
-            index, sync_origin.rebased_matrices(stacked[key], origin), list(slots), visibility,
-            holdout=holdout, shadow_catcher=catcher)
-        _set_object_info(native_scene, first, [entry[2] for entry in entries])
-        _set_cryptomatte(native_scene, first, [entry[3] for entry in entries])
-        if object_instances is not None:
-            for offset, (_, owner, _, _) in enumerate(entries):
-                if owner is not None:
-                    object_instances.setdefault(owner, []).append(first + offset)
+        for start, matrices in zip(range(0, len(entries), PLACE_CHUNK), stacked[key]):
+            stats.instances += _add_instances(native_scene, key, matrices, origin,
+                                              entries[start:start + PLACE_CHUNK],
+                                              object_instances)
+            poll()
 
     for index, slots, visibility, (holdout, catcher), anchor, ids in hair:
         # Ribbons are stored relative to their anchor: placed back at anchor - origin.
@@ -241,13 +260,45 @@ def _sync(native, depsgraph, reporter, stats, object_instances, mesh_cache=None)
     sync_camera.export_camera(native_scene, scene, depsgraph, reporter, origin=origin)
     world, _ = sync_world.export_world(native_scene, scene.world, reporter, materials.textures,
                                        getattr(native, "MAX_EMISSION", None))
+    poll()
+    if native_scene.texture_count:
+        # Where the session converts the images (it reads the folder when it starts).
+        stats.texture_redirect = texture_cache.prepare()
 
     if stats.triangles == 0:
         reporter.warning("The scene has no renderable geometry")
     if stats.lights == 0 and max(world) <= 0.0:
         reporter.warning("The scene has no lights and a black world: only emissive surfaces will show")
     stats.seconds = time.perf_counter() - t0
-    return native_scene
+
+
+def _stacked_matrices(pending, poll):
+    """{key: [(n, 4, 4) float64 matrices of pending[key] in chunks of PLACE_CHUNK]}: a million
+    instances take most of a second to stack, so a cancel is seen between chunks."""
+    stacked = {}
+    for key, entries in pending.items():
+        chunks = stacked[key] = []
+        for start in range(0, len(entries), PLACE_CHUNK):
+            chunks.append(np.stack([entry[0] for entry in entries[start:start + PLACE_CHUNK]]))
+            poll()
+    return stacked
+
+
+def _add_instances(native_scene, key, matrices, origin, entries, object_instances):
+    """Adds the instances `entries` of one pending key (their world `matrices`) to the native
+    scene, with their Object Info and Cryptomatte IDs; returns how many were added."""
+    index, slots, visibility, (holdout, catcher) = key
+    first = native_scene.instance_count
+    added = native_scene.add_instances(
+        index, sync_origin.rebased_matrices(matrices, origin), list(slots), visibility,
+        holdout=holdout, shadow_catcher=catcher)
+    _set_object_info(native_scene, first, [entry[2] for entry in entries])
+    _set_cryptomatte(native_scene, first, [entry[3] for entry in entries])
+    if object_instances is not None:
+        for offset, (_, owner, _, _) in enumerate(entries):
+            if owner is not None:
+                object_instances.setdefault(owner, []).append(first + offset)
+    return added
 
 
 def _object_info(inst, obj):

@@ -5,11 +5,13 @@ CASE: "bald" (the ball alone); "particle_hair" (a hair particle system with chil
 strands in the ball's second material slot, a red emission); "instanced_hair" (that furry ball
 shown only through a collection instance 0.7 m to the left); "sparse_hair" (60 strands, no
 children) and "sparse_hair_thick" (the same strands twice as thick); "curves" (a Curves object
-of random strands in a red emission material); "motion_blur" (the bald scene with motion blur
-on and the ball moving through the frame).
+of random strands in a red emission material); "curves_nan" (those strands with NAN_POINTS
+points NaN or infinite, shown twice: by the object and by a collection instance of it);
+"motion_blur" (the bald scene with motion blur on and the ball moving through the frame).
 """
 
 import bpy
+import numpy as np
 
 import builders
 import harness
@@ -60,6 +62,32 @@ def curves():
     return obj
 
 
+NAN_POINTS = 7  # of the 4000 points of curves_random_add's 500 strands
+
+
+def break_points(obj):
+    """Makes NAN_POINTS of a Curves object's points NaN or infinite, in different strands."""
+    curves = obj.data
+    positions = np.empty(len(curves.points) * 3, dtype=np.float32)
+    curves.position_data.foreach_get("vector", positions)
+    positions = positions.reshape(-1, 3)
+    broken = np.arange(NAN_POINTS) * 41  # 8 points a strand: one point in each of 7 strands
+    positions[broken, 0] = np.nan
+    positions[broken[-1], 1] = np.inf
+    curves.position_data.foreach_set("vector", positions.ravel())
+    curves.update_tag()
+
+
+def instance_of(obj, name, offset):
+    """Shows `obj` again through a collection instance moved by `offset`."""
+    collection = bpy.data.collections.new(name)
+    collection.objects.link(obj)
+    instance = builders.link(bpy.data.objects.new(f"{name}Instance", None))
+    instance.instance_type = 'COLLECTION'
+    instance.instance_collection = collection
+    instance.location = offset
+
+
 def main(case, blend_path):
     scene, ball = base()
     if case == "particle_hair":
@@ -80,6 +108,10 @@ def main(case, blend_path):
                       count=60, children=0)
     elif case == "curves":
         curves()
+    elif case == "curves_nan":
+        obj = curves()
+        break_points(obj)
+        instance_of(obj, "Strands", (0.6, 0.0, 0.0))
     elif case == "motion_blur":
         scene.render.use_motion_blur = True
         ball.location = (0.0, -0.35, 0.85)
