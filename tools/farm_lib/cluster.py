@@ -6,15 +6,17 @@ other commands find the cluster; `stop()` cancels every job, stops the daemons b
 ids they wrote and removes the directory.
 """
 
-import json
 import os
 import shutil
 import signal
 import socket
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
+
+from . import files
 
 POINTER = Path(os.environ.get("PHOTON_FARM_POINTER", "/tmp/photon-farm-local-cluster.json"))
 PARTITION = "photon"
@@ -88,8 +90,8 @@ def _run(cmd, env=None, timeout=30):
 
 def _read_pid(path):
     try:
-        return int(Path(path).read_text().split()[0])
-    except (OSError, ValueError, IndexError):
+        return int(files.read_text(path, "pid file").split()[0])
+    except (files.FileError, ValueError, IndexError):
         return None
 
 
@@ -134,9 +136,15 @@ def tools_missing():
 
 def current():
     """The running local cluster's directory from the pointer file, or None."""
+    if not os.path.lexists(POINTER):
+        return None
     try:
-        info = json.loads(POINTER.read_text())
-    except (OSError, ValueError):
+        info = files.read_json(POINTER, "local cluster pointer")
+    except files.FileError as exc:
+        # Say so: otherwise Slurm's commands silently go to another cluster.
+        print(f"farm: warning: {exc}; ignored", file=sys.stderr)
+        return None
+    if not isinstance(info, dict):
         return None
     root = Path(info.get("root", ""))
     if not (root / "slurm.conf").exists():
@@ -173,11 +181,10 @@ def start(root=None, timeout=60.0):
             (root / sub).mkdir(exist_ok=True)
         os.chmod(root / "munge", 0o700)
         key = root / "munge" / "munge.key"
-        key.write_bytes(os.urandom(1024))
-        os.chmod(key, 0o600)
+        files.write_bytes(key, os.urandom(1024), "munge key", mode=0o600)
         conf = root / "slurm.conf"
-        conf.write_text(_slurm_conf(root, _free_port(), _free_port()))
-        POINTER.write_text(json.dumps({"root": str(root)}))
+        files.write_text(conf, _slurm_conf(root, _free_port(), _free_port()), "slurm.conf")
+        files.write_json(POINTER, {"root": str(root)}, "local cluster pointer")
         env = env_for(root)
         _run(["munged", "--force", f"--socket={root}/munge/munge.socket",
               f"--key-file={key}", f"--pid-file={root}/munge/munged.pid",
@@ -186,6 +193,9 @@ def start(root=None, timeout=60.0):
         _run(["slurmctld", "-c", "-i", "-f", str(conf)], env=env)
         _run(["slurmd", "-f", str(conf)], env=env)
         _wait_idle(env, root, timeout)
+    except files.FileError as exc:
+        stop(root)
+        raise ClusterError(str(exc)) from None
     except BaseException:
         stop(root)
         raise
@@ -207,7 +217,11 @@ def _wait_idle(env, root, timeout):
     for name in ("slurmctld.log", "slurmd.log"):
         path = Path(root) / "log" / name
         if path.exists():
-            logs += f"\n--- {name} ---\n" + "\n".join(path.read_text().splitlines()[-15:])
+            try:
+                text = files.read_text(path, "log")
+            except files.FileError as exc:
+                text = str(exc)
+            logs += f"\n--- {name} ---\n" + "\n".join(text.splitlines()[-15:])
     raise ClusterError(f"the local Slurm node did not become idle within {timeout:.0f} s "
                        f"(sinfo: {last!r}){logs}")
 
@@ -254,8 +268,8 @@ def stop(root=None):
     _stop_pid(_read_pid(root / "munge" / "munged.pid"))
     shutil.rmtree(root, ignore_errors=True)
     try:
-        if json.loads(POINTER.read_text()).get("root") == str(root):
+        if files.read_json(POINTER, "local cluster pointer").get("root") == str(root):
             POINTER.unlink()
-    except (OSError, ValueError):
+    except (files.FileError, AttributeError, OSError):
         pass
     return True

@@ -40,15 +40,24 @@ def run(cmd, check=True, timeout=60):
                               stdin=subprocess.DEVNULL)
     except FileNotFoundError:
         raise SlurmError(f"{cmd[0]} not found (install slurm-wlm)") from None
+    except subprocess.TimeoutExpired as exc:
+        said = exc.stderr or b""
+        said = (said.decode(errors="replace") if isinstance(said, bytes) else said).strip()
+        said = f"; it said: {said.splitlines()[-1]}" if said else ""
+        raise SlurmError(f"{cmd[0]} did not answer within {timeout:g} s (the Slurm controller "
+                         f"may be overloaded or down{said})") from None
     if check and proc.returncode != 0:
         raise SlurmError(f"{' '.join(cmd)}: {(proc.stderr or proc.stdout).strip()}")
     return proc
 
 
-def sbatch(args):
+def sbatch(args, timeout=60):
     """Submits; returns the job id (sbatch --parsable prints 'id' or 'id;cluster')."""
-    out = run(["sbatch", "--parsable", *args]).stdout.strip()
-    return out.split(";")[0]
+    out = run(["sbatch", "--parsable", *args], timeout=timeout).stdout.strip()
+    job_id = out.split(";")[0]
+    if not job_id.isdigit():
+        raise SlurmError(f"sbatch printed no job id: {out!r}")
+    return job_id
 
 
 def queued(job_ids):
@@ -60,18 +69,59 @@ def queued(job_ids):
     return [line for line in proc.stdout.splitlines() if line.strip()]
 
 
-def job_records(job_id):
-    """{field: value} of every record scontrol still has for a job (one per array task)."""
-    proc = run(["scontrol", "-o", "show", "job", str(job_id)], check=False)
+# squeue's fields for job_records; WorkDir last, since only it may hold the separator.
+_FIELDS = ("JobID", "ArrayJobID", "ArrayTaskID", "State", "Reason", "RestartCnt", "WorkDir")
+
+
+def job_records(job_ids):
+    """{field: value} (_FIELDS) of every job or array task the controller still remembers among
+    `job_ids`, each array task on its own. squeue prints WorkDir whole (scontrol's 'Key=Value'
+    lines cannot be split where a folder name holds a space)."""
+    fmt = ",".join(f"{name}:|" for name in _FIELDS[:-1]) + f",{_FIELDS[-1]}:"
+    proc = run(["squeue", "-h", "-r", "-t", "all", "-j", ",".join(map(str, job_ids)),
+                "-O", fmt], check=False)
+    if proc.returncode != 0:
+        # squeue errors on ids the controller does not know.
+        return []
     records = []
     for line in proc.stdout.splitlines():
-        fields = {}
-        for item in line.split():
-            key, _, value = item.partition("=")
-            fields[key] = value
-        if fields:
-            records.append(fields)
+        values = line.split("|", len(_FIELDS) - 1)
+        if len(values) == len(_FIELDS):
+            records.append(dict(zip(_FIELDS, (v.strip() for v in values))))
     return records
+
+
+def jobs_in(work_dir):
+    """Ids of the jobs the controller remembers whose working folder is `work_dir`."""
+    proc = run(["squeue", "-h", "-t", "all", "-O", "JobID:|,WorkDir:"], check=False)
+    ids = set()
+    for line in proc.stdout.splitlines():
+        job_id, _, folder = line.partition("|")
+        if folder.strip() == str(work_dir):
+            ids.add(job_id.strip())
+    return sorted(ids)
+
+
+def limits():
+    """The cluster's MaxArraySize and MaxJobCount ({name: int}; a name is missing where
+    `scontrol show config` does not say)."""
+    proc = run(["scontrol", "show", "config"], check=False)
+    found = {}
+    for line in proc.stdout.splitlines():
+        key, _, value = line.partition("=")
+        key, value = key.strip(), value.strip()
+        if key in ("MaxArraySize", "MaxJobCount") and value.isdigit():
+            found[key] = int(value)
+    return found
+
+
+def job_count():
+    """How many jobs the controller holds (each array task counts, as in its MaxJobCount; so do
+    finished jobs until MinJobAge), or None when squeue does not say."""
+    proc = run(["squeue", "-h", "-r", "-t", "all", "-o", "%i"], check=False)
+    if proc.returncode != 0:
+        return None
+    return sum(1 for line in proc.stdout.splitlines() if line.strip())
 
 
 def accounting(job_ids):
@@ -89,5 +139,7 @@ def cancel(job_ids):
     run(["scancel", *job_ids])
 
 
-def requeue(job_id):
-    return run(["scontrol", "requeue", str(job_id)], check=False)
+def requeue(job):
+    """Re-queues `job`: a job id, or 'ARRAYID_TASK' for one task of an array (the array's own
+    id would re-queue every task, finished ones too)."""
+    return run(["scontrol", "requeue", str(job)], check=False)

@@ -7,8 +7,9 @@ Copies are exact: band values are read as float32, which holds every half, 8- an
 and written back to the type they came from.
 """
 
-import os
 from pathlib import Path
+
+from . import files
 
 # Formats OIIO writes from a stitched buffer; JPEG bands are rendered as PNG (lossless, same
 # display-referred 8 bits) and the stitched frame is encoded once.
@@ -27,6 +28,11 @@ class StitchError(RuntimeError):
 
 def _read_subimages(path):
     import OpenImageIO as oiio
+    try:
+        # OpenImageIO would wait for ever on a FIFO.
+        files.require_regular(path, "band")
+    except files.FileError as exc:
+        raise StitchError(str(exc)) from None
     inp = oiio.ImageInput.open(str(path))
     if inp is None:
         raise StitchError(f"cannot open band {path}: {oiio.geterror()}")
@@ -51,8 +57,8 @@ def _same_layout(a, b):
 
 
 def stitch(band_paths, rows, out_path, file_format, quality=90):
-    """Writes out_path (through a temporary name, renamed when complete) from band files whose
-    rows rows[k] = (y0, y1) (top row first) belong to band k."""
+    """Writes out_path (through a temporary name, read back and renamed when complete) from band
+    files whose rows rows[k] = (y0, y1) (top row first) belong to band k."""
     import OpenImageIO as oiio
     if len(band_paths) != len(rows):
         raise StitchError("one band file per row range expected")
@@ -76,27 +82,39 @@ def stitch(band_paths, rows, out_path, file_format, quality=90):
         images.append(pixels)
 
     out_path = Path(out_path)
-    out_path.parent.mkdir(parents=True, exist_ok=True)
-    # Same extension, so OIIO picks the same format; renamed only once fully written.
-    tmp = out_path.with_name(f".{out_path.stem}.partial-{os.getpid()}{out_path.suffix}")
-    out = oiio.ImageOutput.create(OIIO_FORMATS.get(file_format, str(out_path)))
+    # Same extension, so OIIO picks the same format; renamed only once written and read back.
+    tmp = files.temporary_name(out_path)
+    try:
+        _write(tmp, file_format, specs, images)
+        # Read back: a full disk can make OpenEXR's writes fail while OIIO still says done.
+        layouts = files.check_image(tmp, "stitched frame", specs[0].width, specs[0].height)
+        if layouts != [list(spec.channelnames) for spec in specs]:
+            raise StitchError(f"{tmp} reads back with other channels than were written")
+        files.move(tmp, out_path, "frame")
+    except files.FileError as exc:
+        raise StitchError(str(exc)) from None
+    finally:
+        files.discard(tmp)
+
+
+def _write(tmp, file_format, specs, images):
+    import OpenImageIO as oiio
+    out = oiio.ImageOutput.create(OIIO_FORMATS.get(file_format, str(tmp)))
     if out is None:
         raise StitchError(f"OpenImageIO cannot write {file_format}: {oiio.geterror()}")
+    if len(specs) > 1:
+        ok = out.open(str(tmp), tuple(specs))
+    else:
+        ok = out.open(str(tmp), specs[0], "create")
+    if not ok:
+        raise StitchError(f"cannot write {tmp}: {out.geterror()}")
     try:
-        if len(specs) > 1:
-            ok = out.open(str(tmp), tuple(specs))
-        else:
-            ok = out.open(str(tmp), specs[0], "create")
-        if not ok:
-            raise StitchError(f"cannot write {tmp}: {out.geterror()}")
         for index, (spec, pixels) in enumerate(zip(specs, images)):
             if index and not out.open(str(tmp), spec, "appendsubimage"):
                 raise StitchError(f"cannot append subimage to {tmp}: {out.geterror()}")
             if not out.write_image(pixels):
                 raise StitchError(f"cannot write {tmp}: {out.geterror()}")
-        if not out.close():
-            raise StitchError(f"cannot finish {tmp}: {out.geterror()}")
-        os.replace(tmp, out_path)
     finally:
-        if tmp.exists():
-            tmp.unlink()
+        closed = out.close()
+    if not closed:
+        raise StitchError(f"cannot finish {tmp}: {out.geterror()}")

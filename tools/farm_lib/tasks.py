@@ -10,11 +10,12 @@
   band prepares itself, with the same pixels;
 - stitch: assembles each frame from its bands.
 
-Every file is written under a temporary name and renamed when complete; a failed task
-re-queues itself while it has retries left.
+Every file is written under a temporary name, checked (images read back with OpenImageIO,
+markers read back and compared; files.py) and renamed when complete. A file that does not check
+out (Blender exits 0 even when the disk filled while it saved the frame) fails the task, which
+re-queues itself while it has retries left; only that task, not its whole array.
 """
 
-import json
 import os
 import shutil
 import subprocess
@@ -22,7 +23,7 @@ import sys
 import time
 from pathlib import Path
 
-from . import blend_info, slurm, stitch
+from . import blend_info, files, jobs, slurm, stitch
 
 # Lines of the add-on's output a task looks for.
 RENDERED = "Photon: rendered frame"
@@ -30,6 +31,10 @@ PREPARED = "Photon: prepared (no pixels"
 STATE_SAVED = "Photon: prepared state saved"
 STATE_LOADED = "Photon: prepared state loaded"
 STATE_REFUSED = "Photon: warning: prepared state refused"
+# Blender prints a failed image write and still says "Saved" and exits 0; a task that finds the
+# file damaged quotes the reason.
+WRITE_ERRORS = ("No space left on device", "Disk quota exceeded", "File too large",
+                "Read-only file system", "Input/output error")
 
 
 def band_path(manifest, frame, band):
@@ -55,22 +60,36 @@ def _band_expr(manifest, band):
     return expr
 
 
+def say(text):
+    """Writes a line to the task's log (Slurm's output file) at once, unbuffered. When that disk
+    is full the line is lost, not the task: its exit status still tells, and nothing is kept
+    back to fail again at exit."""
+    try:
+        os.write(sys.stdout.fileno(), (text + "\n").encode("utf-8", errors="replace"))
+    except OSError:
+        pass
+
+
 def _render(cmd, env, success_line):
     """Runs Blender, passing its output to the Slurm log. Returns (whether it exited 0 and
-    printed `success_line`, the set of STATE_* markers it printed)."""
+    printed `success_line`, the set of STATE_* markers it printed, its last line naming one of
+    WRITE_ERRORS or "")."""
     started = time.monotonic()
     proc = subprocess.Popen(cmd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
                             stdin=subprocess.DEVNULL, text=True, errors="replace")
     succeeded = False
     markers = set()
+    write_error = ""
     for line in proc.stdout:
-        sys.stdout.write(line)
+        say(line.rstrip("\n"))
         succeeded = succeeded or line.startswith(success_line)
         markers.update(m for m in (STATE_SAVED, STATE_LOADED, STATE_REFUSED)
                        if line.startswith(m))
+        if any(error in line for error in WRITE_ERRORS):
+            write_error = line.strip()
     code = proc.wait()
-    print(f"farm: Blender ran {time.monotonic() - started:.2f} s (exit {code})", flush=True)
-    return code == 0 and succeeded, markers
+    say(f"farm: Blender ran {time.monotonic() - started:.2f} s (exit {code})")
+    return code == 0 and succeeded, markers, write_error
 
 
 def _blender_cmd(manifest, frame, out_prefix, expr=None):
@@ -85,40 +104,67 @@ def _attempt():
     return int(os.environ.get("SLURM_RESTART_COUNT", "0")) + 1
 
 
-def _fresh_dir(path):
-    shutil.rmtree(path, ignore_errors=True)
-    path.mkdir(parents=True)
-    return path
+def _min_channels(manifest):
+    return files.MIN_CHANNELS.get(manifest["color_mode"], 1)
+
+
+def _mark_done(manifest, name, dest):
+    """The marker done/NAME, holding the path of what the task wrote; jobs.missing_frames and
+    `submit --wait` count a frame done only once its marker is there."""
+    files.write_text(Path(manifest["job_dir"]) / "done" / name, str(dest), "done marker")
+
+
+def _give_up(manifest, tmp, message):
+    # The failed output goes first: on a full disk, it frees the room for the log line.
+    shutil.rmtree(tmp, ignore_errors=True)
+    say(f"{jobs.ERROR}{message}")
+    return _requeue_or_fail(manifest)
 
 
 def run_prepare(manifest_path):
-    manifest = json.loads(Path(manifest_path).read_text())
+    manifest = jobs.load_manifest(manifest_path)
     index = int(os.environ["SLURM_ARRAY_TASK_ID"])
     frame = manifest["frames"][index]
     job_dir = Path(manifest["job_dir"])
-    tmp = _fresh_dir(job_dir / "tmp" / f"prepare_{index}")
+    say(f"farm: frame {frame} shared preparation{jobs.ATTEMPT}{_attempt()}")
+    tmp = files.fresh_dir(job_dir / "tmp" / f"prepare_{index}")
     saved = tmp / "state.photonstate"
     env = dict(os.environ, BLENDER_USER_SCRIPTS=manifest["addon_dir"],
                PHOTON_PREPARED_SAVE=str(saved), PHOTON_PREPARE_ONLY="1")
     env.pop("PHOTON_PREPARED_LOAD", None)
-    print(f"farm: frame {frame} shared preparation, attempt {_attempt()}", flush=True)
-    ok, markers = _render(_blender_cmd(manifest, frame, tmp / "out_"), env, PREPARED)
-    if ok and STATE_SAVED in markers and saved.is_file():
-        dest = state_path(manifest, frame)
-        dest.parent.mkdir(parents=True, exist_ok=True)
-        os.replace(saved, dest)
-        shutil.rmtree(tmp, ignore_errors=True)
-        (job_dir / "done" / f"prepare_{index}").write_text(str(dest))
-        print(f"farm: wrote {dest} ({dest.stat().st_size / 1e6:.1f} MB)", flush=True)
-        return 0
-    print(f"farm: error: Blender did not prepare frame {frame}", flush=True)
-    return _requeue_or_fail(manifest)
+    ok, markers, write_error = _render(_blender_cmd(manifest, frame, tmp / "out_"), env,
+                                       PREPARED)
+    if not (ok and STATE_SAVED in markers and files.is_regular(saved)):
+        said = f" ({write_error})" if write_error else ""
+        return _give_up(manifest, tmp, f"Blender did not prepare frame {frame}{said}")
+    dest = state_path(manifest, frame)
+    try:
+        files.check_state_file(saved)
+        files.move(saved, dest, "prepared state")
+        _mark_done(manifest, f"prepare_{index}", dest)
+    except files.FileError as exc:
+        return _give_up(manifest, tmp, f"frame {frame}: {exc}")
+    shutil.rmtree(tmp, ignore_errors=True)
+    say(f"farm: wrote {dest} ({dest.stat().st_size / 1e6:.1f} MB)")
+    return 0
+
+
+def _shared_state(manifest, frame):
+    """The frame's state file for PHOTON_PREPARED_LOAD, or None (with a note) when something
+    other than a regular file is in its place: the band then prepares itself."""
+    path = state_path(manifest, frame)
+    try:
+        files.require_regular(path, "the frame's shared preparation")
+    except files.FileError as exc:
+        say(f"farm: warning: {exc}")
+        return None
+    return path
 
 
 def run_task(manifest_path, frame_index=None):
     """One render task: array task i of the single render array (frame i // split, band
     i % split), or, with `frame_index`, band i of that frame's own array."""
-    manifest = json.loads(Path(manifest_path).read_text())
+    manifest = jobs.load_manifest(manifest_path)
     index = int(os.environ["SLURM_ARRAY_TASK_ID"])
     split = manifest["split"]
     if frame_index is None:
@@ -128,73 +174,107 @@ def run_task(manifest_path, frame_index=None):
     frame = manifest["frames"][frame_index]
     task = frame_index * split + band
     job_dir = Path(manifest["job_dir"])
-    tmp = _fresh_dir(job_dir / "tmp" / f"task_{task}")
+    say(f"farm: frame {frame}" + (f" band {band + 1}/{split}" if split > 1 else "") +
+        f"{jobs.ATTEMPT}{_attempt()}")
+    tmp = files.fresh_dir(job_dir / "tmp" / f"task_{task}")
     env = dict(os.environ, BLENDER_USER_SCRIPTS=manifest["addon_dir"])
     for name in ("PHOTON_PREPARED_SAVE", "PHOTON_PREPARED_LOAD", "PHOTON_PREPARE_ONLY"):
         env.pop(name, None)
-    if manifest.get("shared_prepare"):
-        env["PHOTON_PREPARED_LOAD"] = str(state_path(manifest, frame))
+    state = _shared_state(manifest, frame) if manifest.get("shared_prepare") else None
+    if state:
+        env["PHOTON_PREPARED_LOAD"] = str(state)
     expr = _band_expr(manifest, band) if split > 1 else None
-    print(f"farm: frame {frame}" + (f" band {band + 1}/{split}" if split > 1 else "") +
-          f", attempt {_attempt()}", flush=True)
     outputs = []
-    ok, markers = _render(_blender_cmd(manifest, frame, tmp / "out_", expr), env, RENDERED)
+    ok, markers, write_error = _render(_blender_cmd(manifest, frame, tmp / "out_", expr), env,
+                                       RENDERED)
     if ok:
-        outputs = [p for p in tmp.iterdir() if p.is_file()]
+        outputs = [p for p in tmp.iterdir() if files.is_regular(p)]
     if manifest.get("shared_prepare"):
-        print("farm: " + ("used the frame's shared preparation" if STATE_LOADED in markers else
-                          "prepared itself (the shared preparation was not used)"), flush=True)
-    if len(outputs) == 1:
-        dest = band_path(manifest, frame, band) if split > 1 else \
-            Path(manifest["paths"][frame_index])
-        dest.parent.mkdir(parents=True, exist_ok=True)
-        os.replace(outputs[0], dest)
-        shutil.rmtree(tmp, ignore_errors=True)
-        (job_dir / "done" / f"task_{task}").write_text(str(dest))
-        print(f"farm: wrote {dest}", flush=True)
-        return 0
-    print(f"farm: error: Blender did not render frame {frame} (outputs: "
-          f"{[p.name for p in outputs]})", flush=True)
-    return _requeue_or_fail(manifest)
+        say("farm: " + ("used the frame's shared preparation" if STATE_LOADED in markers else
+                        "prepared itself (the shared preparation was not used)"))
+    if len(outputs) != 1:
+        return _give_up(manifest, tmp, f"Blender did not render frame {frame} (outputs: "
+                                       f"{[p.name for p in outputs]})")
+    if split > 1:
+        dest, what = band_path(manifest, frame, band), f"frame {frame} band {band + 1}"
+    else:
+        dest, what = Path(manifest["paths"][frame_index]), f"frame {frame}"
+    try:
+        # Blender says "Saved" and exits 0 even when the disk filled while it wrote the file.
+        files.place_image(outputs[0], dest, what, manifest["width"], manifest["height"],
+                          _min_channels(manifest))
+        _mark_done(manifest, f"task_{task}", dest)
+    except files.FileError as exc:
+        said = f"; Blender: {write_error}" if write_error else ""
+        return _give_up(manifest, tmp, f"{exc}{said}")
+    shutil.rmtree(tmp, ignore_errors=True)
+    say(f"farm: wrote {dest}")
+    return 0
+
+
+def _requeue_target():
+    """What `scontrol requeue` must name to re-queue this task alone: an array task by
+    ARRAYID_TASK (the array's own id, which one of its tasks also runs under, names the whole
+    array), another job by its id."""
+    array, task = os.environ.get("SLURM_ARRAY_JOB_ID"), os.environ.get("SLURM_ARRAY_TASK_ID")
+    if array and task:
+        return f"{array}_{task}"
+    return os.environ.get("SLURM_JOB_ID")
 
 
 def _requeue_or_fail(manifest):
     restarts = int(os.environ.get("SLURM_RESTART_COUNT", "0"))
-    job_id = os.environ.get("SLURM_JOB_ID")
-    if job_id and restarts < manifest["retries"]:
-        print(f"farm: re-queuing (restart {restarts + 1} of {manifest['retries']})", flush=True)
-        proc = slurm.requeue(job_id)
+    target = _requeue_target()
+    if target and restarts < manifest["retries"]:
+        say(f"farm: re-queuing {target} (restart {restarts + 1} of {manifest['retries']})")
+        try:
+            proc = slurm.requeue(target)
+        except slurm.SlurmError as exc:
+            say(f"farm: re-queue failed: {exc}")
+            return 1
         if proc.returncode == 0:
             # Slurm ends this run and starts the task again.
             time.sleep(60)
-        print(f"farm: re-queue failed: {proc.stderr.strip()}", flush=True)
+        say(f"farm: re-queue failed: {(proc.stderr or proc.stdout).strip()}")
     return 1
 
 
+def _remove_state(manifest, frame):
+    """Its bands are done: the frame's shared preparation (often the job's largest file) goes.
+    Whatever else took its place is left alone; the frame is stitched all the same."""
+    try:
+        files.remove(state_path(manifest, frame), "the frame's shared preparation")
+    except files.FileError as exc:
+        say(f"farm: warning: {exc}")
+
+
 def run_stitch(manifest_path):
-    manifest = json.loads(Path(manifest_path).read_text())
-    job_dir = Path(manifest["job_dir"])
+    manifest = jobs.load_manifest(manifest_path)
+    say(f"farm: stitching {len(manifest['frames'])} frame(s){jobs.ATTEMPT}{_attempt()}")
     failed = 0
+    done = Path(manifest["job_dir"]) / "done"
     for frame, path in zip(manifest["frames"], manifest["paths"]):
+        if files.is_regular(done / f"frame_{frame}") and files.is_regular(path):
+            # Stitched by an earlier attempt of this job, re-queued for another frame.
+            continue
         started = time.monotonic()
         bands = [band_path(manifest, frame, b) for b in range(manifest["split"])]
-        missing = [str(b) for b in bands if not b.exists()]
+        missing = [str(b) for b in bands if not files.is_regular(b)]
         if missing:
-            print(f"farm: error: frame {frame} misses bands {missing}", flush=True)
+            say(f"{jobs.ERROR}frame {frame} misses bands {missing}")
             failed += 1
             continue
         try:
             stitch.stitch(bands, manifest["rows"], path, manifest["file_format"],
                           manifest["quality"])
-        except stitch.StitchError as exc:
-            print(f"farm: error: frame {frame}: {exc}", flush=True)
+            _mark_done(manifest, f"frame_{frame}", path)
+        except (stitch.StitchError, files.FileError) as exc:
+            say(f"{jobs.ERROR}frame {frame}: {exc}")
             failed += 1
             continue
-        (job_dir / "done" / f"frame_{frame}").write_text(str(path))
-        print(f"farm: stitched frame {frame} -> {path} in {time.monotonic() - started:.2f} s",
-              flush=True)
-        # Its bands are done: the frame's shared preparation (often the job's largest file) goes.
-        state_path(manifest, frame).unlink(missing_ok=True)
+        say(f"farm: stitched frame {frame} -> {path} in {time.monotonic() - started:.2f} s")
+        if manifest.get("shared_prepare"):
+            _remove_state(manifest, frame)
     if failed:
         return _requeue_or_fail(manifest)
     return 0
