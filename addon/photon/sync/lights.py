@@ -59,13 +59,83 @@ def light_spectrum(light):
     return spectrum, temperature, illuminant
 
 
+def _upstream_nodes(tree, socket):
+    """The nodes feeding `socket` of a light's node tree, directly or through other nodes, in
+    the order met (breadth first)."""
+    found, queue, seen = [], [socket], set()
+    while queue:
+        current = queue.pop(0)
+        for link in tree.links:
+            if link.to_socket != current or link.is_muted or link.from_node.name in seen:
+                continue
+            node = link.from_node
+            seen.add(node.name)
+            found.append(node)
+            queue.extend(i for i in node.inputs if i.is_linked)
+    return found
+
+
+def _node_label(node):
+    return f"{node.bl_label} '{node.name}'" if node.name != node.bl_label else node.bl_label
+
+
+def node_emission(light, name, reporter):
+    """(colour factor, strength factor) of the light's own node tree (Use Nodes), which Cycles
+    multiplies into the light's colour and power: the constant Color and Strength of the Emission
+    node at its Light Output (a Blackbody node feeding the Color sets the spectrum instead, see
+    light_spectrum). Photon does not evaluate nodes feeding them (an IES Texture, Light Falloff,
+    a texture): it warns, naming them, and renders the sockets' own values."""
+    tree = light.node_tree if getattr(light, "use_nodes", False) else None
+    if tree is None:
+        return [1.0, 1.0, 1.0], 1.0
+    output = nodes.output_node(tree, 'OUTPUT_LIGHT')
+    surface = output.inputs.get("Surface") if output else None
+    emission = nodes.source(surface).node if surface is not None else None
+    if emission is None or emission.type != 'EMISSION':
+        what = "nothing" if emission is None else _node_label(emission)
+        reporter.warning(f"Light '{name}': its node tree has {what} at its Light Output, which "
+                         f"Photon does not evaluate; the light is rendered as without nodes")
+        return [1.0, 1.0, 1.0], 1.0
+    color, strength = [1.0, 1.0, 1.0], 1.0
+    ignored = []
+    color_socket = nodes.find_input(emission, "Color")
+    if color_socket is not None:
+        if color_socket.is_linked:
+            if blackbody_temperature(light) is None:
+                ignored += _upstream_nodes(tree, color_socket)
+        else:
+            color = [float(c) for c in color_socket.default_value[:3]]
+    strength_socket = nodes.find_input(emission, "Strength")
+    if strength_socket is not None:
+        if strength_socket.is_linked:
+            ignored += _upstream_nodes(tree, strength_socket)
+        else:
+            strength = float(strength_socket.default_value)
+    if ignored:
+        labels = ", ".join(dict.fromkeys(_node_label(n) for n in ignored))
+        reporter.warning(f"Light '{name}': {labels} in its node tree not rendered by Photon "
+                         f"yet; the Emission node's own Color and Strength values are used")
+    return color, strength
+
+
+# Below this (radians) an area light's spread is narrower than its hemisphere.
+FULL_SPREAD = math.pi - 1e-4
+
+
 def light_arguments(native, obj, matrix, reporter):
     """Scene.add_light keyword arguments of one light, or None when it adds no light. The
     "matrix" is the world matrix in double precision: sync rebases it (sync_origin) before
     making it float32."""
     light = obj.data
-    power = float(light.energy)
-    color = [float(c) for c in light.color]
+    if light.type == 'AREA' and getattr(getattr(light, "cycles", None), "is_portal", False):
+        # A portal emits nothing in Cycles: it only guides the world's sampling through a window.
+        reporter.warning(f"Light '{obj.name}' is a portal: it emits no light, and Photon does not "
+                         f"guide the world's light through portals yet (the window is lit by "
+                         f"the world alone, with more noise than Cycles' portal-guided render)")
+        return None
+    node_color, node_strength = node_emission(light, obj.name, reporter)
+    power = float(light.energy) * node_strength
+    color = [float(c) * f for c, f in zip(light.color, node_color)]
     if not all(math.isfinite(v) for v in color + [power]):
         reporter.warning(f"Light '{obj.name}': non-finite colour or power; skipped")
         return None
@@ -99,4 +169,9 @@ def light_arguments(native, obj, matrix, reporter):
         if degenerate:
             reporter.warning(f"Area light '{obj.name}' has zero size; skipped")
             return None
+        spread = float(getattr(light, "spread", math.pi))
+        if spread < FULL_SPREAD:
+            reporter.warning(f"Area light '{obj.name}': a spread of {math.degrees(spread):.0f} "
+                             f"degrees is not rendered by Photon yet; it emits over its whole "
+                             f"hemisphere (180 degrees)")
     return kwargs

@@ -1,0 +1,69 @@
+"""Cycles' light controls that used to change the image silently: a portal rendered as a real
+emitter (a 5 kW portal made the Cornell box 97x brighter), a narrow area-light spread and light
+node trees ignored. A portal now emits nothing, as in Cycles; the Emission node's constant
+Color and Strength scale the light as in Cycles; what Photon does not render (spread, an IES
+Texture, Light Falloff, an unconnected Light Output) is said in a warning. About 10 s."""
+
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
+from harness import read_image  # noqa: E402
+
+REPO = Path(__file__).resolve().parents[2]
+CORNELL = REPO / "test_scenes" / "cornell_box.blend"
+PLAIN = {"color": [1.0, 0.5, 0.25], "power": 100.0, "spectrum": "RGB"}
+
+
+def test_light_controls_reach_the_native_light_or_a_warning(blender):
+    result, proc = blender.run_script("light_controls.py")
+    assert "exception" not in result, proc.log
+    args, warnings = result["arguments"], result["warnings"]
+    # Without nodes, or with the default Emission node: the light's own colour and power.
+    assert args["plain"] == PLAIN and warnings["plain"] == []
+    assert args["default_nodes"] == PLAIN and warnings["default_nodes"] == []
+    # A portal emits nothing (Cycles' portals only guide the world's light).
+    assert args["portal"] is None
+    assert len(warnings["portal"]) == 1 and "is a portal" in warnings["portal"][0]
+    # The spread is named, the light still renders.
+    assert args["narrow"] == PLAIN
+    assert warnings["narrow"] == [
+        "Area light 'narrow': a spread of 30 degrees is not rendered by Photon yet; it emits "
+        "over its whole hemisphere (180 degrees)"]
+    # Constant Emission Color and Strength multiply the light's, as in Cycles.
+    assert args["constants"]["color"] == [0.5, 0.25, 0.25]
+    assert args["constants"]["power"] == 500.0 and warnings["constants"] == []
+    # Node-driven emission: the nodes are named, the sockets' own values are used.
+    assert args["ies"] == PLAIN
+    assert len(warnings["ies"]) == 1 and "IES Texture" in warnings["ies"][0]
+    assert args["falloff"] == PLAIN
+    assert len(warnings["falloff"]) == 1 and "Light Falloff" in warnings["falloff"][0]
+    # A Blackbody node sets the spectrum, with no warning.
+    assert args["blackbody"]["spectrum"] == "BLACKBODY" and warnings["blackbody"] == []
+    assert args["unconnected"] == PLAIN
+    assert len(warnings["unconnected"]) == 1 and "nothing" in warnings["unconnected"][0]
+
+
+def render_cornell(blender, out, name, expr):
+    proc = blender.run([str(CORNELL), "-E", "PHOTON", "--python-expr",
+                        "import bpy; s = bpy.context.scene; s.photon.samples = 4; "
+                        "s.photon.photons = 20000; s.photon.final_gather_rays = 8; "
+                        "s.render.resolution_x = s.render.resolution_y = 32; "
+                        "s.render.resolution_percentage = 100; " + expr,
+                        "-o", str(out / f"{name}_####"), "-F", "OPEN_EXR", "-x", "1", "-f", "1"],
+                       timeout=300)
+    assert "Photon: rendered frame" in proc.stdout, proc.log
+    return proc, read_image(out / f"{name}_0001.exr")[..., :3]
+
+
+def test_a_portal_in_the_cornell_box_adds_no_light(blender, tmp_path):
+    _, plain = render_cornell(blender, tmp_path, "plain", "")
+    portal = ("d = bpy.data.lights.new('Window', 'AREA'); d.energy = 5000.0; "
+              "d.cycles.is_portal = True; o = bpy.data.objects.new('Window', d); "
+              "o.location = (0.0, 0.0, 1.0); s.collection.objects.link(o)")
+    proc, with_portal = render_cornell(blender, tmp_path, "portal", portal)
+    assert "is a portal" in proc.stdout, proc.log
+    # Before, the portal was a 5 kW emitter: the image was 97x brighter.
+    assert np.array_equal(with_portal, plain)
