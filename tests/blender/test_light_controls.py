@@ -2,7 +2,8 @@
 emitter (a 5 kW portal made the Cornell box 97x brighter), a narrow area-light spread and light
 node trees ignored. A portal now emits nothing, as in Cycles; the Emission node's constant
 Color and Strength scale the light as in Cycles; what Photon does not render (spread, an IES
-Texture, Light Falloff, an unconnected Light Output) is said in a warning. About 10 s."""
+Texture, Light Falloff, an unconnected Light Output, a World volume) is said in a warning.
+About 10 s."""
 
 import sys
 from pathlib import Path
@@ -58,12 +59,17 @@ def render_cornell(blender, out, name, expr):
     return proc, read_image(out / f"{name}_0001.exr")[..., :3]
 
 
-def test_a_portal_in_the_cornell_box_adds_no_light(blender, tmp_path):
+def test_a_portal_adds_no_light_and_a_world_volume_is_named(blender, tmp_path):
     _, plain = render_cornell(blender, tmp_path, "plain", "")
     portal = ("d = bpy.data.lights.new('Window', 'AREA'); d.energy = 5000.0; "
               "d.cycles.is_portal = True; o = bpy.data.objects.new('Window', d); "
-              "o.location = (0.0, 0.0, 1.0); s.collection.objects.link(o)")
+              "o.location = (0.0, 0.0, 1.0); s.collection.objects.link(o); "
+              "w = s.world; w.use_nodes = True; t = w.node_tree; "
+              "v = t.nodes.new('ShaderNodeVolumePrincipled'); "
+              "t.links.new(v.outputs[0], t.nodes['World Output'].inputs['Volume'])")
     proc, with_portal = render_cornell(blender, tmp_path, "portal", portal)
     assert "is a portal" in proc.stdout, proc.log
-    # Before, the portal was a 5 kW emitter: the image was 97x brighter.
+    # Before, the portal was a 5 kW emitter (the image 97x brighter) and the fog was dropped
+    # without a word.
+    assert "its volume (fog) is not rendered by Photon yet" in proc.stdout, proc.log
     assert np.array_equal(with_portal, plain)

@@ -96,10 +96,22 @@ class _WorldCompiler:
         return self._black()
 
 
+def warn_world_volume(world, reporter):
+    """Photon renders no participating media yet: a World whose Volume output is connected
+    (atmospheric fog) is rendered without it, and says so."""
+    tree = world.node_tree if world is not None and getattr(world, "use_nodes", False) else None
+    output = nodes.output_node(tree, 'OUTPUT_WORLD') if tree is not None else None
+    volume = output.inputs.get("Volume") if output is not None else None
+    if volume is not None and nodes.source(volume).node is not None:
+        reporter.warning(f"World '{world.name}': its volume (fog) is not rendered by Photon yet; "
+                         f"the scene is rendered without it")
+
+
 def export_world(native_scene, world, reporter, textures, max_emission=None):
     """Sets the native world (`textures`: the materials' TextureTable, so an image is added
     once); returns its constant colour, or [1, 1, 1] for a world with a program (what the
     'no lights' warning looks at), and whether a program was set."""
+    warn_world_volume(world, reporter)
     color = world_color(world, reporter, max_emission) if _is_constant(world) else None
     if color is not None:
         native_scene.set_world(color)
