@@ -8,9 +8,9 @@
 #include <cmath>
 #include <optional>
 
+#include "photon/integrators/iterative_frame.h"
 #include "photon/integrators/merge_radius.h"
 #include "photon/integrators/photon_map/photon_memory.h"
-#include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/spectral_path.h"
 #include "photon/integrators/sppm/photon_kdtree.h"
 #include "photon/integrators/sppm/sppm_camera.h"
@@ -210,39 +210,17 @@ int SppmIntegrator::render(const RenderContext& context, Film& film, const Rende
   const std::atomic<bool>& cancel = cancel_flag(control);
   const auto t0 = Clock::now();
   if (control.first_pass == 0) {
-    film.clear();
-    // The data passes do not change from iteration to iteration: they are rendered once, from
-    // the camera rays of the Sampling panel's samples, as the tiled integrators render them.
-    if (film.data_floats() > 0) {
-      control.report_status("Data passes");
-      if (!render_data_passes(context, film, control)) return 0;
-    }
+    if (!start_iterative_film(context, film, control)) return 0;
     pixels_.assign(film.pixel_count(), SppmPixel{});
     stats_ = IterationStats{};
     initial_radii(context, film, control);
     if (cancel.load()) return 0;
   }
-  const double time_limit = s.sppm_time;
-  int done = control.first_pass;
-  while (done < control.end_pass && !control.stopped()) {
-    control.report_status("Iteration " + std::to_string(done + 1) + " / " +
-                          std::to_string(control.end_pass));
-    if (!iterate(context, film, static_cast<uint32_t>(done), cancel)) return done;
-    ++done;
-    write_film(film, done);
-    const double elapsed = seconds_since(t0);
-    const bool out_of_time = time_limit > 0.0 && elapsed >= time_limit;
-    const bool last = done >= control.end_pass || out_of_time;
-    if (control.progress) {
-      double fraction = static_cast<double>(done - control.first_pass) /
-                        std::max(control.end_pass - control.first_pass, 1);
-      if (time_limit > 0.0) fraction = std::max(fraction, elapsed / time_limit);
-      control.progress(static_cast<float>(std::min(fraction, 1.0)));
-    }
-    if (control.update) control.update(FilmRect{0, 0, film.width(), film.height()}, done, last);
-    if (out_of_time) break;
-  }
-  return done;
+  return run_iterations(film, control, s.sppm_time, t0, [&](uint32_t pass) {
+    if (!iterate(context, film, pass, cancel)) return false;
+    write_film(film, pass + 1);
+    return true;
+  });
 }
 
 IntegratorInfo sppm_integrator_info() {

@@ -7,10 +7,10 @@
 #include <chrono>
 #include <cmath>
 
+#include "photon/integrators/iterative_frame.h"
 #include "photon/integrators/merge_radius.h"
 #include "photon/integrators/photon_map/photon_memory.h"
 #include "photon/integrators/photon_map/photon_sources.h"
-#include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/spectral_path.h"
 #include "photon/integrators/vcm/vcm_camera_paths.h"
 #include "photon/integrators/vcm/vcm_grid.h"
@@ -166,11 +166,7 @@ int VcmIntegrator::render(const RenderContext& context, Film& film, const Render
     if (film.options().light_passes)
       control.report_warning(
           "light passes are not rendered by the VCM integrator yet: they are left at zero");
-    film.clear();
-    if (film.data_floats() > 0) {
-      control.report_status("Data passes");
-      if (!render_data_passes(context, film, control)) return 0;
-    }
+    if (!start_iterative_film(context, film, control)) return 0;
     stats_ = IterationStats{};
     alpha_ = s.vcm_alpha;
     const float floor_radius = 1e-6f * context.accel->length_scale();
@@ -188,26 +184,8 @@ int VcmIntegrator::render(const RenderContext& context, Film& film, const Render
       initial_radius_ = std::max(floor_radius, 0.01f * scene_frame_.radius);
     plan_light_paths(context, control);
   }
-  const double time_limit = s.vcm_time;
-  int done = control.first_pass;
-  while (done < control.end_pass && !control.stopped()) {
-    control.report_status("Iteration " + std::to_string(done + 1) + " / " +
-                          std::to_string(control.end_pass));
-    if (!iterate(context, film, static_cast<uint32_t>(done), cancel)) return done;
-    ++done;
-    const double elapsed = seconds_since(t0);
-    const bool out_of_time = time_limit > 0.0 && elapsed >= time_limit;
-    const bool last = done >= control.end_pass || out_of_time;
-    if (control.progress) {
-      double fraction = static_cast<double>(done - control.first_pass) /
-                        std::max(control.end_pass - control.first_pass, 1);
-      if (time_limit > 0.0) fraction = std::max(fraction, elapsed / time_limit);
-      control.progress(static_cast<float>(std::min(fraction, 1.0)));
-    }
-    if (control.update) control.update(FilmRect{0, 0, film.width(), film.height()}, done, last);
-    if (out_of_time) break;
-  }
-  return done;
+  return run_iterations(film, control, s.vcm_time, t0,
+                        [&](uint32_t pass) { return iterate(context, film, pass, cancel); });
 }
 
 IntegratorInfo vcm_integrator_info() {
