@@ -58,3 +58,40 @@ def test_clamped_settings_are_said_before_the_render(tmp_path):
     finally:
         proc.kill()
         proc.wait()
+
+
+def test_a_full_disk_leaves_no_damaged_image(tmp_path):
+    """An image that does not fit its disk: exit 1 with the reason, and no file (damaged or
+    temporary) under the output's folder. Before, the writer's error left a truncated file."""
+    if os.geteuid() != 0:
+        pytest.skip("mounting a small tmpfs (a disk that fills) needs root")
+    disk = tmp_path / "disk"
+    disk.mkdir()
+    mounted = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=64k", "tmpfs", str(disk)],
+                             capture_output=True, text=True)
+    if mounted.returncode != 0:
+        pytest.skip(f"cannot mount a tmpfs here: {mounted.stderr.strip()}")
+    try:
+        # 256 x 256 RGBA floats: about 1 MB of EXR, far more than 64 kB.
+        proc = run("--width", 256, "--height", 256, "--samples", 1, "--integrator", "ray_trace",
+                   "--out", disk / "a.exr")
+        assert proc.returncode == 1, proc
+        assert "cannot write" in proc.stderr, proc.stderr
+        assert list(disk.iterdir()) == []
+        # A frame that fits is written whole under its own name.
+        proc = run("--width", 8, "--height", 8, "--samples", 1, "--integrator", "ray_trace",
+                   "--out", disk / "b.exr")
+        assert proc.returncode == 0, proc
+        assert [p.name for p in disk.iterdir()] == ["b.exr"]
+    finally:
+        subprocess.run(["umount", "-l", str(disk)], capture_output=True)
+
+
+def test_an_output_path_that_is_a_folder_is_refused(tmp_path):
+    folder = tmp_path / "a.exr"
+    folder.mkdir()
+    proc = run("--width", 8, "--height", 8, "--samples", 1, "--out", folder)
+    assert proc.returncode == 1, proc
+    assert "is not a regular file" in proc.stderr
+    assert folder.is_dir() and list(folder.iterdir()) == []
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.exr"]
