@@ -53,15 +53,13 @@ void BM_CameraRays_BareEmbree(benchmark::State& state) {
   uint64_t hits = 0;
   for (auto _ : state) {
     for (const Ray& r : f.rays) {
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
       RTCRayHit rh;
       rh.ray.org_x = r.origin.x, rh.ray.org_y = r.origin.y, rh.ray.org_z = r.origin.z;
       rh.ray.dir_x = r.direction.x, rh.ray.dir_y = r.direction.y, rh.ray.dir_z = r.direction.z;
       rh.ray.tnear = r.tmin, rh.ray.tfar = r.tmax, rh.ray.time = 0, rh.ray.mask = kVisibleCamera;
       rh.ray.id = 0, rh.ray.flags = 0;
       rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(top, &ctx, &rh);
+      embree::intersect1(top, &rh);
       hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     }
   }
@@ -69,7 +67,7 @@ void BM_CameraRays_BareEmbree(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * f.rays.size());
 }
 
-// The same rays as coherent streams of one 64-pixel tile row (rtcIntersect1M).
+// The same rays as coherent batches of one 64-pixel tile row (a stream in Embree 3).
 void BM_CameraRays_EmbreeStream(benchmark::State& state) {
   Fixture f(false);
   RTCScene top = f.accel->top_level();
@@ -87,10 +85,7 @@ void BM_CameraRays_EmbreeStream(benchmark::State& state) {
         rh.ray.id = 0, rh.ray.flags = 0;
         rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
       }
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-      rtcIntersect1M(top, &ctx, batch.data(), static_cast<unsigned>(n), sizeof(RTCRayHit));
+      embree::intersect_coherent(top, batch.data(), static_cast<unsigned>(n));
       for (size_t i = 0; i < n; ++i) hits += batch[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
     }
   }

@@ -31,7 +31,7 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                                  .label = "Integrator",
                                  .description = "Rendering algorithm",
                                  .min = 0,
-                                 .max = max_integrator,
+                                 .max = static_cast<double>(max_integrator),
                                  .items = integrators}),
           param(&S::samples, {.name = "samples",
                               .label = "Samples",

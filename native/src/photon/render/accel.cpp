@@ -134,7 +134,7 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
     if (abandoned.load(std::memory_order_relaxed)) return;
     const size_t m = to_build[i];
     const Mesh& mesh = scene.meshes[m];
-    RTCGeometry geom = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
+    RTCGeometry geom = embree::new_triangle_geometry(device_);
     rtcSetGeometryBuildQuality(geom, rtc_quality);
     // Embree reads vertices with 16-byte loads, so the last one needs 4 readable bytes after it.
     // Meshes imported with spare capacity (Scene's add_mesh reserves one vertex more) are
@@ -331,13 +331,11 @@ Accel::~Accel() {
 
 bool Accel::intersect(const Ray& ray, uint32_t mask, Hit* hit) const {
   if (!traceable(ray)) return false;
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRayHit rh;
   init_ray(ray, mask, &rh.ray);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  rtcIntersect1(top_, &context, &rh);
+  embree::intersect1(top_, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
   fill_hit(rh, ray, hit);
   return true;
@@ -361,10 +359,7 @@ void Accel::intersect_coherent(const Ray* rays, size_t count, uint32_t mask, Hit
       batch[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
       batch[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     }
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect1M(top_, &context, batch, static_cast<unsigned>(n), sizeof(RTCRayHit));
+    embree::intersect_coherent(top_, batch, static_cast<unsigned>(n));
     for (size_t i = 0; i < n; ++i) {
       found[base + i] = batch[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
       if (found[base + i]) fill_hit(batch[i], rays[base + i], &hits[base + i]);
@@ -374,11 +369,9 @@ void Accel::intersect_coherent(const Ray* rays, size_t count, uint32_t mask, Hit
 
 bool Accel::occluded(const Ray& ray, uint32_t mask) const {
   if (!traceable(ray)) return true;  // no light along a ray that cannot be traced
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
   RTCRay r;
   init_ray(ray, mask, &r);
-  rtcOccluded1(top_, &context, &r);
+  embree::occluded1(top_, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf when something blocks the ray
 }
 

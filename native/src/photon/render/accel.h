@@ -2,8 +2,6 @@
 // scene, so N instances of a mesh cost one BVH.
 #pragma once
 
-#include <embree3/rtcore.h>
-
 #include <atomic>
 #include <memory>
 #include <mutex>
@@ -13,6 +11,7 @@
 #include "photon/base/math.h"
 #include "photon/base/ray_offset.h"
 #include "photon/render/blas_cache.h"
+#include "photon/render/embree.h"
 #include "photon/scene/scene.h"
 
 namespace photon {

@@ -7,7 +7,7 @@ namespace photon {
 namespace {
 
 RTCScene new_blas(RTCDevice device, const Mesh& mesh) {
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  RTCGeometry geom = embree::new_triangle_geometry(device);
   // Both buffers are copies owned by Embree: the cached BVH outlives the Scene it came from.
   // Embree reads vertices with 16-byte loads; its own buffers are padded for that.
   auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(

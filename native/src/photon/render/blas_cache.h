@@ -5,8 +5,6 @@
 // changed mesh can never be served a stale one.
 #pragma once
 
-#include <embree3/rtcore.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -14,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "photon/render/embree.h"
 #include "photon/scene/scene.h"
 
 namespace photon {

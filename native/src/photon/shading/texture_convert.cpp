@@ -80,10 +80,11 @@ class PixelSource : public BandSource {
 // and go and no whole image is ever in memory. One for the process, never destroyed: OIIO 2.4
 // keeps per-thread state of each cache in its worker threads, and creating and destroying a
 // private cache per file crashed inside OIIO (ImageCacheImpl::verify_file) once several had
-// come and gone.
-OIIO::ImageCache* conversion_cache() {
-  static OIIO::ImageCache* const cache = [] {
-    OIIO::ImageCache* c = OIIO::ImageCache::create(/*shared=*/false);
+// come and gone. OIIO 3 hands caches out as shared_ptr, OIIO 2 as a raw pointer.
+using CacheHandle = decltype(OIIO::ImageCache::create(false));
+const CacheHandle& conversion_cache() {
+  static const CacheHandle cache = [] {
+    CacheHandle c = OIIO::ImageCache::create(/*shared=*/false);
     c->attribute("max_memory_MB", 256.0f);
     c->attribute("autotile", kTile);
     c->attribute("autoscanline", 1);
@@ -170,7 +171,7 @@ class FileSource : public BandSource {
     return m;
   }
 
-  OIIO::ImageCache* cache_ = nullptr;
+  CacheHandle cache_ = nullptr;
   std::string path_;
   std::unique_lock<std::mutex> lock_;
   std::unique_ptr<OIIO::ImageBuf> buf_;

@@ -49,13 +49,14 @@ struct TextureSet::System {
     return n;
   }
   static OIIO::TextureSystem* shared_system() {
-    static OIIO::TextureSystem* system = [] {
-      OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/false);
+    // A shared_ptr in OpenImageIO 3, a raw pointer in 2.
+    static const auto system = [] {
+      auto t = OIIO::TextureSystem::create(/*shared=*/false);
       t->attribute("max_memory_MB", 1024.0f);
       t->attribute("autotile", 64);
       return t;
     }();
-    return system;
+    return &*system;
   }
   System() {
     std::lock_guard<std::mutex> lock(mutex());
