@@ -27,10 +27,23 @@ class PhotonRenderEngine(bpy.types.RenderEngine):
     _persistent = None
     _viewport = None  # viewport.ViewportRender of this engine's 3D viewport
 
+    def __init__(self, *args, **kwargs):
+        # Blender 4.4+ creates the RenderEngine's own data in bpy_struct.__init__, from the
+        # arguments it passes; 3.4 passes none.
+        super().__init__(*args, **kwargs)
+
     def __del__(self):
-        # Blender frees the engine when the viewport leaves Rendered shading or closes.
-        if self._viewport is not None:
-            self._viewport.free()
+        # Blender frees the engine when the viewport leaves Rendered shading or closes. At
+        # Blender's exit the underlying data may already be gone (ReferenceError).
+        try:
+            viewport = self._viewport
+        except ReferenceError:
+            viewport = None
+        if viewport is not None:
+            viewport.free()
+        parent_del = getattr(super(), "__del__", None)
+        if parent_del is not None:
+            parent_del()
 
     def view_update(self, context, depsgraph):
         if self._viewport is None:

@@ -43,7 +43,9 @@ class Blender:
 
     def run(self, args, timeout=300, stage=None, check=True):
         """Runs Blender in background mode with the photon add-on enabled."""
-        cmd = [self.executable, "-b", "--factory-startup", "--addons", "photon", *args]
+        # Blender 4.2+ ignores PYTHONPATH (which finds the test scripts' helpers) unless asked.
+        cmd = [self.executable, "-b", "--factory-startup", "--python-use-system-env",
+               "--addons", "photon", *args]
         proc = subprocess.run(cmd, env=self.env(stage), capture_output=True, text=True,
                               timeout=timeout, stdin=subprocess.DEVNULL)
         proc.log = f"$ {' '.join(cmd)}\n--- stdout ---\n{proc.stdout}\n--- stderr ---\n{proc.stderr}"

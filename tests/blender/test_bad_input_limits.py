@@ -55,7 +55,7 @@ def test_huge_thread_counts_bake_twice_with_a_warning(blender, tmp_path, threads
 def test_sigint_during_radiance_precompute_ends_blender_promptly(blender, tmp_path):
     # 500k photons: ~230k radiance estimates, several seconds of precompute (minutes before
     # the fix, which waited for it, the irradiance cache and the pixels).
-    cmd = [blender.executable, "-b", "--factory-startup", "--addons", "photon", str(CORNELL),
+    cmd = [blender.executable, "-b", "--factory-startup", "--python-use-system-env", "--addons", "photon", str(CORNELL),
            "-E", "PHOTON", "--python", str(SCRIPT), "-o", str(tmp_path / "frame_####"),
            "-F", "OPEN_EXR", "-x", "1", "-f", "1", "--", "resolution=64", "samples=1",
            "photons=500000", "caustic_photons=0"]

@@ -34,7 +34,7 @@ def render(blender, tmp_path, blend, timeout=600):
     its own peak RSS (not the largest of all children so far)."""
     env = blender.env()
     env["PHOTON_TEXTURE_CACHE"] = str(tmp_path / "texture_cache")
-    cmd = [blender.executable, "-b", "--factory-startup", "--addons", "photon", str(blend),
+    cmd = [blender.executable, "-b", "--factory-startup", "--python-use-system-env", "--addons", "photon", str(blend),
            "-E", "PHOTON", "-o", str(tmp_path / "out_####"), "-F", "OPEN_EXR", "-x", "1",
            "-f", "1"]
     log_path = tmp_path / "render.log"

@@ -42,7 +42,7 @@ def run_until(blender, pattern, bake_samples):
     result_path = blender.out_dir / f"bake_scale-sigint-{os.getpid()}.json"
     if result_path.exists():
         result_path.unlink()
-    cmd = [blender.executable, "-b", "--factory-startup", "--addons", "photon", "--python",
+    cmd = [blender.executable, "-b", "--factory-startup", "--python-use-system-env", "--addons", "photon", "--python",
            str(SCRIPTS / "bake_scale.py"), "--", str(result_path), str(TRIANGLES),
            str(bake_samples)]
     proc = subprocess.Popen(cmd, env=blender.env(), stdout=subprocess.PIPE,

@@ -31,7 +31,7 @@ pytestmark = [pytest.mark.serial, pytest.mark.skipif(
 def run_gui(blender, tmp_path, **script_args):
     shot = tmp_path / "shot.png"
     cmd = ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", blender.executable,
-           "--factory-startup", "--addons", "photon", str(CORNELL), "-P", str(SCRIPT), "--",
+           "--factory-startup", "--python-use-system-env", "--addons", "photon", str(CORNELL), "-P", str(SCRIPT), "--",
            f"screenshot={shot}", *(f"{k}={v}" for k, v in script_args.items())]
     proc = subprocess.run(cmd, env=blender.env(), stdout=subprocess.PIPE,
                           stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL, text=True,

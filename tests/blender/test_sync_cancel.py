@@ -59,7 +59,7 @@ def test_sync_polls_test_break_throughout_and_stops_at_once(blender, blend):
 def render_with_sigint(blender, blend, tmp_path, delay):
     """Renders frame 1 and sends SIGINT `delay` seconds after the sync starts; returns (log,
     exit code, seconds from the signal to the cancelled line or None)."""
-    cmd = [blender.executable, "-b", "--factory-startup", "--addons", "photon", str(blend),
+    cmd = [blender.executable, "-b", "--factory-startup", "--python-use-system-env", "--addons", "photon", str(blend),
            "-E", "PHOTON", "-o", str(tmp_path / "frame_####"), "-F", "OPEN_EXR", "-x", "1",
            "-f", "1"]
     proc = subprocess.Popen(cmd, env=blender.env(), stdout=subprocess.PIPE,

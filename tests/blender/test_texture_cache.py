@@ -43,7 +43,7 @@ def render(blender, tmp_path, blend, cache, temp=None):
         temp.mkdir(exist_ok=True)
     env["TMPDIR"] = str(temp)
     out = tmp_path / "out_####"
-    cmd = [blender.executable, "-b", "--factory-startup", "--addons", "photon", str(blend),
+    cmd = [blender.executable, "-b", "--factory-startup", "--python-use-system-env", "--addons", "photon", str(blend),
            "-E", "PHOTON", "-o", str(out), "-F", "OPEN_EXR", "-x", "1", "-f", "1"]
     proc = subprocess.run(cmd, env=env, capture_output=True, text=True, timeout=300,
                           stdin=subprocess.DEVNULL)

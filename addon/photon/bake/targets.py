@@ -11,6 +11,7 @@ apply them first).
 import numpy as np
 
 from ..native import native_module
+from ..sync.mesh import loop_normals
 
 # Corner points are shaded this fraction of the way from the corner to the triangle's centre:
 # exactly at a vertex a point would lie on the neighbouring faces too (wall corners), where
@@ -68,12 +69,12 @@ class Target:
         return [p for p in (self.corners, self.lightmap) if p is not None]
 
 
-def corner_points(corner_loops, loop_vertex, loop_normals):
+def corner_points(corner_loops, loop_vertex, normals):
     """One point per (vertex, split normal) group: the corners that share a vertex and a normal
     get one value (smooth and flat-but-coplanar parts are continuous, corners on two sides of a
     hard edge keep their own), so one point is shaded for all of them, in a loop triangle
     that uses the group (a quad mesh has about a quarter as many groups as corners)."""
-    normals = np.nan_to_num(loop_normals, nan=0.0, posinf=0.0, neginf=0.0)
+    normals = np.nan_to_num(normals, nan=0.0, posinf=0.0, neginf=0.0)
     quantised = np.round(normals / NORMAL_QUANTUM).astype(np.int64)
     # One int64 key per loop: vertex and normal packed (normals are within [-1024, 1024]).
     keys = (loop_vertex.astype(np.int64) << 36) | ((quantised[:, 0] + 2048) << 24) \
@@ -258,8 +259,7 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
             loop_count = len(evaluated.loops)
             corner_loops = _get(evaluated.loop_triangles, "loops", np.int32, tri_count, 3)
             loop_vertex = _get(evaluated.loops, "vertex_index", np.int32, loop_count)
-            evaluated.calc_normals_split()
-            loop_normals = _get(evaluated.loops, "normal", np.float32, loop_count, 3)
+            normals = loop_normals(evaluated, loop_count).reshape(loop_count, 3)
             positions = _get(evaluated.vertices, "co", np.float32, len(evaluated.vertices), 3)
         finally:
             evaluated_obj.to_mesh_clear()
@@ -269,7 +269,7 @@ def collect(context, depsgraph, object_instances, props, want_attribute, want_li
         owners[mesh.name] = name
         target = Target(obj, object_instances[name][0])
         if want_attribute:
-            target.corners = corner_points(corner_loops, loop_vertex, loop_normals)
+            target.corners = corner_points(corner_loops, loop_vertex, normals)
             points = len(target.corners.point_groups)
             if not want_lightmap and points < COARSE_BAKE_POINTS:
                 coarse.append((name, points))

@@ -34,10 +34,24 @@ def _get(collection, attribute, dtype, count, components=1):
 def _shading(mesh):
     """(per-polygon smooth flags, split normals needed). Shading normals: none for all-flat
     meshes (the geometric normal is exact), Blender's split (per-loop) normals for auto smooth
-    and custom normals, else computed natively from the polygons (vertex normals where smooth)."""
+    and custom normals, else computed natively from the polygons (vertex normals where smooth).
+    Blender 4.1 replaced Auto Smooth by sharp edges (and a modifier that marks them): its mesh
+    says itself whether its normals are per corner."""
     smooth = _get(mesh.polygons, "use_smooth", bool, len(mesh.polygons))
-    split = mesh.has_custom_normals or (smooth.any() and mesh.use_auto_smooth)
+    if hasattr(mesh, "normals_domain"):
+        split = mesh.normals_domain == 'CORNER'
+    else:
+        split = mesh.has_custom_normals or (smooth.any() and mesh.use_auto_smooth)
     return smooth, bool(split)
+
+
+def loop_normals(mesh, loop_count):
+    """Blender's per-corner (split) normals, float32 (loop_count, 3) flattened. Blender 4.1+
+    keeps them computed on demand (Mesh.corner_normals); 3.4 computes them into the loops."""
+    if hasattr(mesh, "corner_normals"):
+        return _get(mesh.corner_normals, "vector", np.float32, loop_count, 3)
+    mesh.calc_normals_split()
+    return _get(mesh.loops, "normal", np.float32, loop_count, 3)
 
 
 def _evaluated_mesh(obj):
@@ -52,7 +66,10 @@ def _evaluated_mesh(obj):
     if obj.type != 'MESH':
         return None
     mesh = obj.data
-    if not isinstance(mesh, bpy.types.Mesh) or mesh.is_editmode or _shading(mesh)[1]:
+    if not isinstance(mesh, bpy.types.Mesh) or mesh.is_editmode:
+        return None
+    # 3.4 writes split normals into the mesh it computes them for; 4.1+ caches them itself.
+    if _shading(mesh)[1] and not hasattr(mesh, "corner_normals"):
         return None
     return mesh
 
@@ -191,8 +208,7 @@ def _mesh_arrays(mesh):
     kwargs = {"positions": positions, "corner_loops": corner_loops,
               "loop_vertices": loop_vertices, "material_slots": material_slots}
     if split:
-        mesh.calc_normals_split()
-        kwargs["loop_normals"] = _get(mesh.loops, "normal", np.float32, loop_count, 3)
+        kwargs["loop_normals"] = loop_normals(mesh, loop_count)
     elif smooth:
         poly_count = len(mesh.polygons)
         kwargs["poly_loop_starts"] = _get(mesh.polygons, "loop_start", np.int32, poly_count)
