@@ -98,9 +98,10 @@ Input parse_input(const py::handle& value, ParamKind kind, const Input& fallback
 Closure parse_closure(const py::handle& item, const std::string& what) {
   if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
   py::dict d = py::reinterpret_borrow<py::dict>(item);
-  check_keys(
-      d, {"type", "sharp", "abbe", "params", "normal_map", "normal", "clearcoat_normal", "weight"},
-      what);
+  check_keys(d,
+             {"type", "sharp", "cycles4", "multiscatter", "abbe", "params", "normal_map", "normal",
+              "clearcoat_normal", "weight"},
+             what);
   if (!d.contains("type")) fail(what + " has no 'type'");
   const std::string type = py::str(d["type"]);
   const ClosureSpec* found = find_closure(type.c_str());
@@ -109,6 +110,11 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   closure.type = found->type;
   closure.params = default_params(closure.type);  // inputs the dict leaves out
   if (d.contains("sharp")) closure.sharp = d["sharp"].cast<bool>();
+  // Blender 4+ nodes: Cycles 4's microfacet model, and its Multiscatter GGX energy scaling.
+  closure.cycles4 = closure.type == ClosureType::kPrincipledV2 ||
+                    (d.contains("cycles4") && d["cycles4"].cast<bool>());
+  if (d.contains("multiscatter")) closure.multiscatter = d["multiscatter"].cast<bool>();
+  if (!closure.cycles4) closure.multiscatter = false;
   if (d.contains("abbe")) {
     // Non-finite or negative: no dispersion; others inside real materials' range (the add-on
     // warns when it clamps).
@@ -245,10 +251,17 @@ py::dict describe_material(const Material& material) {
     py::dict d;
     d["type"] = closure_spec(c.type).name;
     d["sharp"] = c.sharp;
+    if (c.cycles4) {
+      d["cycles4"] = true;
+      d["multiscatter"] = c.multiscatter;
+    }
     d["abbe"] = c.abbe;
     py::dict params;
     for (const ClosureParamSpec& info : closure_spec(ClosureType::kPrincipled).params)
       params[info.key] = describe_input(c[info.param], info.kind);
+    if (c.type == ClosureType::kPrincipledV2)
+      for (const ClosureParamSpec& info : closure_spec(ClosureType::kPrincipledV2).params)
+        params[info.key] = describe_input(c[info.param], info.kind);
     d["params"] = params;
     if (c.normal.texture >= 0) {
       py::dict n;

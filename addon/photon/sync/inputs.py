@@ -105,9 +105,9 @@ def _scalar_param(name, spec):
 
 
 @functools.lru_cache(maxsize=None)
-def closure_table():
-    """{bpy node type: (closure type, [(socket names, Param), ...])}: the core's one table of
-    material inputs (native/src/photon/scene/material_params.cpp), read once."""
+def closures_by_name():
+    """{closure type: (closure type, [(socket names, Param), ...], bpy node type)}: the core's one
+    table of material inputs (native/src/photon/scene/material_params.cpp), read once."""
     table = {}
     for closure in native_module().material_parameters():
         params = []
@@ -115,7 +115,18 @@ def closure_table():
             default = list(p["default"]) if p["kind"] == 'color' else p["default"]
             params.append((tuple(p["sockets"]),
                            Param(p["key"], p["kind"], p["min"], p["max"], default)))
-        table[closure["node"]] = (closure["closure"], params)
+        table[closure["closure"]] = (closure["closure"], params, closure["node"])
+    return table
+
+
+@functools.lru_cache(maxsize=None)
+def closure_table():
+    """{bpy node type: (closure type, [(socket names, Param), ...])}; where two closures convert
+    the same node type (Principled v1 and v2) the first, and materials.py picks by the node's
+    sockets."""
+    table = {}
+    for name, params, node in closures_by_name().values():
+        table.setdefault(node, (name, params))
     return table
 
 

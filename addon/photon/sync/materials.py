@@ -15,7 +15,7 @@ import math
 from .. import native
 from . import graph, nodes
 from .inputs import (DEFAULT_COLOR, MaterialContext, clamp_constant, closure_param,
-                     closure_table, read_input, read_normal_map)
+                     closure_table, closures_by_name, read_input, read_normal_map)
 from .shader_program import RENDER_COLOR, program_attributes
 from .textures import TextureTable
 
@@ -35,8 +35,30 @@ PRINCIPLED_IGNORED = [
       ("Subsurface Anisotropy", 0.0)]),
     (("Anisotropic",), 0.0, False, [("Tangent", None)]),
 ]
+# Blender 4.0+'s Principled BSDF (v2, read with Cycles 4's meaning as PRINCIPLED_V2): inputs
+# Photon does not render, in PRINCIPLED_IGNORED's form.
+PRINCIPLED_V2_IGNORED = [
+    (("Sheen Weight",), 0.0, True, [("Sheen Roughness", None), ("Sheen Tint", None)]),
+    (("Thin Film Thickness",), 0.0, True, [("Thin Film IOR", None)]),
+    (("Diffuse Roughness",), 0.0, True, []),
+    (("Subsurface Weight",), 0.0, False,
+     [("Subsurface Radius", None), ("Subsurface Scale", None), ("Subsurface IOR", None),
+      ("Subsurface Anisotropy", None)]),
+    (("Anisotropic",), 0.0, False, [("Tangent", None)]),
+]
 # Nodes whose Tangent input, when linked, is ignored (the UV map's tangent is used).
-TANGENT_NODES = {'BSDF_PRINCIPLED', 'BSDF_ANISOTROPIC'}
+TANGENT_NODES = {'BSDF_PRINCIPLED', 'BSDF_ANISOTROPIC', 'BSDF_GLOSSY'}
+
+
+def is_principled_v2(node):
+    """A Principled BSDF node of Blender 4.0+ (its sockets say so, whatever the version)."""
+    return node.type == 'BSDF_PRINCIPLED' and node.inputs.get("Specular IOR Level") is not None
+
+
+def is_glossy_v2(node):
+    """Blender 4.0+'s Glossy BSDF, which absorbed the Anisotropic BSDF (its Python type stays
+    ShaderNodeBsdfAnisotropic, its type reads BSDF_GLOSSY)."""
+    return node.type == 'BSDF_GLOSSY' and node.inputs.get("Anisotropy") is not None
 
 
 def _differs(socket, default):
@@ -55,13 +77,24 @@ def _differs(socket, default):
 
 
 def _note_ignored_principled(node, stack, ctx):
-    subsurface = nodes.find_input(node, "Subsurface", "Subsurface Weight")
+    v2 = is_principled_v2(node)
+    subsurface = nodes.find_input(node, "Subsurface Weight" if v2 else "Subsurface")
     if _differs(subsurface, 0.0):
-        ctx.warn_once(("subsurface", ctx.name),
-                      f"Material '{ctx.name}': subsurface scattering is not supported; "
-                      f"Subsurface is rendered as diffuse mixed towards Subsurface Color (as "
-                      f"Cycles renders it without subsurface scattering)")
-    for names, default, ignored, dependents in PRINCIPLED_IGNORED:
+        if v2:
+            ctx.warn_once(("subsurface", ctx.name),
+                          f"Material '{ctx.name}': subsurface scattering is not supported; "
+                          f"Subsurface Weight is rendered as diffuse of the Base Color")
+        else:
+            ctx.warn_once(("subsurface", ctx.name),
+                          f"Material '{ctx.name}': subsurface scattering is not supported; "
+                          f"Subsurface is rendered as diffuse mixed towards Subsurface Color (as "
+                          f"Cycles renders it without subsurface scattering)")
+    if v2:
+        thin_wall = node.inputs.get("Thin Wall")
+        if thin_wall is not None and (thin_wall.is_linked or bool(thin_wall.default_value)):
+            ctx.ignored_principled.append("Thin Wall")
+    for names, default, ignored, dependents in (PRINCIPLED_V2_IGNORED if v2 else
+                                                PRINCIPLED_IGNORED):
         main = nodes.find_input(node, *names)
         if not _differs(main, default):
             continue
@@ -84,12 +117,23 @@ def _read_params(node, stack, table, ctx):
 def _bsdf_closure(node, stack, ctx):
     """The closure of a supported BSDF / emission node, or None if the node is unsupported."""
     kind = node.type
-    found = closure_table().get(kind)
-    if found is None:
-        return None
-    closure_type, table = found
+    v2 = is_principled_v2(node) or is_glossy_v2(node)
+    if is_principled_v2(node):
+        closure_type, table, _ = closures_by_name()["PRINCIPLED_V2"]
+    elif is_glossy_v2(node):
+        # One closure for the merged node: anisotropic GGX (isotropic at Anisotropy 0).
+        closure_type, table, _ = closures_by_name()["ANISOTROPIC"]
+    else:
+        found = closure_table().get(kind)
+        if found is None:
+            return None
+        closure_type, table = found
     closure = {"type": closure_type, "sharp": False,
                "params": _read_params(node, stack, table, ctx)}
+    if v2:
+        # Cycles 4's microfacet model, and its Multiscatter GGX (albedo scaling) when chosen.
+        closure["cycles4"] = True
+        closure["multiscatter"] = getattr(node, "distribution", None) == 'MULTI_GGX'
     if kind == 'BSDF_PRINCIPLED':
         _note_ignored_principled(node, stack, ctx)
     else:
@@ -113,7 +157,7 @@ def _bsdf_closure(node, stack, ctx):
             if found is not None:
                 closure["clearcoat_normal"] = found
     tangent = node.inputs.get("Tangent") if kind in TANGENT_NODES else None
-    if kind == 'BSDF_ANISOTROPIC' and tangent is not None and tangent.is_linked:
+    if kind != 'BSDF_PRINCIPLED' and tangent is not None and tangent.is_linked:
         where = ctx.where(node, stack)
         ctx.warn_once(("tangent", where), f"{where}: a linked Tangent is not supported; "
                                           f"using the UV map's tangent")

@@ -8,6 +8,7 @@
 #include "photon/integrators/denoising_features.h"
 #include "photon/lights/emitter_set.h"
 #include "photon/render/accel.h"
+#include "photon/render/bsdf_lobes.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
 
@@ -112,6 +113,17 @@ ClosureColors closure_colors(const Bsdf& bsdf, const Vec3& wo) {
         const float f = fresnel_dielectric(std::clamp(dot(wo, n), 0.0f, 1.0f), eta);
         c.glossy += lobe.weight * f;
         c.transmission += lobe.weight * (1.0f - f);
+        break;
+      }
+      case LobeType::kGgxDielectric: {
+        // Principled v2's dielectric: reflectance and tinted transmittance at the normal.
+        const Vec3 n = length_squared(lobe.normal) > 0.0f ? lobe.normal : bsdf.frame().n;
+        const float eta = bsdf.front_facing() ? lobe.ior : 1.0f / lobe.ior;
+        Vec3 r, t;
+        bsdf_lobes::dielectric_split(lobe, lobe.f0, lobe.tint, std::clamp(dot(wo, n), 0.0f, 1.0f),
+                                     eta, &r, &t);
+        c.glossy += lobe.weight * r;
+        c.transmission += lobe.weight * t;
         break;
       }
       case LobeType::kTransparent:

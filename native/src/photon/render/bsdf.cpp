@@ -7,7 +7,7 @@ namespace photon {
 
 using namespace bsdf_lobes;
 Vec3 lobe_reflection_fresnel(const Lobe& lobe, float cos_oh, float eta) {
-  return reflection_fresnel(lobe, lobe.f0, cos_oh, eta);
+  return reflection_fresnel(lobe, lobe.f0, cos_oh, eta, lobe.tint);
 }
 
 bool Lobe::dispersive() const {
@@ -15,6 +15,7 @@ bool Lobe::dispersive() const {
   switch (type) {
     case LobeType::kGgxGlass:
     case LobeType::kGgxRefraction:
+    case LobeType::kGgxDielectric:
       return true;
     case LobeType::kGgxReflection:
       return fresnel == FresnelMode::kDielectric || fresnel == FresnelMode::kInterpolated;
@@ -39,6 +40,7 @@ uint8_t Lobe::flags() const {
     case LobeType::kGgxReflection:
       return kLobeReflection | rough;
     case LobeType::kGgxGlass:
+    case LobeType::kGgxDielectric:
       return kLobeReflection | kLobeTransmission | rough;
     case LobeType::kGgxRefraction:
       return kLobeTransmission | rough;
@@ -74,6 +76,8 @@ void Bsdf::add(const Lobe& lobe) {
     l.weight[c] = std::isfinite(w) ? std::max(w, 0.0f) : 0.0f;
     const float f = l.f0[c];
     l.f0[c] = std::isfinite(f) ? std::clamp(f, 0.0f, 1.0f) : 0.0f;
+    const float t = l.tint[c];
+    l.tint[c] = std::isfinite(t) ? std::clamp(t, 0.0f, 1.0f) : 0.0f;
   }
   if (is_black(l.weight)) return;
   // GGX alphas within [0, 1], as Cycles 3.4's microfacet setup saturates both (an anisotropic
@@ -150,7 +154,7 @@ bool Bsdf::lobe_local(int i, const Vec3& wo_world, const Vec3& wo, const Vec3& w
 }
 
 float Bsdf::eta(const Lobe& l) const {
-  return front_facing_ ? l.ior : 1.0f / l.ior;
+  return front_facing_ || l.fixed_ior ? l.ior : 1.0f / l.ior;
 }
 
 int Bsdf::selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const {
@@ -185,6 +189,7 @@ struct RgbColours {
   const Lobe* lobes;
   const Vec3& weight(int i) const { return lobes[i].weight; }
   const Vec3& f0(int i) const { return lobes[i].f0; }
+  const Vec3& tint(int i) const { return lobes[i].tint; }
   bool dispersive(int) const { return false; }
 };
 

@@ -33,6 +33,11 @@ enum class LobeType : uint8_t {
   kOrenNayar,
   // Cycles 3.4 Principled v1 sheen: f = weight (1 - wi.h)^5 (Burley 2012, sec. 5.3), no 1/pi.
   kSheen,
+  // Cycles 4's GGX dielectric interface (Principled v2 transmission): one lobe reflecting and
+  // refracting per microfacet with the Fresnel of `fresnel` (kSchlickIor: R = mix(f0, 1, s)) at
+  // that microfacet, refraction weighted by (1 - R) `tint`; reflection is picked with
+  // probability avg(R) / avg(R + T) of the lobe's RGB colours (Walter et al. 2007, eq. 21).
+  kGgxDielectric,
 };
 
 enum class FresnelMode : uint8_t {
@@ -43,6 +48,14 @@ enum class FresnelMode : uint8_t {
   // white by FH = (F(wi.h) - F(1)) / (1 - F(1)), F the dielectric Fresnel with `ior`; white
   // where the microfacet reflects totally.
   kInterpolated,
+  // Cycles 4's generalized Schlick in its "real Fresnel" form (Principled v2 specular and
+  // transmission): F = mix(f0, 1, s), s = clamp((F_d(cos) - F_d(1)) / (1 - F_d(1)), 0, 1) with
+  // F_d the dielectric Fresnel of the lobe's `ior` (white on total internal reflection).
+  kSchlickIor,
+  // The F82-tint conductor of Kutz et al. 2021 (Principled v2 metallic): Schlick with F0 = `f0`
+  // minus b cos (1 - cos)^6, b chosen so that F at cos = 1/7 (about 82 degrees) is Schlick's
+  // times `tint`; clamped to [0, 1].
+  kF82Tint,
 };
 
 // What a lobe does, for choosing which part of the light transport handles it.
@@ -77,6 +90,14 @@ struct Lobe {
   // World-space direction of `alpha` for an anisotropic lobe (projected onto the normal's
   // plane), or zero for an arbitrary one.
   Vec3 tangent{0.0f};
+  // kF82Tint's edge tint, kGgxDielectric's transmission tint; in [0, 1].
+  Vec3 tint{1.0f};
+  // The lobe's `ior` holds on both sides of the surface (a layer that only reflects, as Cycles
+  // 4's Principled specular and coat): back faces do not invert it.
+  bool fixed_ior = false;
+  // Height-correlated Smith masking-shadowing G2 = 1 / (1 + L(wo) + L(wi)) (Cycles 4) instead of
+  // the separable G1(wo) G1(wi) (Cycles 3.4).
+  bool correlated = false;
 
   bool anisotropic() const { return alpha_y >= 0.0f; }
   // Whether the lobe's index of refraction depends on the wavelength: an Abbe number and a

@@ -45,6 +45,7 @@ inline bool is_delta(const Lobe& l) {
       return max_alpha(l) < kDeltaAlpha;
     case LobeType::kGgxGlass:
     case LobeType::kGgxRefraction:
+    case LobeType::kGgxDielectric:
       return l.alpha < kDeltaAlpha || std::fabs(l.ior - 1.0f) < kUnitEtaEpsilon;
     case LobeType::kTransparent:
       return true;
@@ -59,6 +60,14 @@ inline float lobe_d(const Lobe& l, const Vec3& h) {
   return l.anisotropic() ? ggx_d(h, l.alpha, l.alpha_y) : ggx_d(h, l.alpha);
 }
 inline float lobe_g2(const Lobe& l, const Vec3& wo, const Vec3& wi, const Vec3& h) {
+  if (l.correlated) {
+    // Both directions on the front of their microfacet side (as G1's test), then
+    // 1 / (1 + L(wo) + L(wi)); L is even in w.z, so refracted directions read alike.
+    if (dot(wo, h) * wo.z <= 0.0f || dot(wi, h) * wi.z <= 0.0f) return 0.0f;
+    const float lo = l.anisotropic() ? ggx_lambda(wo, l.alpha, l.alpha_y) : ggx_lambda(wo, l.alpha);
+    const float li = l.anisotropic() ? ggx_lambda(wi, l.alpha, l.alpha_y) : ggx_lambda(wi, l.alpha);
+    return 1.0f / (1.0f + lo + li);
+  }
   if (!l.anisotropic()) return ggx_g2(wo, wi, h, l.alpha);
   return ggx_g1(wo, h, l.alpha, l.alpha_y) * ggx_g1(wi, h, l.alpha, l.alpha_y);
 }
@@ -71,11 +80,43 @@ inline Vec3 lobe_sample_visible_normal(const Lobe& l, const Vec3& wo, Vec2 u) {
                          : ggx_sample_visible_normal(wo, l.alpha, u);
 }
 
+// Per-channel clamp to [0, 1] (SampledSpectrum's overload lives beside it, found by ADL).
+inline float saturate_channels(float v) {
+  return std::clamp(v, 0.0f, 1.0f);
+}
+inline Vec3 saturate_channels(const Vec3& v) {
+  return {std::clamp(v.x, 0.0f, 1.0f), std::clamp(v.y, 0.0f, 1.0f), std::clamp(v.z, 0.0f, 1.0f)};
+}
+
+// kSchlickIor's interpolation factor s at cosine `c` for relative IOR `eta`.
+inline float schlick_ior_s(float c, float eta) {
+  const float r = (eta - 1.0f) / (eta + 1.0f);
+  const float r0 = r * r;
+  if (!(1.0f - r0 > 0.0f)) return 1.0f;
+  return std::clamp((fresnel_dielectric(c, eta) - r0) / (1.0f - r0), 0.0f, 1.0f);
+}
+
+// kF82Tint at cosine `c`: Schlick's F0 .. 1 blend less b c (1 - c)^6, where b makes the value at
+// c = 1/7 Schlick's times `tint`: b = F_schlick(1/7) (1 - tint) / ((1/7) (6/7)^6).
+template <class C>
+C f82_tint_fresnel(const C& f0, const C& tint, float c) {
+  const float mu = std::clamp(1.0f - c, 0.0f, 1.0f);
+  const float mu5 = (mu * mu) * (mu * mu) * mu;
+  constexpr float f = 6.0f / 7.0f;
+  constexpr float f5 = (f * f) * (f * f) * f;
+  const C b = (f0 + (C(1.0f) - f0) * f5) * (7.0f / (f5 * f)) * (C(1.0f) - tint);
+  return saturate_channels(f0 + (C(1.0f) - f0) * mu5 - b * (c * mu5 * mu));
+}
+
 // Fresnel of a kGgxReflection lobe at the microfacet cosine `cos_oh`.
 // `f0` is the lobe's f0 in the colour type C (Vec3, a SampledSpectrum or one wavelength's float).
 template <class C>
-C reflection_fresnel(const Lobe& l, const C& f0, float cos_oh, float eta) {
+C reflection_fresnel(const Lobe& l, const C& f0, float cos_oh, float eta, const C& tint) {
   switch (l.fresnel) {
+    case FresnelMode::kSchlickIor:
+      return f0 + (C(1.0f) - f0) * schlick_ior_s(cos_oh, eta);
+    case FresnelMode::kF82Tint:
+      return f82_tint_fresnel(f0, tint, cos_oh);
     case FresnelMode::kDielectric:
       return C(fresnel_dielectric(cos_oh, eta));
     case FresnelMode::kSchlick:
@@ -134,8 +175,8 @@ inline float glass_fresnel(const Vec3& wo, float eta) {
 // > 0, with the pdf of visible-normal sampling (Heitz 2018, eq. 17 and the reflection
 // Jacobian 1 / (4 wo.h)). Glass picks reflection with probability F(wo.z).
 template <class C>
-LobeEval<C> ggx_reflection(const Lobe& l, const C& weight, const C& f0, const Vec3& wo,
-                           const Vec3& wi, float eta) {
+LobeEval<C> ggx_reflection(const Lobe& l, const C& weight, const C& f0, const C& tint,
+                           const Vec3& wo, const Vec3& wi, float eta) {
   LobeEval<C> r;
   const Vec3 h = normalize(wo + wi);
   const float cos_oh = dot(wo, h);
@@ -144,7 +185,7 @@ LobeEval<C> ggx_reflection(const Lobe& l, const C& weight, const C& f0, const Ve
   const float g = lobe_g2(l, wo, wi, h);
   const bool glass = l.type == LobeType::kGgxGlass;
   const float fg = glass ? glass_fresnel(wo, eta) : 1.0f;
-  const C fr = glass ? C(fg) : reflection_fresnel(l, f0, cos_oh, eta);
+  const C fr = glass ? C(fg) : reflection_fresnel(l, f0, cos_oh, eta, tint);
   r.f = weight * fr * (d * g / (4.0f * wo.z * wi.z));
   r.pdf = lobe_visible_normal_pdf(l, wo, h) / (4.0f * cos_oh) * fg;
   return r;
@@ -169,6 +210,53 @@ LobeEval<C> ggx_transmission(const Lobe& l, const C& weight, const Vec3& wo, con
   return r;
 }
 
+// kGgxDielectric's reflectance R and transmittance T at microfacet cosine `c` in the colour
+// type C, and its probability of reflecting, from the lobe's RGB colours (so every colour model
+// samples the same events).
+template <class C>
+void dielectric_split(const Lobe& /*l*/, const C& f0, const C& tint, float c, float eta, C* r,
+                      C* t) {
+  const float s = schlick_ior_s(c, eta);
+  *r = f0 + (C(1.0f) - f0) * s;
+  *t = (C(1.0f) - *r) * tint;
+}
+inline float dielectric_reflect_probability(const Lobe& l, float c, float eta) {
+  Vec3 r, t;
+  dielectric_split(l, l.f0, l.tint, c, eta, &r, &t);
+  const float total = (r.x + r.y + r.z) + (t.x + t.y + t.z);
+  return total > 0.0f ? (r.x + r.y + r.z) / total : 1.0f;
+}
+
+// kGgxDielectric at wo.z > 0 (Walter et al. 2007, eqs. 20 and 21 with the Fresnel of the
+// microfacet), height-correlated or separable G as the lobe says.
+template <class C>
+LobeEval<C> ggx_dielectric(const Lobe& l, const C& weight, const C& f0, const C& tint,
+                           const Vec3& wo, const Vec3& wi, float eta) {
+  LobeEval<C> e;
+  C r, t;
+  if (wi.z > 0.0f) {
+    const Vec3 h = normalize(wo + wi);
+    const float cos_oh = dot(wo, h);
+    if (cos_oh <= 0.0f) return e;
+    dielectric_split(l, f0, tint, cos_oh, eta, &r, &t);
+    const float pr = dielectric_reflect_probability(l, cos_oh, eta);
+    const float d = lobe_d(l, h);
+    e.f = weight * r * (d * lobe_g2(l, wo, wi, h) / (4.0f * wo.z * wi.z));
+    e.pdf = pr * lobe_visible_normal_pdf(l, wo, h) / (4.0f * cos_oh);
+    return e;
+  }
+  const RefractionGeometry geo = refraction_geometry(wo, wi, eta);
+  if (!geo.valid) return e;
+  dielectric_split(l, f0, tint, geo.cos_oh, eta, &r, &t);
+  const float pt = 1.0f - dielectric_reflect_probability(l, geo.cos_oh, eta);
+  const float d = lobe_d(l, geo.h);
+  const float g = lobe_g2(l, wo, wi, geo.h);
+  const float jacobian = eta * eta * std::fabs(geo.cos_ih) / geo.denom2;
+  e.f = weight * t * (d * g * jacobian * geo.cos_oh / (wo.z * std::fabs(wi.z)));
+  e.pdf = pt * lobe_visible_normal_pdf(l, wo, geo.h) * jacobian;
+  return e;
+}
+
 // Chiang, Li & Burley 2019, "Taming the Shadow Terminator", eq. 4 with its smooth cubic
 // (eq. 5): G = min(1, (Ns.wi) / ((Nb.wi)(Ns.Nb))) for the smooth normal Ns and the bumped
 // normal Nb, smoothed as -G^3 + G^2 + G; 0 when wi is below the smooth surface.
@@ -190,8 +278,8 @@ inline bool is_diffuse_type(const Lobe& l) {
 // classification of the pair; a lobe only contributes where the shading frame agrees with it.
 // `weight` and `f0` are the lobe's colours in the colour type C.
 template <class C>
-LobeEval<C> eval_lobe(const Lobe& l, const C& weight, const C& f0, const Vec3& wo, const Vec3& wi,
-                      bool reflect, float eta) {
+LobeEval<C> eval_lobe(const Lobe& l, const C& weight, const C& f0, const C& tint, const Vec3& wo,
+                      const Vec3& wi, bool reflect, float eta) {
   LobeEval<C> r;
   const bool shading_reflect = reflect && wi.z > 0.0f;
   const bool shading_transmit = !reflect && wi.z < 0.0f;
@@ -239,10 +327,13 @@ LobeEval<C> eval_lobe(const Lobe& l, const C& weight, const C& f0, const Vec3& w
       break;
     }
     case LobeType::kGgxReflection:
-      if (shading_reflect) r = ggx_reflection(l, weight, f0, wo, wi, eta);
+      if (shading_reflect) r = ggx_reflection(l, weight, f0, tint, wo, wi, eta);
+      break;
+    case LobeType::kGgxDielectric:
+      if (shading_reflect || shading_transmit) r = ggx_dielectric(l, weight, f0, tint, wo, wi, eta);
       break;
     case LobeType::kGgxGlass:
-      if (shading_reflect) r = ggx_reflection(l, weight, f0, wo, wi, eta);
+      if (shading_reflect) r = ggx_reflection(l, weight, f0, tint, wo, wi, eta);
       if (shading_transmit) r = ggx_transmission(l, weight, wo, wi, eta);
       break;
     case LobeType::kGgxRefraction:
@@ -287,6 +378,15 @@ inline bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice
       *reflection = false;
       return refract(wo, h, eta, wi);
     }
+    case LobeType::kGgxDielectric: {
+      const Vec3 h = lobe_sample_visible_normal(l, wo, u);
+      if (u_choice < dielectric_reflect_probability(l, dot(wo, h), eta)) {
+        *wi = reflect(wo, h);
+        return true;
+      }
+      *reflection = false;
+      return refract(wo, h, eta, wi);
+    }
     case LobeType::kTransparent:
       return false;
   }
@@ -303,15 +403,32 @@ struct DeltaSample {
 
 // Samples a delta lobe (local frame, wo.z > 0).
 template <class C>
-bool sample_delta_lobe(const Lobe& l, const C& weight, const C& f0, const Vec3& wo, float eta,
-                       float u_choice, DeltaSample<C>* s) {
+bool sample_delta_lobe(const Lobe& l, const C& weight, const C& f0, const C& tint, const Vec3& wo,
+                       float eta, float u_choice, DeltaSample<C>* s) {
   const Vec3 n(0.0f, 0.0f, 1.0f);
   switch (l.type) {
     case LobeType::kGgxReflection:
       s->wi = reflect(wo, n);
-      s->f = weight * reflection_fresnel(l, f0, wo.z, eta);
+      s->f = weight * reflection_fresnel(l, f0, wo.z, eta, tint);
       s->flags = kLobeReflection | kLobeSpecular;
       return true;
+    case LobeType::kGgxDielectric: {
+      C r, t;
+      dielectric_split(l, f0, tint, wo.z, eta, &r, &t);
+      const float pr = dielectric_reflect_probability(l, wo.z, eta);
+      if (u_choice < pr) {
+        s->wi = reflect(wo, n);
+        s->f = weight * r;
+        s->prob = pr;
+        s->flags = kLobeReflection | kLobeSpecular;
+        return true;
+      }
+      if (!refract(wo, n, eta, &s->wi)) return false;
+      s->f = weight * t;
+      s->prob = 1.0f - pr;
+      s->flags = kLobeTransmission | kLobeSpecular;
+      return true;
+    }
     case LobeType::kGgxGlass: {
       const float f = fresnel_dielectric(wo.z, eta);  // 1 on total internal reflection
       if (u_choice < f) {
@@ -344,7 +461,8 @@ bool sample_delta_lobe(const Lobe& l, const C& weight, const C& f0, const Vec3& 
 
 // The albedo estimate of one lobe at wo (local), used for lobe selection.
 inline Vec3 lobe_albedo(const Lobe& l, const Vec3& wo, float eta) {
-  if (l.type == LobeType::kGgxReflection) return l.weight * reflection_fresnel(l, l.f0, wo.z, eta);
+  if (l.type == LobeType::kGgxReflection)
+    return l.weight * reflection_fresnel(l, l.f0, wo.z, eta, l.tint);
   // Sheen grows towards grazing; Cycles picks it by (1 - cos_o)^5 (its avg_value). A floor
   // keeps it selectable at normal incidence, where it still reflects light.
   if (l.type == LobeType::kSheen) return l.weight * std::max(schlick_weight(wo.z), 0.02f);

@@ -4,6 +4,7 @@
 // refraction per wavelength (spectral_bsdf.h). A colour model `C` provides
 //   using Color; using Sample; static constexpr bool kSpectral;
 //   const Color& weight(int lobe) const;  const Color& f0(int lobe) const;
+//   const Color& tint(int lobe) const;
 //   bool dispersive(int lobe) const;  (kSpectral only:) eta(lobe, lane), active lanes.
 // Private to render/ (bsdf.cpp, spectral_bsdf.cpp).
 #pragma once
@@ -41,19 +42,21 @@ struct BsdfMixture {
           pl = 0.0f;
           for (int k = 0; k < c.active_count(); ++k) {
             const int j = c.active(k);
-            const LobeEval<float> e =
-                eval_lobe(l, c.weight(i)[j], c.f0(i)[j], lwo, lwi, reflect, c.eta(i, j));
+            const LobeEval<float> e = eval_lobe(l, c.weight(i)[j], c.f0(i)[j], c.tint(i)[j], lwo,
+                                                lwi, reflect, c.eta(i, j));
             fl[j] = e.f;
             pl += e.pdf;
           }
           pl /= static_cast<float>(c.active_count());
         } else {
-          const LobeEval<Color> e = eval_lobe(l, c.weight(i), c.f0(i), lwo, lwi, reflect, b.eta(l));
+          const LobeEval<Color> e =
+              eval_lobe(l, c.weight(i), c.f0(i), c.tint(i), lwo, lwi, reflect, b.eta(l));
           fl = e.f;
           pl = e.pdf;
         }
       } else {
-        const LobeEval<Color> e = eval_lobe(l, c.weight(i), c.f0(i), lwo, lwi, reflect, b.eta(l));
+        const LobeEval<Color> e =
+            eval_lobe(l, c.weight(i), c.f0(i), c.tint(i), lwo, lwi, reflect, b.eta(l));
         fl = e.f;
         pl = e.pdf;
       }
@@ -131,7 +134,8 @@ struct BsdfMixture {
     if (is_delta(lobe)) {
       DeltaSample<Color> s;
       if (!C::kSpectral || !c.dispersive(k)) {
-        if (!sample_delta_lobe(lobe, c.weight(k), c.f0(k), lobe_wo, lobe_eta, u_choice, &s))
+        if (!sample_delta_lobe(lobe, c.weight(k), c.f0(k), c.tint(k), lobe_wo, lobe_eta, u_choice,
+                               &s))
           return false;
       } else if constexpr (C::kSpectral) {
         if (!sample_dispersive_delta(c, lobe, k, lobe_wo, u_choice, &s, out)) return false;
@@ -173,7 +177,8 @@ struct BsdfMixture {
     // neither, so sample() follows pdf() exactly. Glass must check the event itself, since a
     // reflection below the surface lands where its own refraction density is not zero.
     if (reflect != reflection || (reflection ? lobe_wi.z <= 0.0f : lobe_wi.z >= 0.0f)) return false;
-    if (!(eval_lobe(lobe, c.weight(k), c.f0(k), lobe_wo, lobe_wi, reflect, sample_eta).pdf > 0.0f))
+    if (!(eval_lobe(lobe, c.weight(k), c.f0(k), c.tint(k), lobe_wo, lobe_wi, reflect, sample_eta)
+              .pdf > 0.0f))
       return false;
     Color f;
     float pdf;
@@ -199,7 +204,8 @@ struct BsdfMixture {
                                       typename C::Sample* out) {
     using namespace bsdf_lobes;
     DeltaSample<float> hero;
-    if (!sample_delta_lobe(lobe, c.weight(k)[0], c.f0(k)[0], wo, c.eta(k, 0), u_choice, &hero))
+    if (!sample_delta_lobe(lobe, c.weight(k)[0], c.f0(k)[0], c.tint(k)[0], wo, c.eta(k, 0),
+                           u_choice, &hero))
       return false;
     s->wi = hero.wi;
     s->prob = hero.prob;
@@ -210,7 +216,8 @@ struct BsdfMixture {
         const int j = c.active(i);
         s->f[j] = lobe.type == LobeType::kGgxGlass
                       ? c.weight(k)[j] * fresnel_dielectric(wo.z, c.eta(k, j))
-                      : c.weight(k)[j] * reflection_fresnel(lobe, c.f0(k)[j], wo.z, c.eta(k, j));
+                      : c.weight(k)[j] *
+                            reflection_fresnel(lobe, c.f0(k)[j], wo.z, c.eta(k, j), c.tint(k)[j]);
       }
     } else {
       s->f[0] = hero.f;

@@ -3,6 +3,8 @@
 #include <optional>
 
 #include "photon/base/optics.h"
+#include "photon/render/microfacet_albedo.h"
+#include "photon/render/principled_v2.h"
 #include "photon/render/shader_globals.h"
 #include "photon/render/valid_reflection.h"
 #include "photon/scene/material_params.h"
@@ -246,9 +248,53 @@ void add_principled(const Closure& c, float w, const InputReader& reader, const 
   }
 }
 
+// A Principled v2 closure's inputs read at the shading point.
+PrincipledV2Inputs principled_v2_inputs(const Closure& c, const InputReader& reader) {
+  const ClosureReader in{reader, c};
+  PrincipledV2Inputs p;
+  p.base_color = in.color(Param::kColor);
+  p.metallic = in.unit(Param::kMetallic);
+  p.roughness = in.unit(Param::kRoughness);
+  p.ior = in.scalar(Param::kIor);
+  p.alpha = in.unit(Param::kAlpha);
+  p.subsurface = in.unit(Param::kSubsurface);
+  p.specular_ior_level = in.scalar(Param::kSpecularIorLevel);
+  p.specular_tint = in.color(Param::kSpecularTintColor);
+  p.anisotropic = in.unit(Param::kAnisotropic);
+  p.anisotropic_rotation = in.scalar(Param::kAnisotropicRotation);
+  p.transmission = in.unit(Param::kTransmission);
+  p.coat_weight = in.scalar(Param::kCoatWeight);
+  p.coat_roughness = in.unit(Param::kCoatRoughness);
+  p.coat_ior = in.scalar(Param::kCoatIor);
+  p.coat_tint = in.color(Param::kCoatTint);
+  p.emission = in.color(Param::kEmission);
+  p.emission_strength = in.scalar(Param::kStrength);
+  p.multiscatter = c.multiscatter;
+  p.abbe = c.abbe;
+  return p;
+}
+
+PrincipledV2Geometry principled_v2_geometry(const LobeGeometry& geo, const Vec3& bsdf_n) {
+  PrincipledV2Geometry g;
+  g.wo = geo.wo;
+  g.n = geo.n;
+  g.lobe_n = geo.lobe_n;
+  g.coat_lobe_n = geo.clearcoat_n;
+  g.coat_n = is_black(geo.clearcoat_n) ? bsdf_n : geo.clearcoat_n;
+  g.tangent = geo.tangent;
+  g.front = geo.front;
+  return g;
+}
+
 void add_closure(const Closure& c, float w, const InputReader& reader, const LobeGeometry& geo,
                  ShadingPoint* out) {
   if (c.type == ClosureType::kPrincipled) return add_principled(c, w, reader, geo, out);
+  if (c.type == ClosureType::kPrincipledV2) {
+    out->emission +=
+        add_principled_v2(principled_v2_inputs(c, reader), w,
+                          principled_v2_geometry(geo, out->bsdf.frame().n), &out->bsdf);
+    return;
+  }
   if (c.type == ClosureType::kHoldout) {
     out->holdout += w;
     return;
@@ -283,6 +329,22 @@ void add_closure(const Closure& c, float w, const InputReader& reader, const Lob
         l.alpha = a < 0.0f ? r2 / (1.0f + a) : r2 * (1.0f - a);
         l.alpha_y = a < 0.0f ? r2 * (1.0f + a) : r2 / (1.0f - a);
         l.tangent = rotated_tangent(geo, in.scalar(Param::kAnisotropicRotation));
+      }
+      if (c.cycles4) {
+        // Blender 4's Glossy BSDF: Cycles 4's microfacet model, and with Multiscatter GGX the
+        // energy single scattering loses put back, coloured by the node's colour
+        // (bsdf_microfacet_setup_fresnel_constant).
+        l.correlated = true;
+        if (c.multiscatter && w > 0.0f) {
+          const float ax = std::min(l.alpha, 1.0f);
+          const float ay = l.anisotropic() ? std::min(l.alpha_y, 1.0f) : ax;
+          const float rough = std::sqrt(std::sqrt(ax * ay));
+          const float mu = std::clamp(dot(geo.wo, geo.n), 0.0f, 1.0f);
+          l.weight = l.weight * principled_v2::multiscatter_factor(
+                                    microfacet_albedo::reflection_albedo(rough, mu),
+                                    microfacet_albedo::reflection_albedo_average(rough),
+                                    min(color / w, Vec3(1.0f)));
+        }
       }
       break;
     }
@@ -426,11 +488,21 @@ Vec3 emitted_radiance(const Material& material, const SurfaceInteraction& si,
   in.registers = run.registers();
   Vec3 e(0.0f);
   for (const Closure& c : material.closures) {
-    if (c.type != ClosureType::kEmission && c.type != ClosureType::kPrincipled) continue;
+    if (c.type != ClosureType::kEmission && c.type != ClosureType::kPrincipled &&
+        c.type != ClosureType::kPrincipledV2)
+      continue;
     float w = closure_weight(c, in);
     const ClosureReader r{in, c};
     if (c.type == ClosureType::kEmission) {
       e += r.color(Param::kColor) * (w * std::max(r.scalar(Param::kStrength), 0.0f));
+    } else if (c.type == ClosureType::kPrincipledV2) {
+      // Seen from wo (else head-on) through the coat, on the interpolated normal.
+      const Vec3 n = dot(si.ns, wo ? *wo : si.ng) >= 0.0f ? si.ns : -si.ns;
+      PrincipledV2Geometry g;
+      g.wo = wo ? *wo : n;
+      g.n = n;
+      g.coat_n = n;
+      e += add_principled_v2(principled_v2_inputs(c, in), w, g, nullptr);
     } else {
       w *= r.unit(Param::kAlpha);
       e += r.color(Param::kEmission) * (w * std::max(r.scalar(Param::kStrength), 0.0f));

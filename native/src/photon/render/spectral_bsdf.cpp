@@ -15,8 +15,11 @@ SpectralBsdf::SpectralBsdf(const Bsdf& bsdf, const SampledWavelengths& wl) : bsd
   for (int i = 0; i < bsdf.count_; ++i) {
     const Lobe& l = bsdf.lobes_[i];
     weight_[i] = spectral::reflectance_at(l.weight, wl);
-    if (l.fresnel == FresnelMode::kSchlick || l.fresnel == FresnelMode::kInterpolated)
+    if (l.fresnel == FresnelMode::kSchlick || l.fresnel == FresnelMode::kInterpolated ||
+        l.fresnel == FresnelMode::kSchlickIor || l.fresnel == FresnelMode::kF82Tint)
       f0_[i] = spectral::reflectance_at(l.f0, wl);
+    if (l.fresnel == FresnelMode::kF82Tint || l.type == LobeType::kGgxDielectric)
+      tint_[i] = spectral::reflectance_at(l.tint, wl);
     dispersive_[i] = l.dispersive();
     if (!dispersive_[i]) continue;
     const spectral::CauchyDispersion cauchy = spectral::CauchyDispersion::from_abbe(l.ior, l.abbe);

@@ -63,6 +63,7 @@ class SpectralBsdf {
   static constexpr bool kSpectral = true;
   const SampledSpectrum& weight(int lobe) const { return weight_[lobe]; }
   const SampledSpectrum& f0(int lobe) const { return f0_[lobe]; }
+  const SampledSpectrum& tint(int lobe) const { return tint_[lobe]; }
   bool dispersive(int lobe) const { return dispersive_[lobe]; }
   float eta(int lobe, int lane) const { return eta_[lobe][lane]; }
   int active_count() const { return active_count_; }
@@ -73,6 +74,7 @@ class SpectralBsdf {
   SampledWavelengths wl_;
   SampledSpectrum weight_[Bsdf::kMaxLobes];
   SampledSpectrum f0_[Bsdf::kMaxLobes];
+  SampledSpectrum tint_[Bsdf::kMaxLobes];  // kF82Tint / kGgxDielectric tints
   // Relative index of refraction (as Bsdf::eta) per wavelength of the dispersive lobes.
   float eta_[Bsdf::kMaxLobes][kSpectrumSamples] = {};
   bool dispersive_[Bsdf::kMaxLobes] = {};

@@ -138,8 +138,8 @@ bool Material::may_emit() const {
     if (c.type == ClosureType::kEmission && !constant_zero(c[Param::kColor]) &&
         !constant_zero(c[Param::kStrength]))
       return true;
-    if (c.type == ClosureType::kPrincipled && !constant_zero(c[Param::kEmission]) &&
-        !constant_zero(c[Param::kStrength]))
+    if ((c.type == ClosureType::kPrincipled || c.type == ClosureType::kPrincipledV2) &&
+        !constant_zero(c[Param::kEmission]) && !constant_zero(c[Param::kStrength]))
       return true;
   }
   return false;
@@ -148,7 +148,9 @@ bool Material::may_emit() const {
 bool Material::needs_tangent() const {
   for (const Closure& c : closures) {
     if (c.type == ClosureType::kAnisotropic) return true;
-    if (c.type == ClosureType::kPrincipled && !constant_zero(c[Param::kAnisotropic])) return true;
+    if ((c.type == ClosureType::kPrincipled || c.type == ClosureType::kPrincipledV2) &&
+        !constant_zero(c[Param::kAnisotropic]))
+      return true;
   }
   return false;
 }
@@ -172,6 +174,11 @@ bool Material::may_be_specular() const {
             (!constant_zero(c[Param::kMetallic]) || !constant_zero(c[Param::kTransmission]) ||
              !constant_zero(c[Param::kSpecular])))
           return true;
+        break;
+      case ClosureType::kPrincipledV2:
+        // Its specular layer is always there (unless the IOR is 1), and so is the coat's.
+        if (smooth(c[Param::kRoughness])) return true;
+        if (!constant_zero(c[Param::kCoatWeight]) && smooth(c[Param::kCoatRoughness])) return true;
         break;
       default:
         break;

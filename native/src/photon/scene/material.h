@@ -68,8 +68,11 @@ enum class ClosureType : uint8_t {
   // Holdout: camera rays that meet it lose their weight's share of the pixel, colour and alpha
   // (Cycles' holdout closure); to every other ray it is black.
   kHoldout,
-  // Anisotropic BSDF: anisotropic GGX along the UV tangent (Cycles 3.4's Anisotropic BSDF).
+  // Anisotropic BSDF: anisotropic GGX along the UV tangent (Cycles 3.4's Anisotropic BSDF), and
+  // Blender 4's merged Glossy BSDF (with `cycles4`).
   kAnisotropic,
+  // Principled BSDF v2 (Blender 4.0+): Cycles 4's layered model (render/principled_v2.h).
+  kPrincipledV2,
 };
 
 // The inputs a closure reads, by role; each closure type uses a subset (the rest keep their
@@ -94,6 +97,19 @@ enum class Param : uint8_t {
   kAnisotropic,          // Principled Anisotropic / Anisotropic BSDF Anisotropy
   kAnisotropicRotation,  // Principled Anisotropic Rotation / Anisotropic BSDF Rotation
   kTransmissionRoughness,
+  // Principled v2 only (Blender 4.0+ sockets whose meaning has no v1 counterpart).
+  kSpecularIorLevel,   // Specular IOR Level: F0 scale, 0.5 = the IOR's own
+  kSpecularTintColor,  // Specular Tint (a colour in v2)
+  kCoatWeight,
+  kCoatRoughness,
+  kCoatIor,
+  kCoatTint,
+  kSheenWeight,
+  kSheenRoughness,
+  kSheenTintColor,  // Sheen Tint (a colour in v2)
+  kThinFilmThickness,
+  kThinFilmIor,
+  kDiffuseRoughness,
   kCount,
 };
 
@@ -113,6 +129,12 @@ struct Closure {
   ClosureType type = ClosureType::kDiffuse;
   std::array<Input, static_cast<size_t>(Param::kCount)> params = default_params();
   bool sharp = false;  // Glossy / Glass / Refraction with the Sharp distribution
+  // The node comes from Blender 4.0+ and renders with Cycles 4's microfacet model (height-
+  // correlated Smith G); Principled v2 always does.
+  bool cycles4 = false;
+  // Cycles 4's Multiscatter GGX distribution: single-scattering lobes scaled up by the energy
+  // they lose (albedo scaling, render/microfacet_albedo.h). Only with `cycles4`.
+  bool multiscatter = false;
   // Abbe number of Glass, Refraction and Principled transmission (0: no dispersion): in
   // spectral mode the IOR, taken at the d line (587.6 nm), varies with the wavelength.
   float abbe = 0.0f;

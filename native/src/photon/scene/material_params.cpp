@@ -34,28 +34,23 @@ std::vector<ClosureSpec> make_table() {
       {Param::kMetallic, "metallic", {"Metallic", nullptr}, S, 0.0f, kUnit},
       {Param::kRoughness, "roughness", {"Roughness", nullptr}, S, 0.5f, kUnit},
       // Specular 0.5 is F0 = 0.04 (0.08 x specular, Cycles' Principled v1); up to 10 is kept.
-      {Param::kSpecular, "specular", {"Specular", "Specular IOR Level"}, S, 0.5f, {0.0f, 10.0f}},
+      {Param::kSpecular, "specular", {"Specular", nullptr}, S, 0.5f, {0.0f, 10.0f}},
       {Param::kSpecularTint, "specular_tint", {"Specular Tint", nullptr}, S, 0.0f, kUnit},
-      {Param::kTransmission,
-       "transmission",
-       {"Transmission", "Transmission Weight"},
-       S,
-       0.0f,
-       kUnit},
+      {Param::kTransmission, "transmission", {"Transmission", nullptr}, S, 0.0f, kUnit},
       {Param::kIor, "ior", {"IOR", nullptr}, S, 1.45f, kIorRange},
-      {Param::kEmission, "emission", {"Emission", "Emission Color"}, C, 0.0f, kEmissive},
+      {Param::kEmission, "emission", {"Emission", nullptr}, C, 0.0f, kEmissive},
       {Param::kStrength, "strength", {"Emission Strength", nullptr}, S, 1.0f, kEmissive},
       {Param::kAlpha, "alpha", {"Alpha", nullptr}, S, 1.0f, kUnit},
-      {Param::kClearcoat, "clearcoat", {"Clearcoat", "Coat Weight"}, S, 0.0f, kUnit},
+      {Param::kClearcoat, "clearcoat", {"Clearcoat", nullptr}, S, 0.0f, kUnit},
       {Param::kClearcoatRoughness,
        "clearcoat_roughness",
-       {"Clearcoat Roughness", "Coat Roughness"},
+       {"Clearcoat Roughness", nullptr},
        S,
        0.03f,
        kUnit},
-      {Param::kSubsurface, "subsurface", {"Subsurface", "Subsurface Weight"}, S, 0.0f, kUnit},
+      {Param::kSubsurface, "subsurface", {"Subsurface", nullptr}, S, 0.0f, kUnit},
       {Param::kSubsurfaceColor, "subsurface_color", {"Subsurface Color", nullptr}, C, 0.8f, kUnit},
-      {Param::kSheen, "sheen", {"Sheen", "Sheen Weight"}, S, 0.0f, kUnit},
+      {Param::kSheen, "sheen", {"Sheen", nullptr}, S, 0.0f, kUnit},
       {Param::kSheenTint, "sheen_tint", {"Sheen Tint", nullptr}, S, 0.5f, kUnit},
       {Param::kAnisotropic, "anisotropic", {"Anisotropic", nullptr}, S, 0.0f, kUnit},
       // Rotation in turns: program-fed values beyond [0, 1] wrap around as in Cycles.
@@ -71,6 +66,59 @@ std::vector<ClosureSpec> make_table() {
        S,
        0.0f,
        kUnit},
+  };
+  // Blender 4.0+'s Principled BSDF (v2): its own sockets and defaults (nodes/shader/nodes/
+  // node_shader_bsdf_principled.cc of 4.x); Cycles clamps the weights and roughnesses to [0, 1].
+  constexpr ParamRange kLevel{0.0f, 100.0f};
+  std::vector<ClosureParamSpec> principled_v2 = {
+      {Param::kColor, "color", {"Base Color", nullptr}, C, 0.8f, kUnit},
+      {Param::kMetallic, "metallic", {"Metallic", nullptr}, S, 0.0f, kUnit},
+      {Param::kRoughness, "roughness", {"Roughness", nullptr}, S, 0.5f, kUnit},
+      {Param::kIor, "ior", {"IOR", nullptr}, S, 1.5f, kIorRange},
+      {Param::kAlpha, "alpha", {"Alpha", nullptr}, S, 1.0f, kUnit},
+      {Param::kDiffuseRoughness,
+       "diffuse_roughness",
+       {"Diffuse Roughness", nullptr},
+       S,
+       0.0f,
+       kUnit},
+      {Param::kSubsurface, "subsurface", {"Subsurface Weight", nullptr}, S, 0.0f, kUnit},
+      {Param::kSpecularIorLevel,
+       "specular_ior_level",
+       {"Specular IOR Level", nullptr},
+       S,
+       0.5f,
+       kLevel},
+      {Param::kSpecularTintColor,
+       "specular_tint_color",
+       {"Specular Tint", nullptr},
+       C,
+       1.0f,
+       kLevel},
+      {Param::kAnisotropic, "anisotropic", {"Anisotropic", nullptr}, S, 0.0f, kUnit},
+      {Param::kAnisotropicRotation,
+       "anisotropic_rotation",
+       {"Anisotropic Rotation", nullptr},
+       S,
+       0.0f,
+       kTurns},
+      {Param::kTransmission, "transmission", {"Transmission Weight", nullptr}, S, 0.0f, kUnit},
+      {Param::kCoatWeight, "coat_weight", {"Coat Weight", nullptr}, S, 0.0f, kUnit},
+      {Param::kCoatRoughness, "coat_roughness", {"Coat Roughness", nullptr}, S, 0.03f, kUnit},
+      {Param::kCoatIor, "coat_ior", {"Coat IOR", nullptr}, S, 1.5f, {1.0f, 100.0f}},
+      {Param::kCoatTint, "coat_tint", {"Coat Tint", nullptr}, C, 1.0f, kUnit},
+      {Param::kSheenWeight, "sheen_weight", {"Sheen Weight", nullptr}, S, 0.0f, kUnit},
+      {Param::kSheenRoughness, "sheen_roughness", {"Sheen Roughness", nullptr}, S, 0.5f, kUnit},
+      {Param::kSheenTintColor, "sheen_tint_color", {"Sheen Tint", nullptr}, C, 1.0f, kLevel},
+      {Param::kEmission, "emission", {"Emission Color", nullptr}, C, 1.0f, kEmissive},
+      {Param::kStrength, "strength", {"Emission Strength", nullptr}, S, 0.0f, kEmissive},
+      {Param::kThinFilmThickness,
+       "thin_film_thickness",
+       {"Thin Film Thickness", nullptr},
+       S,
+       0.0f,
+       {0.0f, 100000.0f}},
+      {Param::kThinFilmIor, "thin_film_ior", {"Thin Film IOR", nullptr}, S, 1.33f, kIorRange},
   };
   return {
       {ClosureType::kDiffuse, "DIFFUSE", "BSDF_DIFFUSE", {color(0.8f), roughness(0.0f)}},
@@ -103,6 +151,7 @@ std::vector<ClosureSpec> make_table() {
          S,
          0.0f,
          kTurns}}},
+      {ClosureType::kPrincipledV2, "PRINCIPLED_V2", "BSDF_PRINCIPLED", principled_v2},
   };
 }
 
@@ -131,12 +180,14 @@ const ClosureSpec* find_closure(const char* name) {
 
 const ClosureParamSpec& param_spec(ClosureType type, Param p) {
   if (const ClosureParamSpec* own = find_in(closure_spec(type), p)) return *own;
-  return *find_in(closure_spec(ClosureType::kPrincipled), p);
+  if (const ClosureParamSpec* v1 = find_in(closure_spec(ClosureType::kPrincipled), p)) return *v1;
+  return *find_in(closure_spec(ClosureType::kPrincipledV2), p);
 }
 
 const ClosureParamSpec* find_param(const char* key) {
-  for (const ClosureParamSpec& spec : closure_spec(ClosureType::kPrincipled).params)
-    if (std::strcmp(spec.key, key) == 0) return &spec;
+  for (ClosureType t : {ClosureType::kPrincipled, ClosureType::kPrincipledV2})
+    for (const ClosureParamSpec& spec : closure_spec(t).params)
+      if (std::strcmp(spec.key, key) == 0) return &spec;
   return nullptr;
 }
 

@@ -40,9 +40,10 @@ const std::vector<ClosureSpec>& closure_specs();
 const ClosureSpec& closure_spec(ClosureType type);
 const ClosureSpec* find_closure(const char* name);
 // The input `p` of closure `type`; for an input the closure does not read (it keeps its value
-// but never renders it), the Principled BSDF's, which reads every Param.
+// but never renders it), the Principled BSDF's (v1's, else v2's: together they read every Param).
 const ClosureParamSpec& param_spec(ClosureType type, Param p);
-// The input named `key` (any closure's: the dict keys are shared), or null.
+// The input named `key` (any closure's: the dict keys are shared; v1's spec where both Principled
+// versions read it), or null.
 const ClosureParamSpec* find_param(const char* key);
 
 // Blender's defaults for the inputs of `type` (Principled's for inputs it does not read).

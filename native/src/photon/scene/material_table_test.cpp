@@ -30,7 +30,7 @@ Material one_closure(ClosureType type, Param p, const Input& in) {
 
 TEST(MaterialTable, ClosureTypesInOrderAndEveryParamOnce) {
   const auto& specs = closure_specs();
-  ASSERT_EQ(specs.size(), static_cast<size_t>(ClosureType::kAnisotropic) + 1);
+  ASSERT_EQ(specs.size(), static_cast<size_t>(ClosureType::kPrincipledV2) + 1);
   for (size_t i = 0; i < specs.size(); ++i) {
     EXPECT_EQ(static_cast<size_t>(specs[i].type), i) << specs[i].name;
     EXPECT_EQ(find_closure(specs[i].name), &specs[i]);
@@ -41,13 +41,15 @@ TEST(MaterialTable, ClosureTypesInOrderAndEveryParamOnce) {
       EXPECT_LE(p.default_value, p.range.hi) << specs[i].name << " " << p.key;
       // One dict key per Param, whichever closure reads it.
       ASSERT_NE(find_param(p.key), nullptr) << p.key;
-      EXPECT_EQ(find_param(p.key)->param, p.param);
+      EXPECT_EQ(find_param(p.key)->param, p.param) << p.key;
       EXPECT_EQ(&param_spec(specs[i].type, p.param), &p);
     }
   }
-  // The Principled BSDF reads every Param (the fallback of the other closures).
-  EXPECT_EQ(closure_spec(ClosureType::kPrincipled).params.size(),
-            static_cast<size_t>(Param::kCount));
+  // The two Principled BSDFs together read every Param (the fallback of the other closures).
+  std::set<Param> principled;
+  for (ClosureType t : {ClosureType::kPrincipled, ClosureType::kPrincipledV2})
+    for (const ClosureParamSpec& p : closure_spec(t).params) principled.insert(p.param);
+  EXPECT_EQ(principled.size(), static_cast<size_t>(Param::kCount));
   EXPECT_EQ(find_closure("NO_SUCH_CLOSURE"), nullptr);
   EXPECT_EQ(find_param("no_such_param"), nullptr);
 }

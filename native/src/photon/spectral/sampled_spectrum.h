@@ -98,6 +98,12 @@ inline bool is_finite(const SampledSpectrum& s) {
 inline float max_component(const SampledSpectrum& s) {
   return s.max_value();
 }
+// Each value clamped to [0, 1] (render/bsdf_lobes.h's Fresnel models).
+inline SampledSpectrum saturate_channels(SampledSpectrum s) {
+  for (int i = 0; i < kSpectrumSamples; ++i)
+    s[i] = s[i] < 0.0f ? 0.0f : (s[i] > 1.0f ? 1.0f : s[i]);
+  return s;
+}
 
 class SampledWavelengths {
  public:
