@@ -12,6 +12,13 @@ completely within a pixel, so there the mean and standard deviation must agree (
 light), so Cycles' negative values are compared as 0. The report (OUT/report.html) shows Cycles,
 Photon and their difference side by side for every case.
 
+The references are those of the Blender the suite runs with: Cycles 3.4's beside each manifest
+(test_scenes/nodes/<manifest>/<case>.exr), another Blender's in test_scenes/nodes/<manifest>/
+blender-X.Y/ (e.g. blender-4.3), where an image identical to an earlier Blender's is stored once
+(same.txt, tools/node_refs_dedup.py). A Blender without references there skips the manifest with a
+message; a case that Blender cannot build (<case>.skip there, written by tools/node_refs.py) is
+skipped, and so is a manifest whose "min_blender" is newer than the Blender.
+
 usage: node_conformance.py --blender BLENDER --addon-dir STAGE --out DIR [--manifests M.json ...]
 """
 
@@ -19,6 +26,7 @@ import argparse
 import html
 import json
 import os
+import re
 import subprocess
 import sys
 import time
@@ -29,6 +37,9 @@ import OpenImageIO as oiio
 
 REPO = Path(__file__).resolve().parent.parent
 PASS_FRACTION = 0.99
+# The Blender whose Cycles rendered the references beside the manifests; references of other
+# Blenders live in test_scenes/nodes/<manifest>/blender-X.Y/ (made with tools/node_refs.py).
+REFERENCE_BLENDER = (3, 4)
 
 
 def read_rgb(path):
@@ -88,19 +99,71 @@ def render_manifest(manifest, blender, addon_dir, out_dir, timeout):
     return log
 
 
+def blender_version(blender):
+    """(major, minor) of the Blender binary, from `blender --version`."""
+    out = subprocess.run([blender, "-b", "--factory-startup", "--version"], capture_output=True,
+                         text=True, timeout=120, check=False).stdout
+    match = re.search(r"Blender (\d+)\.(\d+)", out)
+    if match is None:
+        raise RuntimeError(f"cannot read the version of {blender}: {out[:200]!r}")
+    return int(match.group(1)), int(match.group(2))
+
+
+def reference_dir(manifest, version):
+    """Where the Cycles references of `manifest` rendered by Blender `version` live: the
+    manifest's folder for Blender 3.4 (the first ones), its blender-X.Y subfolder for others."""
+    family_dir = manifest.parent / manifest.stem
+    if tuple(version) == REFERENCE_BLENDER:
+        return family_dir
+    return family_dir / f"blender-{version[0]}.{version[1]}"
+
+
+def reference_path(references, name):
+    """The reference image of case `name` in folder `references`: <name>.exr there, or, when
+    the folder's same.txt lists the name (tools/node_refs_dedup.py: an image identical to an
+    earlier Blender's), that Blender's image; None when there is none."""
+    for _ in range(8):  # a chain of Blenders, each listing names the same as the one before
+        image = references / f"{name}.exr"
+        if image.exists():
+            return image
+        listed = references / "same.txt"
+        if not listed.exists():
+            return None
+        lines = listed.read_text().split("\n")
+        if name not in lines[1:] or not lines[0].startswith("base: "):
+            return None
+        references = (references / lines[0][len("base: "):].strip()).resolve()
+    return None
+
+
 def check_manifest(manifest, args):
     family = manifest.stem
-    reference_dir = manifest.parent / family
+    references = reference_dir(manifest, args.version)
     out_dir = Path(args.out) / family
     out_dir.mkdir(parents=True, exist_ok=True)
+    data = json.loads(manifest.read_text())
+    version_name = f"{args.version[0]}.{args.version[1]}"
+    if tuple(args.version) < tuple(data.get("min_blender", (0, 0))):
+        reason = f"needs Blender {'.'.join(map(str, data['min_blender']))} or newer"
+        return [{"family": family, "name": c["name"], "node": c.get("node"), "status": "SKIP",
+                 "reason": reason} for c in data["cases"]], 0.0
+    if not (references / "coords.exr").exists():
+        reason = f"no Cycles {version_name} references ({references.relative_to(REPO)})"
+        return [{"family": family, "name": c["name"], "node": c.get("node"), "status": "SKIP",
+                 "reason": reason} for c in data["cases"]], 0.0
     t0 = time.time()
     render_manifest(manifest, args.blender, args.addon_dir, out_dir, args.timeout)
     seconds = time.time() - t0
     results = []
-    for case in json.loads(manifest.read_text())["cases"]:
+    for case in data["cases"]:
         name = case["name"]
         entry = {"family": family, "name": name, "node": case.get("node"), "status": "PASS",
                  "reason": ""}
+        skipped = references / f"{name}.skip"
+        if skipped.exists():  # Cycles of this Blender has no such node or setting
+            entry.update(status="SKIP", reason=skipped.read_text().strip())
+            results.append(entry)
+            continue
         if case.get("world"):
             # Seen through an equirectangular panorama, which Photon's camera does not have:
             # the world nodes (the skies) are checked against the same references by the
@@ -109,7 +172,8 @@ def check_manifest(manifest, args):
             results.append(entry)
             continue
         try:
-            reference = read_rgb(reference_dir / f"{name}.exr")
+            found = reference_path(references, name)
+            reference = read_rgb(found if found is not None else references / f"{name}.exr")
             rendered = read_rgb(out_dir / f"{name}.exr")
         except OSError as error:
             entry.update(status="ERROR", reason=f"no image: {error}")
@@ -167,6 +231,9 @@ def main(argv=None):
     parser.add_argument("--timeout", type=float, default=900.0)
     args = parser.parse_args(argv)
     Path(args.out).mkdir(parents=True, exist_ok=True)
+    args.version = blender_version(args.blender)
+    print(f"Blender {args.version[0]}.{args.version[1]}: references "
+          f"{'beside the manifests' if tuple(args.version) == REFERENCE_BLENDER else 'in blender-%d.%d/ subfolders' % tuple(args.version)}")
     results = []
     for manifest in args.manifests:
         found, seconds = check_manifest(manifest, args)

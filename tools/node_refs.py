@@ -45,6 +45,11 @@ Every render also writes OUT_DIR/coords.exr: the Object coordinate of each pixel
 (4, 4, 4), so tests can evaluate a node at exactly the point the render shaded (Emission colours
 stay positive). The plane spans x, y in [-1, 1] with z = 0.3 x + 0.2 y + 0.25.
 
+A case this Blender cannot build (its node type, a property, an enum value or a named input does
+not exist here: Musgrave and Separate RGB are gone in 4.x, Gabor is new in 4.3) is not rendered;
+OUT_DIR/<name>.skip then says why, and the conformance suite skips the case for this Blender.
+A manifest may say "min_blender": [4, 1]: older Blenders skip all of its cases that way.
+
 World cases ("world": true) render the node through the world's Background (strength 1) seen by
 an equirectangular panoramic camera with nothing in the scene, at "resolution": [w, h] (default
 64 x 32); "camera": {"latitude_min": ..., "longitude_max": ..., ...} narrows the panorama (to look
@@ -72,6 +77,8 @@ def _socket(sockets, key):
     if isinstance(key, str) and key.startswith("#"):
         return sockets[int(key[1:])]
     found = [s for s in sockets if s.name == key and s.enabled]
+    # A hidden socket of that name (4.x's sockets["name"] no longer finds unavailable ones).
+    found = found or [s for s in sockets if s.name == key]
     return found[0] if found else sockets[key]
 
 
@@ -369,6 +376,48 @@ def _world_camera(case, scene, plane):
     scene.camera.rotation_euler = case.get("camera_rotation", (0.0, 0.0, 0.0))
 
 
+def unavailable(case):
+    """Why this Blender cannot build `case` (None when it can): a node type, property, enum value
+    or input socket the case names that does not exist here."""
+    node_type = case.get("node")
+    if node_type is None:
+        return None
+    rna = getattr(bpy.types, node_type, None)
+    if rna is None:
+        return f"{node_type} does not exist in Blender {bpy.app.version_string}"
+    props = rna.bl_rna.properties
+    for name, value in case.get("properties", {}).items():
+        if name not in props:
+            return f"{node_type}.{name} does not exist in Blender {bpy.app.version_string}"
+        prop = props[name]
+        if prop.type == 'ENUM' and isinstance(value, str) and \
+                value not in {item.identifier for item in prop.enum_items}:
+            return f"{node_type}.{name} has no '{value}' in Blender {bpy.app.version_string}"
+    tree = bpy.data.node_groups.new("probe", 'ShaderNodeTree')
+    try:
+        node = tree.nodes.new(node_type)
+        for name, value in case.get("properties", {}).items():
+            setattr(node, name, value)
+        names = list(case.get("inputs", {}))
+        if case.get("vector", "Vector") is not None:
+            names.append(case.get("vector", "Vector"))
+        for name in names:
+            try:
+                _socket(node.inputs, name)
+            except (KeyError, IndexError):
+                return f"{node_type} has no input '{name}' in Blender {bpy.app.version_string}"
+        for key in ("output", "strength_output"):
+            if case.get(key) is not None:
+                try:
+                    _socket(node.outputs, case[key])
+                except (KeyError, IndexError):
+                    return (f"{node_type} has no output '{case[key]}' in Blender "
+                            f"{bpy.app.version_string}")
+    finally:
+        bpy.data.node_groups.remove(tree)
+    return None
+
+
 def render(case, engine, out_dir, mesh_spec=None):
     scene, plane = _scene(engine)
     if mesh_spec and not case.get("world"):
@@ -411,12 +460,28 @@ def main():
     render({"name": "coords", "node": None}, engine, out_dir, mesh_spec)
     if mesh_spec:
         _write_mesh(_attribute_mesh(mesh_spec), os.path.join(out_dir, "mesh.txt"))
+    too_old = tuple(bpy.app.version[:2]) < tuple(data.get("min_blender", (0, 0)))
     for case in cases:
         if only is None or case["name"] in only:
-            if case.get("object"):  # the transformed plane's own coordinate image
-                render({"name": case["name"] + "_coords", "node": None,
-                        "object": case["object"]}, engine, out_dir, mesh_spec)
-            render(case, engine, out_dir, mesh_spec)
+            skip_file = os.path.join(out_dir, case["name"] + ".skip")
+            reason = (f"needs Blender {'.'.join(map(str, data['min_blender']))} or newer"
+                      if too_old else unavailable(case))
+            if reason is not None:
+                print(f"node_refs: skipping {case['name']}: {reason}")
+                with open(skip_file, "w") as f:
+                    f.write(reason + "\n")
+                continue
+            if os.path.exists(skip_file):
+                os.remove(skip_file)
+            try:
+                if case.get("object"):  # the transformed plane's own coordinate image
+                    render({"name": case["name"] + "_coords", "node": None,
+                            "object": case["object"]}, engine, out_dir, mesh_spec)
+                render(case, engine, out_dir, mesh_spec)
+            except Exception:  # one broken case leaves no image; the others still render
+                import traceback
+                print(f"node_refs: {case['name']} failed:")
+                traceback.print_exc()
 
 
 if __name__ == "__main__":

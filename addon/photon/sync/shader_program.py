@@ -30,7 +30,7 @@ _BASE_PROPERTIES = None
 _DEFAULT_UV = {'TEX_IMAGE'}
 _DEFAULT_POSITION = {'TEX_ENVIRONMENT'}
 _DEFAULT_GENERATED = {'TEX_NOISE', 'TEX_VORONOI', 'TEX_MUSGRAVE', 'TEX_WAVE', 'TEX_MAGIC',
-                      'TEX_CHECKER', 'TEX_BRICK', 'TEX_GRADIENT', 'TEX_SKY'}
+                      'TEX_CHECKER', 'TEX_BRICK', 'TEX_GRADIENT', 'TEX_SKY', 'TEX_GABOR'}
 # Inputs whose unlinked value means "the shading normal" (the native side reads N).
 _NORMAL_INPUTS = {'Normal', 'Clearcoat Normal', 'Tangent'}
 # Nodes whose approximation the artist should hear about.
@@ -91,6 +91,32 @@ def _settings(node):
             for i in range(prop.array_length):
                 numbers[f"{name}[{i}]"] = float(value[i])
     return enums, numbers
+
+
+# Nodes whose settings and sockets did not change while Cycles' arithmetic did: the native side
+# is told which Cycles to follow (enum "photon_cycles", the Blender major version). Every other
+# node is told apart by what it has (Blender 4.x's Noise by noise_type, Voronoi by normalize).
+# 4.x: the Wave's distortion fBm no longer clamps its roughness; the Normal Map applies Strength
+# in tangent space; the Vector Transform carries normals by the inverse transpose.
+_CYCLES_VERSIONED = {'TEX_WAVE', 'NORMAL_MAP', 'VECT_TRANSFORM'}
+
+
+def _cycles_version(node, desc):
+    if node.type in _CYCLES_VERSIONED:
+        import bpy
+        desc["enums"]["photon_cycles"] = str(bpy.app.version[0])
+
+
+def _warn_unmatched(node, where, ctx):
+    """Warns about a node Photon renders, but not as this Blender's Cycles does."""
+    import bpy
+    if node.type == 'TEX_VORONOI' and bpy.app.version[0] >= 5 and \
+            getattr(node, "voronoi_dimensions", '3D') != '1D':
+        # The node conformance suite: Cycles 5.2's 2D-4D cells differ from 4.x's everywhere.
+        ctx.warn_once(("voronoi5", where),
+                      f"{where}: Voronoi Texture {node.voronoi_dimensions} follows Cycles 4.x; "
+                      f"Cycles {bpy.app.version[0]}.{bpy.app.version[1]} places its cells "
+                      f"differently, so the pattern will not match Cycles")
 
 
 def _constant_of(socket, kind):
@@ -239,6 +265,7 @@ class ProgramBuilder:
         desc = {"type": node.bl_idname, "enums": enums, "numbers": numbers, "inputs": {},
                 "outputs": {}}
         self._special(node, stack, desc)
+        _cycles_version(node, desc)
         for socket in node.inputs:
             kind = SOCKET_KIND.get(socket.type)
             if kind is None or not socket.enabled:
@@ -256,6 +283,7 @@ class ProgramBuilder:
         verdict = self._check(desc)
         if verdict is not None:
             return self._fallback(node, stack, where, verdict)
+        _warn_unmatched(node, where, self.ctx)
         outputs = self._outputs(node)
         desc["outputs"] = {ident: reg for ident, (reg, _) in outputs.items()}
         self._emit(desc)
@@ -271,6 +299,7 @@ class ProgramBuilder:
                 "outputs": {}}
         if node.type not in ('TEX_IMAGE', 'TEX_ENVIRONMENT', 'TEX_COORD'):
             self._special(node, stack, desc)
+        _cycles_version(node, desc)
         for socket in node.inputs:
             if SOCKET_KIND.get(socket.type) is not None and socket.enabled:
                 desc["inputs"][socket.identifier] = 0

@@ -9,9 +9,9 @@ namespace {
 
 // The order of Blender's blend_type enum (rna_nodetree.c, ramp_blend_items).
 constexpr const char* kBlendNames[] = {
-    "MIX",      "DARKEN", "MULTIPLY", "BURN",       "LIGHTEN",      "SCREEN",
-    "DODGE",    "ADD",    "OVERLAY",  "SOFT_LIGHT", "LINEAR_LIGHT", "DIFFERENCE",
-    "SUBTRACT", "DIVIDE", "HUE",      "SATURATION", "COLOR",        "VALUE"};
+    "MIX", "DARKEN",     "MULTIPLY",   "BURN",         "LIGHTEN",    "SCREEN",   "DODGE",
+    "ADD", "OVERLAY",    "SOFT_LIGHT", "LINEAR_LIGHT", "DIFFERENCE", "SUBTRACT", "DIVIDE",
+    "HUE", "SATURATION", "COLOR",      "VALUE",        "EXCLUSION"};
 static_assert(sizeof(kBlendNames) / sizeof(kBlendNames[0]) ==
               static_cast<size_t>(BlendMode::kCount));
 
@@ -194,6 +194,8 @@ Vec3 blend_colors(BlendMode mode, float t, const Vec3& a, const Vec3& b) {
       return a + (b * 2.0f - one) * t;
     case BlendMode::kDifference:
       return interp(a, abs3(a - b), t);
+    case BlendMode::kExclusion:  // Cycles 4.x's svm_mix_exclusion
+      return max3(interp(a, a + b - a * b * 2.0f, t), Vec3(0.0f));
     case BlendMode::kSubtract:
       return interp(a, a - b, t);
     case BlendMode::kDivide:

@@ -30,6 +30,7 @@ enum class BlendMode : uint32_t {
   kSaturation,
   kColor,
   kValue,
+  kExclusion,  // Blender 4.x (after DIFFERENCE in its enum; here last, as modes match by name)
   kCount,
 };
 

@@ -9,15 +9,16 @@ namespace photon {
 
 namespace {
 
-// Enum identifiers in Blender 3.4's order; the index is the operation's value.
+// Enum identifiers in Blender 3.4's order, then those Blender 4.x added; the index is the
+// operation's value.
 const char* const kMathOps[] = {
-    "ADD",        "SUBTRACT",  "MULTIPLY",     "DIVIDE",     "MULTIPLY_ADD", "POWER",
-    "LOGARITHM",  "SQRT",      "INVERSE_SQRT", "ABSOLUTE",   "EXPONENT",     "MINIMUM",
-    "MAXIMUM",    "LESS_THAN", "GREATER_THAN", "SIGN",       "COMPARE",      "SMOOTH_MIN",
-    "SMOOTH_MAX", "ROUND",     "FLOOR",        "CEIL",       "TRUNC",        "FRACT",
-    "MODULO",     "WRAP",      "SNAP",         "PINGPONG",   "SINE",         "COSINE",
-    "TANGENT",    "ARCSINE",   "ARCCOSINE",    "ARCTANGENT", "ARCTAN2",      "SINH",
-    "COSH",       "TANH",      "RADIANS",      "DEGREES"};
+    "ADD",        "SUBTRACT",  "MULTIPLY",     "DIVIDE",     "MULTIPLY_ADD",  "POWER",
+    "LOGARITHM",  "SQRT",      "INVERSE_SQRT", "ABSOLUTE",   "EXPONENT",      "MINIMUM",
+    "MAXIMUM",    "LESS_THAN", "GREATER_THAN", "SIGN",       "COMPARE",       "SMOOTH_MIN",
+    "SMOOTH_MAX", "ROUND",     "FLOOR",        "CEIL",       "TRUNC",         "FRACT",
+    "MODULO",     "WRAP",      "SNAP",         "PINGPONG",   "SINE",          "COSINE",
+    "TANGENT",    "ARCSINE",   "ARCCOSINE",    "ARCTANGENT", "ARCTAN2",       "SINH",
+    "COSH",       "TANH",      "RADIANS",      "DEGREES",    "FLOORED_MODULO"};
 static_assert(std::size(kMathOps) == static_cast<size_t>(MathOp::kCount));
 
 const char* const kVectorMathOps[] = {
@@ -113,6 +114,46 @@ Vec3 vector_transform(VectorTransformType type, VectorTransformSpace from, Vecto
   return type == VectorTransformType::kNormal ? normalize_keep_zero(out) : out;
 }
 
+namespace {
+
+// Cycles 4.x's svm_node_vector_transform of a Normal: each step carries it by the inverse
+// transpose of that step's transform and normalises it there; world to world (or camera to
+// camera, object to object) leaves it as it is.
+Vec3 vector_transform_normal_4x(VectorTransformSpace from, VectorTransformSpace to, const Vec3& v,
+                                const ShaderGlobals& g) {
+  using S = VectorTransformSpace;
+  const bool is_object = !g.is_background;
+  auto carry = [](const Transform& t, const Vec3& x) {
+    float m[3][3];
+    if (!t.normal_matrix(m)) return Vec3(0.0f);
+    return normalize_keep_zero(Vec3(m[0][0] * x.x + m[0][1] * x.y + m[0][2] * x.z,
+                                    m[1][0] * x.x + m[1][1] * x.y + m[1][2] * x.z,
+                                    m[2][0] * x.x + m[2][1] * x.y + m[2][2] * x.z));
+  };
+  auto inverse_of = [](const Transform& t) {
+    Transform inv;
+    invert_transform(t, &inv);
+    return inv;
+  };
+  Vec3 out = v;
+  if (from == S::kWorld) {
+    if (to == S::kCamera)
+      out = carry(g.world_to_camera, out);
+    else if (to == S::kObject && is_object)
+      out = carry(g.world_to_object, out);
+  } else if (from == S::kCamera) {
+    if (to == S::kWorld || to == S::kObject) out = carry(inverse_of(g.world_to_camera), out);
+    if (to == S::kObject && is_object) out = carry(g.world_to_object, out);
+  } else {  // from object
+    if ((to == S::kWorld || to == S::kCamera) && is_object)
+      out = carry(inverse_of(g.world_to_object), out);
+    if (to == S::kCamera) out = carry(g.world_to_camera, out);
+  }
+  return out;
+}
+
+}  // namespace
+
 CompileStatus compile_math_node(const NodeDesc& desc, ShaderProgram* program, Instruction* out,
                                 std::string* error) {
   Instruction ins;
@@ -200,6 +241,8 @@ CompileStatus compile_math_node(const NodeDesc& desc, ShaderProgram* program, In
         !lookup_enum(desc, "convert_to", "OBJECT", kSpaces, &to, error))
       return CompileStatus::kError;
     ins.mode = type | from << 4 | to << 8;
+    // Blender 4.x (the add-on's enum "photon_cycles"): normals by the inverse transpose.
+    ins.param[0] = enum_value(desc, "photon_cycles", "3") >= "4" ? 1.0f : 0.0f;
     ins.in[0] = input_vec(desc, "Vector", p, Vec3(0.5f));
     ins.out[0] = output_register(desc, "Vector");
   } else if (t == "ShaderNodeNormal") {
@@ -263,6 +306,14 @@ void eval_math_node(const Instruction& ins, const ShaderProgram& /*program*/,
                            load3(r, ins.in[4]), ins.param[0] != 0.0f));
       break;
     case MathNodeKind::kVectorTransform:
+      if (ins.param[0] != 0.0f &&
+          (ins.mode & 0xFu) == static_cast<uint32_t>(VectorTransformType::kNormal)) {
+        store3(r, ins.out[0],
+               vector_transform_normal_4x(static_cast<VectorTransformSpace>((ins.mode >> 4) & 0xFu),
+                                          static_cast<VectorTransformSpace>((ins.mode >> 8) & 0xFu),
+                                          load3(r, ins.in[0]), globals));
+        break;
+      }
       store3(r, ins.out[0],
              vector_transform(static_cast<VectorTransformType>(ins.mode & 0xFu),
                               static_cast<VectorTransformSpace>((ins.mode >> 4) & 0xFu),

@@ -163,6 +163,8 @@ float eval_math(MathOp op, float a, float b, float c) {
       return a * (kCyclesPi / 180.0f);
     case MathOp::kDegrees:
       return a * (180.0f / kCyclesPi);
+    case MathOp::kFlooredModulo:  // Cycles 4.x's safe_floored_modulo
+      return b != 0.0f ? a - std::floor(a / b) * b : 0.0f;
     case MathOp::kCount:
       break;
   }

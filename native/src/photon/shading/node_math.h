@@ -53,6 +53,7 @@ enum class MathOp : uint32_t {
   kTanh,
   kRadians,
   kDegrees,
+  kFlooredModulo,  // Blender 4.x (after MODULO in its enum; here last, as ops match by name)
   kCount,
 };
 

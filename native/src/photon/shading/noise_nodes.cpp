@@ -1,9 +1,12 @@
 #include "photon/shading/noise_nodes.h"
 
 #include <cmath>
+#include <utility>
 
+#include "photon/shading/gabor.h"
 #include "photon/shading/hash.h"
 #include "photon/shading/noise.h"
+#include "photon/shading/noise_fractal.h"
 
 namespace photon {
 namespace {
@@ -267,7 +270,8 @@ Vec3 white_color(uint32_t dims, const Vec3& v, float w) {
 // ---- Wave Texture (Cycles' svm_wave) ----
 
 float wave(uint32_t type, uint32_t direction, uint32_t profile, Vec3 p, float distortion,
-           float detail, float detail_scale, float detail_roughness, float phase) {
+           float detail, float detail_scale, float detail_roughness, float phase,
+           bool cycles4 = false) {
   // Blender nudges the coordinate so unit coordinates do not land exactly on band edges.
   p = (p + Vec3(0.000001f)) * 0.999999f;
   float n;
@@ -304,7 +308,10 @@ float wave(uint32_t type, uint32_t direction, uint32_t profile, Vec3 p, float di
     n = length(rp) * 20.0f;
   }
   n += phase;
-  if (distortion != 0.0f)
+  if (distortion != 0.0f && cycles4)  // Cycles 4.x: noise_fbm, detail and roughness unclamped
+    n += distortion *
+         (noise::fbm_3d_4x(p * detail_scale, detail, detail_roughness, 2.0f, true) * 2.0f - 1.0f);
+  else if (distortion != 0.0f)
     n += distortion *
          (noise::fractal_noise_3d(p * detail_scale, detail, detail_roughness) * 2.0f - 1.0f);
   constexpr float kTwoPi = 2.0f * kPi;
@@ -358,6 +365,59 @@ void eval_noise(const Instruction& ins, const ShaderGlobals& globals, float* r) 
   store3(r, ins.out[1], color);
 }
 
+// Blender 4.x's Noise Texture (Cycles' svm_node_tex_noise of 4.1+). in[]: Vector, W, Scale,
+// Detail, Roughness, Lacunarity, Offset, Gain; Distortion's register is program.data[ins.data].
+// mode: dimensions in bits 0-3, noise::FractalType in 4-7, Normalize in bit 8.
+enum Noise4xIn { k4Vector, k4W, k4Scale, k4Detail, k4Roughness, k4Lacunarity, k4Offset, k4Gain };
+
+void eval_noise_4x(const Instruction& ins, const ShaderProgram& program,
+                   const ShaderGlobals& globals, float* r) {
+  const float scale = load1(r, ins.in[k4Scale]);
+  const Vec3 v = load_vector(ins, k4Vector, globals, r) * scale;
+  const float w = load1(r, ins.in[k4W]) * scale;
+  noise::FractalParams f;
+  f.type = static_cast<noise::FractalType>(mode_type(ins.mode));
+  f.normalize = (ins.mode >> 8) & 1u;
+  f.detail = clamp_octaves(load1(r, ins.in[k4Detail]));
+  f.roughness = std::fmax(load1(r, ins.in[k4Roughness]), 0.0f);
+  f.lacunarity = load1(r, ins.in[k4Lacunarity]);
+  f.offset = load1(r, ins.in[k4Offset]);
+  f.gain = load1(r, ins.in[k4Gain]);
+  const float distortion = load1(r, static_cast<int32_t>(program.data[ins.data]));
+  Vec3 color(0.0f);
+  Vec3* want_color = ins.out[1] >= 0 ? &color : nullptr;
+  float value;
+  switch (mode_dims(ins.mode)) {
+    case 1:
+      value = noise::noise_texture_4x<1>({w}, f, distortion, want_color);
+      break;
+    case 2:
+      value = noise::noise_texture_4x<2>({v.x, v.y}, f, distortion, want_color);
+      break;
+    case 3:
+      value = noise::noise_texture_4x<3>(noise::point(v), f, distortion, want_color);
+      break;
+    default:
+      value = noise::noise_texture_4x<4>(noise::point(v, w), f, distortion, want_color);
+      break;
+  }
+  store1(r, ins.out[0], value);
+  store3(r, ins.out[1], color);
+}
+
+// Blender 4.3's Gabor Texture. in[]: Vector, Scale, Frequency, Anisotropy, Orientation 2D,
+// Orientation 3D; out[]: Value, Phase, Intensity; mode: 2 or 3 (dimensions).
+void eval_gabor(const Instruction& ins, const ShaderGlobals& globals, float* r) {
+  const Vec3 p = load_vector(ins, 0, globals, r) * load1(r, ins.in[1]);
+  const float frequency = load1(r, ins.in[2]), anisotropy = load1(r, ins.in[3]);
+  const gabor::Result g = mode_dims(ins.mode) == 2
+                              ? gabor::gabor_2d(p, frequency, anisotropy, load1(r, ins.in[4]))
+                              : gabor::gabor_3d(p, frequency, anisotropy, load3(r, ins.in[5]));
+  store1(r, ins.out[0], g.value);
+  store1(r, ins.out[1], g.phase);
+  store1(r, ins.out[2], g.intensity);
+}
+
 void eval_musgrave(const Instruction& ins, const ShaderGlobals& globals, float* r) {
   float scale = load1(r, ins.in[kMusScale]);
   Vec3 v = load_vector(ins, kMusVector, globals, r) * scale;
@@ -394,12 +454,13 @@ void eval_white_noise(const Instruction& ins, const ShaderGlobals& globals, floa
   if (ins.out[1] >= 0) store3(r, ins.out[1], white_color(dims, v, w));
 }
 
-void eval_wave(const Instruction& ins, const ShaderGlobals& globals, float* r) {
+void eval_wave(const Instruction& ins, const ShaderGlobals& globals, float* r,
+               bool cycles4 = false) {
   Vec3 p = load_vector(ins, kWaveVector, globals, r) * load1(r, ins.in[kWaveScale]);
   float f = wave(mode_type(ins.mode), mode_direction(ins.mode), mode_profile(ins.mode), p,
                  load1(r, ins.in[kWaveDistortion]), load1(r, ins.in[kWaveDetail]),
                  load1(r, ins.in[kWaveDetailScale]), load1(r, ins.in[kWaveDetailRoughness]),
-                 load1(r, ins.in[kWavePhase]));
+                 load1(r, ins.in[kWavePhase]), cycles4);
   if (!std::isfinite(f)) f = 0.0f;  // an infinite coordinate or phase: Cycles gives NaN here
   store3(r, ins.out[0], Vec3(f));
   store1(r, ins.out[1], f);
@@ -425,6 +486,68 @@ CompileStatus compile_noise_node(const NodeDesc& desc, ShaderProgram* program, I
   Instruction ins;
   ins.family = NodeFamily::kNoise;
   int d = 0, type = 0, direction = 0, profile = 0;
+  const bool noise_4x = desc.type == "ShaderNodeTexNoise" &&
+                        (desc.enums.count("noise_type") > 0 || desc.enums.count("normalize") > 0 ||
+                         desc.inputs.count("Lacunarity") > 0);
+  if (noise_4x) {
+    static const Socket kNoise4xSockets[] = {
+        {"Vector", 0.0f},    {"W", 0.0f},          {"Scale", 5.0f},  {"Detail", 2.0f},
+        {"Roughness", 0.5f}, {"Lacunarity", 2.0f}, {"Offset", 0.0f}, {"Gain", 1.0f}};
+    // Blender's identifiers, in the order of Cycles' NodeNoiseType (noise::FractalType).
+    if (!parse_enum(desc, "noise_dimensions", "3D", dims, &d, error) ||
+        !parse_enum(
+            desc, "noise_type", "FBM",
+            {"MULTIFRACTAL", "FBM", "HYBRID_MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HETERO_TERRAIN"},
+            &type, error))
+      return CompileStatus::kError;
+    ins.kind = static_cast<uint16_t>(NoiseNodeKind::kNoise4x);
+    bind_inputs(desc, kNoise4xSockets, 8, program, &ins);
+    int32_t distortion = input_register(desc, "Distortion");
+    if (distortion < 0) {
+      distortion = static_cast<int32_t>(program->registers.size());
+      program->registers.push_back(0.0f);
+    }
+    ins.data = static_cast<int32_t>(program->data.size());
+    ins.data_size = 1;
+    program->data.push_back(static_cast<float>(distortion));  // a register index (exact < 2^24)
+    ins.out[0] = output_register(desc, "Fac");
+    ins.out[1] = output_register(desc, "Color");
+    const bool normalize = enum_value(desc, "normalize", "True") == "True";
+    ins.mode = pack_mode(static_cast<uint32_t>(d + 1), static_cast<uint32_t>(type), 0, 0) |
+               (normalize ? 1u << 8 : 0u);
+    *out = ins;
+    return CompileStatus::kCompiled;
+  }
+  if (desc.type == "ShaderNodeTexGabor") {
+    if (!parse_enum(desc, "gabor_type", "2D", {"2D", "3D"}, &d, error))
+      return CompileStatus::kError;
+    ins.kind = static_cast<uint16_t>(NoiseNodeKind::kGabor);
+    ins.in[0] = input_register(desc, "Vector");
+    const std::pair<const char*, float> floats[] = {{"Scale", 5.0f},
+                                                    {"Frequency", 2.0f},
+                                                    {"Anisotropy", 1.0f},
+                                                    {"Orientation 2D", 0.78539816339744830962f}};
+    for (int i = 0; i < 4; ++i) {
+      int32_t reg = input_register(desc, floats[i].first);
+      if (reg < 0) {
+        reg = static_cast<int32_t>(program->registers.size());
+        program->registers.push_back(floats[i].second);
+      }
+      ins.in[1 + i] = reg;
+    }
+    ins.in[5] = input_register(desc, "Orientation 3D");
+    if (ins.in[5] < 0) {
+      ins.in[5] = static_cast<int32_t>(program->registers.size());
+      program->registers.insert(program->registers.end(),
+                                {1.41421356237309504880f, 1.41421356237309504880f, 0.0f});
+    }
+    ins.out[0] = output_register(desc, "Value");
+    ins.out[1] = output_register(desc, "Phase");
+    ins.out[2] = output_register(desc, "Intensity");
+    ins.mode = pack_mode(static_cast<uint32_t>(d + 2), 0, 0, 0);
+    *out = ins;
+    return CompileStatus::kCompiled;
+  }
   if (desc.type == "ShaderNodeTexNoise") {
     if (!parse_enum(desc, "noise_dimensions", "3D", dims, &d, error)) return CompileStatus::kError;
     ins.kind = static_cast<uint16_t>(NoiseNodeKind::kNoise);
@@ -457,7 +580,9 @@ CompileStatus compile_noise_node(const NodeDesc& desc, ShaderProgram* program, I
                                           {"X", "Y", "Z", "SPHERICAL"}, &direction, error);
     if (!ok) return CompileStatus::kError;
     d = 2;  // always 3D
-    ins.kind = static_cast<uint16_t>(NoiseNodeKind::kWave);
+    ins.kind =
+        static_cast<uint16_t>(enum_value(desc, "photon_cycles", "3") >= "4" ? NoiseNodeKind::kWave4x
+                                                                            : NoiseNodeKind::kWave);
     bind_inputs(desc, kWaveSockets, 7, program, &ins);
     ins.out[0] = output_register(desc, "Color");
     ins.out[1] = output_register(desc, "Fac");
@@ -470,9 +595,18 @@ CompileStatus compile_noise_node(const NodeDesc& desc, ShaderProgram* program, I
   return CompileStatus::kCompiled;
 }
 
-void eval_noise_node(const Instruction& ins, const ShaderProgram& /*program*/,
+void eval_noise_node(const Instruction& ins, const ShaderProgram& program,
                      const ShaderGlobals& globals, float* registers) {
   switch (static_cast<NoiseNodeKind>(ins.kind)) {
+    case NoiseNodeKind::kNoise4x:
+      eval_noise_4x(ins, program, globals, registers);
+      break;
+    case NoiseNodeKind::kWave4x:
+      eval_wave(ins, globals, registers, /*cycles4=*/true);
+      break;
+    case NoiseNodeKind::kGabor:
+      eval_gabor(ins, globals, registers);
+      break;
     case NoiseNodeKind::kNoise:
       eval_noise(ins, globals, registers);
       break;

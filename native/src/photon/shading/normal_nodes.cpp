@@ -69,13 +69,21 @@ void eval_bump(const Instruction& ins, const ShaderProgram& program, const Shade
 }
 
 // Cycles' svm_node_normal_map: colour 2c - 1 in the tangent frame (T, sign B, N) of the
-// interpolated normal, or in object / world space; then N + (N' - N) strength.
+// interpolated normal, or in object / world space; then N + (N' - N) strength (Cycles 4.x: in
+// tangent space Strength scales the colour's x, y and blends its z from 1 instead).
 void eval_normal_map(const Instruction& ins, const ShaderProgram& program, const ShaderGlobals& g,
                      float* r) {
   const float strength = std::max(load1(r, ins.in[0]), 0.0f);
   Vec3 c = load3(r, ins.in[1]);
   c = Vec3(2.0f * (c.x - 0.5f), 2.0f * (c.y - 0.5f), 2.0f * (c.z - 0.5f));
   Vec3 n(0.0f);
+  // Cycles 4.x applies Strength to a tangent-space colour before the frame (param[1] = 1).
+  const bool tangent_strength = ins.mode == kTangent && ins.param[1] > 0.0f;
+  if (tangent_strength) {
+    const float raw = load1(r, ins.in[0]);
+    const float t = std::clamp(raw, 0.0f, 1.0f);
+    c = Vec3(c.x * raw, c.y * raw, 1.0f + t * (c.z - 1.0f));
+  }
   if (ins.mode == kTangent) {
     // The node's named UV map (param[0] = its attribute slot + 1) or the active one.
     Vec3 dpdu = g.dpdu, dpdv = g.dpdv;
@@ -108,7 +116,8 @@ void eval_normal_map(const Instruction& ins, const ShaderProgram& program, const
     n = safe_normalize(c);
     if (g.backfacing) n = -n;
   }
-  if (length_squared(n) > 0.0f && strength != 1.0f) n = safe_normalize(g.n + (n - g.n) * strength);
+  if (length_squared(n) > 0.0f && strength != 1.0f && !tangent_strength)
+    n = safe_normalize(g.n + (n - g.n) * strength);
   if (!(length_squared(n) > 0.0f)) n = g.n;
   store3(r, ins.out[0], n);
 }
@@ -187,6 +196,8 @@ CompileStatus compile_normal_node(const NodeDesc& desc, ShaderProgram* program, 
     const std::string uv_map = enum_value(desc, "photon_attribute", "");
     if (out->mode == kTangent && !uv_map.empty())
       out->param[0] = static_cast<float>(program_attribute_slot(program, uv_map) + 1);
+    // Blender 4.x (the add-on's enum "photon_cycles"): Strength acts in tangent space.
+    if (enum_value(desc, "photon_cycles", "3") >= "4") out->param[1] = 1.0f;
     if (out->in[0] < 0 || out->in[1] < 0) {
       *error = "Normal Map: Strength and Color need registers";
       return CompileStatus::kError;
