@@ -210,7 +210,9 @@ def write_lightmap(native, target, result, props, reporter):
         image = None
     if image is None:
         image = bpy.data.images.new(name, full, full, alpha=False, float_buffer=True)
-    image.colorspace_settings.name = "Linear"
+    # Blender 4.0 renamed the scene-linear space "Linear" to "Linear Rec.709".
+    spaces = image.colorspace_settings.bl_rna.properties["name"].enum_items.keys()
+    image.colorspace_settings.name = "Linear Rec.709" if "Linear Rec.709" in spaces else "Linear"
     image.pixels.foreach_set(rgba.ravel())
     del rgba
     # Packed into the .blend as float EXR, so the lightmap travels with the file.
