@@ -12,6 +12,7 @@ PACKAGES=(
   libgtest-dev libbenchmark-dev libnanoflann-dev
   xvfb xauth xdotool libgl1-mesa-dri  # the GUI tests (tests/blender/test_*_gui.py)
   slurm-wlm munge  # the render farm and its test cluster (tools/farm.py, tests/farm)
+  debootstrap  # Debian 13 and sid roots for the Blender 4.3 and 5.2 tests (tools/debian_root.sh)
 )
 
 install_packages() {

@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Run by tools/newer_blender_tests.sh inside a Debian 13 / sid root (this checkout at /photon).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+BUILD="${PHOTON_BUILD_DIR:?}"
+echo "== $(blender --version 2>/dev/null | head -1), $(python3 --version)"
+
+t=$SECONDS
+./tools/setup_and_demo.sh
+echo "== set-up and demo: $((SECONDS - t)) s"
+
+status=0
+t=$SECONDS
+"$BUILD/photon_tests" --gtest_brief=1 || status=1
+echo "== unit tests: $((SECONDS - t)) s"
+
+# The Blender tests that pass in every Blender (tests/blender/newer_blenders.txt). The others
+# still build their scenes with 3.4's API (Auto Smooth, v1 Principled sockets, node-group
+# sockets), compare with references rendered in 3.4, or find light units that differ from
+# Cycles 4.x (area lights, spots): docs/blender_versions.md.
+t=$SECONDS
+python3 -m pytest -q -rs -n 2 --dist loadfile -m "not serial" \
+  $(cat tests/blender/newer_blenders.txt) \
+  --photon-stage="$BUILD/stage" --blender=blender --photon-out="$BUILD/test_out" || status=1
+echo "== Blender tests: $((SECONDS - t)) s"
+
+# Shader-node conformance against this Blender's own Cycles (test_scenes/nodes/*/blender-X.Y).
+# Left out, each for a difference not yet explained: in 4.3 RGB Curves far outside [0, 1]
+# (color/rgb_curves_wide_range); in 5.2 the 2D-4D Voronoi cells and five sRGB/premultiplied
+# EXR image cases.
+case "$(blender --version 2>/dev/null | head -1)" in
+  "Blender 4.3"*) manifests=(attribute camera_coords gabor image math nodes_4x noise noise_fractal
+                             normal_map object_info pattern voronoi voronoi_fractal) ;;
+  *) manifests=(attribute camera_coords color gabor math nodes_4x noise noise_fractal normal_map
+                object_info pattern) ;;
+esac
+paths=()
+for m in "${manifests[@]}"; do paths+=("test_scenes/nodes/$m.json"); done
+t=$SECONDS
+python3 tools/node_conformance.py --blender blender --addon-dir "$BUILD/stage" \
+  --out "$BUILD/node_conformance" --manifests "${paths[@]}" || status=1
+echo "== node conformance: $((SECONDS - t)) s"
+exit $status
