@@ -5,6 +5,7 @@ Color and Strength scale the light as in Cycles; what Photon does not render (sp
 Texture, Light Falloff, an unconnected Light Output, a World volume) is said in a warning.
 About 10 s."""
 
+import math
 import sys
 from pathlib import Path
 
@@ -22,6 +23,10 @@ def test_light_controls_reach_the_native_light_or_a_warning(blender):
     result, proc = blender.run_script("light_controls.py")
     assert "exception" not in result, proc.log
     args, warnings = result["arguments"], result["warnings"]
+    # Area lights: Blender's watts as Cycles of that Blender reads them (3.x: radiance P / 4A;
+    # 4.0+: P / (pi A), a lamp that emits its whole power).
+    expected_factor = 4.0 / math.pi if result["version"] >= [4, 0, 0] else 1.0
+    assert abs(result["area_factor"] - expected_factor) < 1e-6
     # Without nodes, or with the default Emission node: the light's own colour and power.
     assert args["plain"] == PLAIN and warnings["plain"] == []
     assert args["default_nodes"] == PLAIN and warnings["default_nodes"] == []

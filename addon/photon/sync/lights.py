@@ -2,6 +2,7 @@
 
 import math
 
+import bpy
 import numpy as np
 
 from . import nodes
@@ -159,6 +160,11 @@ def light_arguments(native, obj, matrix, reporter):
     elif light.type == 'SUN':
         kwargs["sun_angle"] = float(light.angle)
     elif light.type == 'AREA':
+        if bpy.app.version >= (4, 0, 0):
+            # Cycles 4.0 made an area light of power P emit exactly P (radiance P / (pi A));
+            # 3.x gave it radiance P / (4 A), the convention Photon's lamps follow. Measured:
+            # Photon / Cycles 4.3 = 0.785 = pi / 4 on every area shape before this factor.
+            kwargs["power"] = power * 4.0 / math.pi
         kwargs["shape"] = light.shape
         kwargs["size_x"] = float(light.size)
         kwargs["size_y"] = float(light.size_y)

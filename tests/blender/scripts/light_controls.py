@@ -59,14 +59,21 @@ def main():
     emission_of(unconnected)
     unconnected.node_tree.links.remove(unconnected.node_tree.links[0])
 
-    result = {"arguments": {}, "warnings": {}}
+    # Native power of an area light per watt of Blender's (4/pi from Blender 4.0, whose area
+    # lights emit their whole power); reported powers are in Blender's watts.
+    probe = bpy.data.objects.new("probe", light("probe", "AREA", 1.0))
+    area_factor = sync_lights.light_arguments(_photon, probe, probe.matrix_world,
+                                              Reporter())["power"]
+    result = {"arguments": {}, "warnings": {}, "area_factor": area_factor,
+              "version": list(bpy.app.version)}
     for name, data in lights.items():
         obj = bpy.data.objects.new(name, data)
         reporter = Reporter()
         args = sync_lights.light_arguments(_photon, obj, obj.matrix_world, reporter)
+        factor = area_factor if data.type == 'AREA' else 1.0
         result["arguments"][name] = None if args is None else {
-            "color": [round(c, 6) for c in args["color"]], "power": round(args["power"], 6),
-            "spectrum": args["spectrum"]}
+            "color": [round(c, 6) for c in args["color"]],
+            "power": round(args["power"] / factor, 6), "spectrum": args["spectrum"]}
         result["warnings"][name] = reporter.warnings
     return result
 
