@@ -348,7 +348,16 @@ class PHOTON_PT_light(PhotonLightPanel, bpy.types.Panel):
             elif settings.spectrum == "ILLUMINANT":
                 col.prop(settings, "illuminant")
         col.prop(light, "color")
+        if hasattr(light, "use_temperature"):  # Blender 5.0+: tints the colour, as in Cycles
+            row = col.row(align=True, heading="Temperature")
+            row.prop(light, "use_temperature", text="")
+            sub = row.row(align=True)
+            sub.active = light.use_temperature
+            sub.prop(light, "temperature", text="")
         col.prop(light, "energy")
+        for name in ("exposure", "normalize"):  # Blender 5.0+
+            if hasattr(light, name):
+                col.prop(light, name)
         col.separator()
         if light.type in {'POINT', 'SPOT'}:
             col.prop(light, "shadow_soft_size", text="Radius")

@@ -419,7 +419,7 @@ PYBIND11_MODULE(_photon, m) {
              const FloatArray& matrix, const std::vector<float>& color, float power, float radius,
              float spot_size, float spot_blend, float sun_angle, const std::string& shape,
              float size_x, float size_y, uint32_t visibility, const std::string& spectrum,
-             float temperature, const std::string& illuminant) {
+             float temperature, const std::string& illuminant, bool spot_cosine_falloff) {
             Light l;
             l.name = name;
             if (type == "POINT")
@@ -438,6 +438,7 @@ PYBIND11_MODULE(_photon, m) {
             l.radius = radius;
             l.spot_size = spot_size;
             l.spot_blend = spot_blend;
+            l.spot_cosine_falloff = spot_cosine_falloff;
             l.sun_angle = sun_angle;
             l.shape = (shape == "DISK" || shape == "ELLIPSE") ? AreaShape::kEllipse
                                                               : AreaShape::kRectangle;
@@ -474,7 +475,7 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("size_y") = 1.0f,
           py::arg("visibility") = static_cast<uint32_t>(kVisibleGlossy | kVisibleTransmission),
           py::arg("spectrum") = "RGB", py::arg("temperature") = 6500.0f,
-          py::arg("illuminant") = "D65")
+          py::arg("illuminant") = "D65", py::arg("spot_cosine_falloff") = true)
       .def(
           "set_camera",
           [](Scene& scene, const std::string& projection, const FloatArray& matrix,

@@ -43,3 +43,20 @@ def test_simplify_is_photons_own_below_its_render_panels(blender):
     assert parents.get("PHOTON_PT_simplify_viewport") == "PHOTON_PT_simplify"
     assert parents.get("PHOTON_PT_simplify_render") == "PHOTON_PT_simplify"
     assert names.index("PHOTON_PT_render") < names.index("PHOTON_PT_simplify")
+
+
+def test_the_light_panel_shows_the_light_settings_photon_renders(blender):
+    """Drawn for each light type: every property exists on the light, and Blender 5.0's
+    Temperature, Exposure and Normalize (which Photon renders as Cycles does) are shown."""
+    result, proc = blender.run_script("light_panel_props.py")
+    for light_type, shown in result["lights"].items():
+        missing = [name for _owner, name, exists in shown if not exists]
+        assert not missing, (light_type, missing, proc.log)
+        names = {name for _owner, name, _exists in shown}
+        assert {"color", "energy"} <= names, (light_type, shown)
+        newer = {"use_temperature", "temperature", "exposure", "normalize"}
+        if result["version"] >= [5, 0, 0]:
+            assert newer <= names, (light_type, shown)
+        else:
+            assert not newer & names, (light_type, shown)
+    assert {"spot_size", "spot_blend"} <= {n for _o, n, _e in result["lights"]["SPOT"]}

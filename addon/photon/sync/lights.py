@@ -135,8 +135,11 @@ def light_arguments(native, obj, matrix, reporter):
                          f"the world alone, with more noise than Cycles' portal-guided render)")
         return None
     node_color, node_strength = node_emission(light, obj.name, reporter)
-    power = float(light.energy) * node_strength
+    power = float(light.energy) * node_strength * 2.0 ** float(getattr(light, "exposure", 0.0))
     color = [float(c) * f for c, f in zip(light.color, node_color)]
+    if getattr(light, "use_temperature", False):
+        # Blender 5.0+: Cycles multiplies the colour by the temperature's RGB colour.
+        color = [c * float(t) for c, t in zip(color, light.temperature_color[:3])]
     if not all(math.isfinite(v) for v in color + [power]):
         reporter.warning(f"Light '{obj.name}': non-finite colour or power; skipped")
         return None
@@ -157,6 +160,9 @@ def light_arguments(native, obj, matrix, reporter):
     if light.type == 'SPOT':
         kwargs["spot_size"] = float(light.spot_size)
         kwargs["spot_blend"] = float(light.spot_blend)
+        # Measured before this: a 70 degree spot 7.3% darker than Cycles 4.3, the mean of the
+        # cosine over its cone.
+        kwargs["spot_cosine_falloff"] = bpy.app.version < (4, 0, 0)
     elif light.type == 'SUN':
         kwargs["sun_angle"] = float(light.angle)
     elif light.type == 'AREA':
@@ -180,4 +186,25 @@ def light_arguments(native, obj, matrix, reporter):
             reporter.warning(f"Area light '{obj.name}': a spread of {math.degrees(spread):.0f} "
                              f"degrees is not rendered by Photon yet; it emits over its whole "
                              f"hemisphere (180 degrees)")
+    if not getattr(light, "normalize", True):
+        kwargs["power"] *= unnormalized_power_factor(light)
     return kwargs
+
+
+def unnormalized_power_factor(light):
+    """Blender 5.0+'s Normalize switched off: Cycles no longer divides the light's strength by
+    its emitting area (the sphere's 4 pi r^2 for a point or spot, the shape's area, pi
+    tan^2(angle / 2) for the sun), so the light emits as a normalized one of power * area. A
+    point-sized light is unchanged (Cycles divides by 1 either way). Measured in Cycles 5.2:
+    unnormalized / normalized = 4 pi r^2 for points and spots of radius 0.3 and 0.6, soft
+    falloff on or off."""
+    if light.type in {'POINT', 'SPOT'}:
+        area = 4.0 * math.pi * float(light.shadow_soft_size) ** 2
+    elif light.type == 'SUN':
+        area = math.pi * math.tan(float(light.angle) * 0.5) ** 2
+    else:
+        height = light.size if light.shape in {'SQUARE', 'DISK'} else light.size_y
+        area = float(light.size) * float(height)
+        if light.shape in {'DISK', 'ELLIPSE'}:
+            area *= math.pi / 4.0
+    return area if area > 0.0 and math.isfinite(area) else 1.0

@@ -21,6 +21,17 @@ LIGHTS = {
     "area_disk": ('AREA', 100.0, (0.0, 0.0, 1.2), (0, 0, 0), {"shape": 'DISK', "size": 1.0}),
     "area_ellipse": ('AREA', 100.0, (0.0, -0.3, 1.0), (0, math.radians(20), 0),
                      {"shape": 'ELLIPSE', "size": 1.2, "size_y": 0.6}),
+    # Blender 5.0+: Exposure, Temperature and Normalize (off: strength per unit area).
+    "point_unnormalized": ('POINT', 400.0, (0.2, 0.0, 1.5), (0, 0, 0),
+                           {"shadow_soft_size": 0.3, "normalize": False, "exposure": -1.5}),
+    "spot_temperature": ('SPOT', 150.0, (0.0, 0.3, 2.0), (math.radians(15), 0, 0),
+                         {"spot_size": math.radians(100), "spot_blend": 0.2,
+                          "use_temperature": True, "temperature": 3200.0, "exposure": 0.5}),
+    "sun_unnormalized": ('SUN', 400.0, (0, 0, 5), (0, math.radians(20), 0),
+                         {"angle": math.radians(6), "normalize": False}),
+    "area_unnormalized": ('AREA', 60.0, (0.0, 0.0, 1.2), (0, 0, 0),
+                          {"shape": 'ELLIPSE', "size": 1.0, "size_y": 0.7, "normalize": False,
+                           "use_temperature": True, "temperature": 9000.0}),
 }
 
 
@@ -34,6 +45,10 @@ def render_mean(scene, path):
 
 def main(case, out_dir):
     light_type, energy, location, rotation, settings = LIGHTS[case]
+    missing = [key for key in settings if key not in bpy.types.Light.bl_rna.properties
+               and key not in getattr(bpy.types, light_type.title() + "Light").bl_rna.properties]
+    if missing:
+        return {"skipped": f"Blender {bpy.app.version_string} has no light {', '.join(missing)}"}
     scene = builders.reset_scene(width=48, height=48)
     plane_mat = builders.diffuse_material("Plane", (0.8, 0.6, 0.4))
     builders.quad("Plane", (-10, -10, 0), (20, 0, 0), (0, 20, 0), plane_mat)

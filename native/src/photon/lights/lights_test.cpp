@@ -166,6 +166,33 @@ TEST(SpotLight, IsZeroOutsideTheConeAndCosineWeightedInside) {
   EXPECT_NEAR(previous, intensity * c_full * c_full * c_full / (d * d), 1e-3 * intensity);
 }
 
+TEST(SpotLight, WithoutTheCosineFalloffIsThePointValueInsideTheCone) {
+  // Cycles 4.0+: only the blend's smoothstep shapes the cone, and the power is still I * 4 pi
+  // spread over the whole sphere (the cone keeps the point light's intensity).
+  const float power = 50.0f, d = 2.0f;
+  Light light = make_light(LightType::kSpot, Vec3(0.0f, 0.0f, d), power);
+  light.spot_size = kPi / 3.0f;
+  light.spot_blend = 0.2f;
+  light.spot_cosine_falloff = false;
+  LightSet set({light}, nullptr);
+  const double intensity = power / (4.0 * kPiD);
+  const double cos_half = std::cos(kPiD / 6.0), smooth = (1.0 - cos_half) * 0.2;
+  auto weight_at = [&](double angle) {
+    const Vec3 p(static_cast<float>(d * std::tan(angle)), 0.0f, 0.0f);
+    LightSample ls;
+    if (!set.lamp(0).sample_li(p, LightSampleU{0.0f, Vec2(0.5f, 0.5f)}, nullptr, &ls)) return 0.0;
+    return static_cast<double>(ls.weight.x);
+  };
+  for (double deg : {0.0, 10.0, 20.0}) {
+    const double a = deg * kPiD / 180.0, c = std::cos(a);
+    EXPECT_NEAR(weight_at(a), intensity * c * c / (d * d), 1e-5 * intensity) << deg;
+  }
+  const double c_mid = cos_half + 0.5 * smooth;
+  EXPECT_NEAR(weight_at(std::acos(c_mid)), intensity * c_mid * c_mid / (d * d) * 0.5,
+              1e-4 * intensity);
+  EXPECT_EQ(weight_at(31.0 * kPiD / 180.0), 0.0);
+}
+
 TEST(SpotLight, PointsAlongTheTransformedAxis) {
   // Rotation of +90 degrees about x: local -Z becomes world +Y.
   Light light = make_light(LightType::kSpot, Vec3(0.0f), 10.0f);

@@ -36,6 +36,7 @@ PointLamp::PointLamp(LampDescription d) : Lamp(d.light->visibility, std::move(d.
   const float half = std::clamp(l.spot_size, 1e-4f, kPi) * 0.5f;
   cos_half_spot_ = std::cos(half);
   spot_smooth_ = (1.0f - cos_half_spot_) * std::clamp(l.spot_blend, 0.0f, 1.0f);
+  spot_cosine_ = l.spot_cosine_falloff;
 }
 
 float PointLamp::attenuation(const Vec3& dir_from_light) const {
@@ -43,8 +44,9 @@ float PointLamp::attenuation(const Vec3& dir_from_light) const {
   const float c = dot(axis_, dir_from_light);
   if (c <= cos_half_spot_) return 0.0f;
   const float t = c - cos_half_spot_;
-  if (spot_smooth_ > 0.0f && t < spot_smooth_) return c * smoothstep01(t / spot_smooth_);
-  return c;
+  const float falloff = spot_cosine_ ? c : 1.0f;
+  if (spot_smooth_ > 0.0f && t < spot_smooth_) return falloff * smoothstep01(t / spot_smooth_);
+  return falloff;
 }
 
 uint8_t PointLamp::flags() const {

@@ -62,6 +62,7 @@ class PointLamp final : public Lamp {
   float area_;  // pi r^2
   float cos_half_spot_;
   float spot_smooth_;
+  bool spot_cosine_;  // Light::spot_cosine_falloff
 };
 
 std::unique_ptr<Lamp> make_point_lamp(LampDescription d);

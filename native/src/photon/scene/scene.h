@@ -105,6 +105,9 @@ struct Light {
   float radius = 0.0f;       // point and spot: Blender's shadow_soft_size
   float spot_size = 0.785f;  // full cone angle in radians
   float spot_blend = 0.15f;
+  // Cycles 3.x multiplies a spot's cone falloff by the cosine to its axis; Cycles 4.0 dropped
+  // that factor, so the same spot is brighter off-axis in Blender 4.0+.
+  bool spot_cosine_falloff = true;
   float sun_angle = 0.0f;  // angular diameter in radians
   AreaShape shape = AreaShape::kRectangle;
   float size_x = 1.0f, size_y = 1.0f;
