@@ -51,6 +51,69 @@ def diffuse_material(name, color):
     return mat
 
 
+# Principled BSDF v1 (Blender 3.x) input names and their Principled v2 (4.0+) names: scripts
+# name the v1 input, and in 4.0+ the v2 socket of nearest meaning is used. (Specular Tint and
+# Sheen Tint, factors in v1 and colours in v2, keep their names and need a value of each kind.)
+PRINCIPLED_V2_NAMES = {
+    "Subsurface": "Subsurface Weight", "Specular": "Specular IOR Level",
+    "Sheen": "Sheen Weight", "Clearcoat": "Coat Weight", "Clearcoat Roughness": "Coat Roughness",
+    "Clearcoat Normal": "Coat Normal", "Transmission": "Transmission Weight",
+    "Emission": "Emission Color",
+}
+
+
+def principled_input(node, name):
+    """The Principled BSDF `node`'s input of v1 `name` in the running Blender (None if gone,
+    as Subsurface Color in 4.0+)."""
+    if bpy.app.version >= (4, 0, 0) and node.type == 'BSDF_PRINCIPLED':
+        name = PRINCIPLED_V2_NAMES.get(name, name)
+    return node.inputs.get(name)
+
+
+def set_principled(node, name, value):
+    """Sets the v1-named input `name` of a Principled BSDF in any Blender (nothing where the
+    input is gone); returns the socket or None."""
+    socket = principled_input(node, name)
+    if socket is not None:
+        socket.default_value = value
+    return socket
+
+
+def new_group_socket(tree, in_out, socket_type, name):
+    """Adds an input (in_out 'INPUT') or output ('OUTPUT') socket to a node group: 3.x's
+    NodeTree.inputs/outputs, 4.0+'s NodeTree.interface."""
+    if not hasattr(tree, "interface"):
+        sockets = tree.inputs if in_out == 'INPUT' else tree.outputs
+        return sockets.new(socket_type, name)
+    factor = socket_type == 'NodeSocketFloatFactor'
+    socket = tree.interface.new_socket(
+        name, in_out=in_out, socket_type='NodeSocketFloat' if factor else socket_type)
+    if factor:
+        socket.subtype = 'FACTOR'
+    return socket
+
+
+def set_sharp(node):
+    """A Glossy, Glass or Refraction node made perfectly smooth: 3.x's Sharp distribution, GGX
+    at roughness 0 from 4.0 (where Sharp is gone)."""
+    items = node.bl_rna.properties["distribution"].enum_items.keys()
+    if 'SHARP' in items:
+        node.distribution = 'SHARP'
+    else:
+        node.distribution = 'GGX'
+        node.inputs["Roughness"].default_value = 0.0
+
+
+def set_auto_smooth(mesh, angle=math.radians(30)):
+    """Blender 3.x's Auto Smooth; from 4.1, where it is gone, sharp edges above `angle` instead
+    (what Blender's own file conversion does)."""
+    if hasattr(mesh, "use_auto_smooth"):
+        mesh.use_auto_smooth = True
+        mesh.auto_smooth_angle = angle
+    else:
+        mesh.set_sharp_from_angle(angle=angle)
+
+
 def shader_material(name, node_type, **inputs):
     """A material whose output is one shader node of `node_type` with the given input values."""
     mat = bpy.data.materials.new(name)
@@ -59,7 +122,11 @@ def shader_material(name, node_type, **inputs):
     nodes.remove(nodes["Principled BSDF"])
     node = nodes.new(node_type)
     for key, value in inputs.items():
-        node.inputs[key].default_value = value
+        socket = principled_input(node, key)
+        if socket is None:
+            raise KeyError(f"{node.bl_label} has no input {key!r} in Blender "
+                           f"{bpy.app.version_string}")
+        socket.default_value = value
     links.new(node.outputs[0], nodes["Material Output"].inputs["Surface"])
     return mat
 

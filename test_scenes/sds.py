@@ -43,7 +43,8 @@ def triangle_mesh(name, positions, triangles, normals, material_slots=None, mate
     if material_slots is not None:
         mesh.polygons.foreach_set("material_index", np.asarray(material_slots, dtype=np.int32))
     mesh.polygons.foreach_set("use_smooth", np.ones(len(triangles), dtype=bool))
-    mesh.use_auto_smooth = True
+    if hasattr(mesh, "use_auto_smooth"):  # custom normals need it before Blender 4.1
+        mesh.use_auto_smooth = True
     mesh.update()
     mesh.normals_split_custom_set([tuple(map(float, n)) for n in normals])
     obj = bpy.data.objects.new(name, mesh)

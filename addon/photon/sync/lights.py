@@ -119,6 +119,8 @@ def node_emission(light, name, reporter):
     return color, strength
 
 
+FLOAT32_MAX = float(np.finfo(np.float32).max)
+
 # Below this (radians) an area light's spread is narrower than its hemisphere.
 FULL_SPREAD = math.pi - 1e-4
 
@@ -188,6 +190,9 @@ def light_arguments(native, obj, matrix, reporter):
                              f"hemisphere (180 degrees)")
     if not getattr(light, "normalize", True):
         kwargs["power"] *= unnormalized_power_factor(light)
+    # The factors above can take a huge but finite power past float32, which the native light
+    # would take as infinite and skip; at the largest float it is clamped with a warning there.
+    kwargs["power"] = min(kwargs["power"], FLOAT32_MAX)
     return kwargs
 
 

@@ -17,6 +17,8 @@ import sys
 
 import bpy
 
+import builders
+
 args = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else ["PHOTON"]
 engine = args[0]
 extra = args[1:]
@@ -110,8 +112,8 @@ if "shaders" in extra:
 
     red = sphere.data.materials[0].node_tree.nodes["Principled BSDF"]
     red.inputs["Metallic"].default_value = 0.3
-    red.inputs["Transmission"].default_value = 0.4
-    red.inputs["Sheen"].default_value = 0.5
+    builders.set_principled(red, "Transmission", 0.4)
+    builders.set_principled(red, "Sheen", 0.5)
     cube.data.materials[0] = node_material("Glossy", "ShaderNodeBsdfGlossy",
                                            Color=(0.9, 0.6, 0.2, 1.0), Roughness=0.3)
     cube.data.materials[1] = node_material("Glass", "ShaderNodeBsdfGlass",

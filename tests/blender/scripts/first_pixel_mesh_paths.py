@@ -5,6 +5,7 @@ object took."""
 import bpy
 import numpy as np
 
+import builders
 import harness
 
 
@@ -27,7 +28,7 @@ def make_objects():
     bpy.ops.mesh.primitive_cylinder_add(location=(9, 0, 0))
     cylinder = bpy.context.active_object
     cylinder.data.polygons.foreach_set("use_smooth", [True] * len(cylinder.data.polygons))
-    cylinder.data.use_auto_smooth = True
+    builders.set_auto_smooth(cylinder.data)
     for name in ("A", "B"):
         cylinder.data.materials.append(bpy.data.materials.new(name))
     cylinder.data.polygons.foreach_set(

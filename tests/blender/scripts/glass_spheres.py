@@ -4,6 +4,7 @@ Transmission Roughness 0 (rough and nearly smooth), tinted rough Principled glas
 Glass BSDF. Args: out_dir, photon_samples, cycles_samples. Returns {case: {"cycles": path,
 "photon": path}}."""
 
+import builders
 from harness import run
 from principled_extras import build, principled, render_both
 
@@ -13,9 +14,9 @@ def principled_glass(roughness, transmission_roughness=0.0, color=(1.0, 1.0, 1.0
     def setup(mat):
         p = principled(mat)
         p.inputs["Base Color"].default_value = (*color, 1.0)
-        p.inputs["Transmission"].default_value = 1.0
+        builders.set_principled(p, "Transmission", 1.0)
         p.inputs["Roughness"].default_value = roughness
-        p.inputs["Transmission Roughness"].default_value = transmission_roughness
+        builders.set_principled(p, "Transmission Roughness", transmission_roughness)
         p.inputs["Specular Tint"].default_value = specular_tint
     return setup
 

@@ -8,6 +8,7 @@ paths reflected inside it). Returns {case: {"cycles": path, "photon": path}}."""
 import os
 
 import bpy
+import builders
 from harness import run
 
 
@@ -72,7 +73,7 @@ def scene_for(engine, samples, outputs):
     plane("pane_low", 1.0, -4, 0, pane)
     plane("pane_high", 1.5, -4, 0, pane)
     glass, node = material("glass", "ShaderNodeBsdfGlass", IOR=1.5)
-    node.distribution = 'SHARP'
+    builders.set_sharp(node)
     bpy.ops.mesh.primitive_cube_add(size=1.0, location=(2.0, 0.0, 1.25))
     slab = bpy.context.active_object
     slab.scale = (4.0, 4.0, 0.5)

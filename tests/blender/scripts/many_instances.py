@@ -18,8 +18,8 @@ def instancing_tree(count):
     """A geometry-node tree putting a 2 cm cube on each point of a square grid of `count`
     points (rounded to a square) 4 m wide."""
     tree = bpy.data.node_groups.new("ManyCubes", 'GeometryNodeTree')
-    tree.inputs.new('NodeSocketGeometry', "Geometry")
-    tree.outputs.new('NodeSocketGeometry', "Geometry")
+    builders.new_group_socket(tree, 'INPUT', 'NodeSocketGeometry', "Geometry")
+    builders.new_group_socket(tree, 'OUTPUT', 'NodeSocketGeometry', "Geometry")
     nodes, links = tree.nodes, tree.links
     output = nodes.new("NodeGroupOutput")
     side = max(2, round(math.sqrt(count)))

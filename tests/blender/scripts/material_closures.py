@@ -87,11 +87,11 @@ def build(folder):
     bsdf.inputs["Base Color"].default_value = (0.9, 0.6, 0.2, 1.0)
     bsdf.inputs["Metallic"].default_value = 1.0
     bsdf.inputs["Roughness"].default_value = 0.2
-    bsdf.inputs["Sheen"].default_value = 0.3
-    bsdf.inputs["Subsurface"].default_value = 0.1
-    bsdf.inputs["Clearcoat"].default_value = 0.4
-    bsdf.inputs["Clearcoat Roughness"].default_value = 0.1
-    bsdf.inputs["Emission"].default_value = (1.0, 0.5, 0.0, 1.0)
+    builders.set_principled(bsdf, "Sheen", 0.3)
+    builders.set_principled(bsdf, "Subsurface", 0.1)
+    builders.set_principled(bsdf, "Clearcoat", 0.4)
+    builders.set_principled(bsdf, "Clearcoat Roughness", 0.1)
+    builders.set_principled(bsdf, "Emission", (1.0, 0.5, 0.0, 1.0))
     bsdf.inputs["Emission Strength"].default_value = 3.0
 
     # Mix(fac = image alpha, Diffuse(image colour), Glossy Beckmann).
@@ -135,7 +135,7 @@ def build(folder):
     inner = nodes.new("ShaderNodeMixShader")
     inner.inputs["Fac"].default_value = 0.0
     glass = nodes.new("ShaderNodeBsdfGlass")
-    glass.distribution = 'SHARP'
+    builders.set_sharp(glass)
     glass.inputs["IOR"].default_value = 1.5
     transparent = nodes.new("ShaderNodeBsdfTransparent")
     translucent = nodes.new("ShaderNodeBsdfTranslucent")
@@ -191,16 +191,16 @@ def build(folder):
     links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
     links.new(mapping.outputs["Vector"], tex.inputs["Vector"])
     links.new(tex.outputs["Color"], hue.inputs["Color"])
-    links.new(hue.outputs["Color"], bsdf.inputs["Emission"])
+    links.new(hue.outputs["Color"], builders.principled_input(bsdf, "Emission"))
 
     # Unsupported shader: diffuse of its colour.
     builders.shader_material("Toon", "ShaderNodeBsdfToon", Color=(0.2, 0.4, 0.9, 1.0))
 
     # A node group: the Principled inside, its Base Color from the group's input.
     group = bpy.data.node_groups.new("PlasticGroup", 'ShaderNodeTree')
-    group.inputs.new('NodeSocketColor', "Tint")
-    group.inputs.new('NodeSocketFloat', "Rough")
-    group.outputs.new('NodeSocketShader', "Shader")
+    builders.new_group_socket(group, 'INPUT', 'NodeSocketColor', "Tint")
+    builders.new_group_socket(group, 'INPUT', 'NodeSocketFloat', "Rough")
+    builders.new_group_socket(group, 'OUTPUT', 'NodeSocketShader', "Shader")
     g_in = group.nodes.new("NodeGroupInput")
     g_out = group.nodes.new("NodeGroupOutput")
     g_bsdf = group.nodes.new("ShaderNodeBsdfPrincipled")

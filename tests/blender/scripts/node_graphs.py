@@ -98,9 +98,9 @@ def diamond(depth, textured=None):
 def _chain_group():
     """Group: Shader in, then 50 times Add(previous, Mix(Weight, nothing, Diffuse_i)), out."""
     group = bpy.data.node_groups.new("Chain50", 'ShaderNodeTree')
-    group.inputs.new('NodeSocketShader', "Shader")
-    group.inputs.new('NodeSocketFloatFactor', "Weight")
-    group.outputs.new('NodeSocketShader', "Shader")
+    builders.new_group_socket(group, 'INPUT', 'NodeSocketShader', "Shader")
+    builders.new_group_socket(group, 'INPUT', 'NodeSocketFloatFactor', "Weight")
+    builders.new_group_socket(group, 'OUTPUT', 'NodeSocketShader', "Shader")
     nodes, links = group.nodes, group.links
     g_in = nodes.new("NodeGroupInput")
     g_out = nodes.new("NodeGroupOutput")

@@ -8,6 +8,8 @@ import math
 import os
 
 import bpy
+
+import builders
 from harness import run
 
 RES = 64
@@ -21,9 +23,9 @@ def principled(mat):
 def setup_sheen(mat):
     p = principled(mat)
     p.inputs["Base Color"].default_value = (0.05, 0.1, 0.2, 1.0)
-    p.inputs["Sheen"].default_value = 1.0
+    builders.set_principled(p, "Sheen", 1.0)
     p.inputs["Sheen Tint"].default_value = 0.5
-    p.inputs["Specular"].default_value = 0.0
+    builders.set_principled(p, "Specular", 0.0)
 
 
 def setup_anisotropic(mat):
@@ -38,19 +40,19 @@ def setup_anisotropic(mat):
 def setup_transmission_roughness(mat):
     p = principled(mat)
     p.inputs["Base Color"].default_value = (1.0, 1.0, 1.0, 1.0)
-    p.inputs["Transmission"].default_value = 1.0
+    builders.set_principled(p, "Transmission", 1.0)
     p.inputs["Roughness"].default_value = 0.1
-    p.inputs["Transmission Roughness"].default_value = 0.6
+    builders.set_principled(p, "Transmission Roughness", 0.6)
 
 
 def setup_subsurface(mat):
     p = principled(mat)
     p.inputs["Base Color"].default_value = (0.2, 0.5, 0.8, 1.0)
-    p.inputs["Subsurface"].default_value = 0.6
-    p.inputs["Subsurface Color"].default_value = (0.9, 0.3, 0.2, 1.0)
+    builders.set_principled(p, "Subsurface", 0.6)
+    builders.set_principled(p, "Subsurface Color", (0.9, 0.3, 0.2, 1.0))
     # A radius far below the sphere's size: Cycles' subsurface scattering is then diffuse.
     p.inputs["Subsurface Radius"].default_value = (1e-4, 1e-4, 1e-4)
-    p.inputs["Specular"].default_value = 0.0
+    builders.set_principled(p, "Specular", 0.0)
 
 
 def setup_oren_nayar(mat):

@@ -3,6 +3,8 @@ linked Tangent, converted by the add-on: their closure dicts, program size and w
 Args: none besides the result path."""
 
 import bpy
+
+import builders
 import harness
 from material_closures import RecordingReporter, RecordingScene
 
@@ -12,11 +14,11 @@ def build():
     coat.use_nodes = True
     tree = coat.node_tree
     p = tree.nodes["Principled BSDF"]
-    p.inputs["Clearcoat"].default_value = 1.0
+    builders.set_principled(p, "Clearcoat", 1.0)
     bump = tree.nodes.new("ShaderNodeBump")
     noise = tree.nodes.new("ShaderNodeTexNoise")
     tree.links.new(noise.outputs["Fac"], bump.inputs["Height"])
-    tree.links.new(bump.outputs["Normal"], p.inputs["Clearcoat Normal"])
+    tree.links.new(bump.outputs["Normal"], builders.principled_input(p, "Clearcoat Normal"))
 
     brushed = bpy.data.materials.new("Brushed")
     brushed.use_nodes = True

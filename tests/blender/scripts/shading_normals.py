@@ -36,7 +36,7 @@ def make_objects():
     bpy.ops.mesh.primitive_cylinder_add(location=(12, 0, 0))
     auto = bpy.context.active_object
     auto.data.polygons.foreach_set("use_smooth", [True] * len(auto.data.polygons))
-    auto.data.use_auto_smooth = True
+    builders.set_auto_smooth(auto.data)
     objects["auto_smooth"] = auto
     for obj in objects.values():
         obj.data.update()
@@ -48,9 +48,12 @@ def blender_loop_normals(obj, depsgraph):
     evaluated = obj.evaluated_get(depsgraph)
     mesh = evaluated.to_mesh()
     try:
-        mesh.calc_normals_split()
         normals = np.empty(3 * len(mesh.loops), dtype=np.float32)
-        mesh.loops.foreach_get("normal", normals)
+        if hasattr(mesh, "corner_normals"):  # Blender 4.1+
+            mesh.corner_normals.foreach_get("vector", normals)
+        else:
+            mesh.calc_normals_split()
+            mesh.loops.foreach_get("normal", normals)
         return normals.reshape(-1, 3)
     finally:
         evaluated.to_mesh_clear()

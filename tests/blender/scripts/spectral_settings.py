@@ -6,6 +6,7 @@ scene accepts of them."""
 
 import bpy
 
+import builders
 import harness
 
 
@@ -40,7 +41,7 @@ def glass_material(name, node, abbe):
         out = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL')
         tree.links.new(shader.outputs[0], out.inputs["Surface"])
     else:
-        principled.inputs["Transmission"].default_value = 1.0
+        builders.set_principled(principled, "Transmission", 1.0)
     mat.photon.abbe_number = abbe
     return mat
 

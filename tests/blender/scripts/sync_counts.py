@@ -9,8 +9,8 @@ import harness
 
 def scatter_node_group(count_x, count_y):
     ng = bpy.data.node_groups.new("Scatter", 'GeometryNodeTree')
-    ng.inputs.new('NodeSocketGeometry', "Geometry")
-    ng.outputs.new('NodeSocketGeometry', "Geometry")
+    builders.new_group_socket(ng, 'INPUT', 'NodeSocketGeometry', "Geometry")
+    builders.new_group_socket(ng, 'OUTPUT', 'NodeSocketGeometry', "Geometry")
     nodes, links = ng.nodes, ng.links
     nodes.new('NodeGroupInput')
     out = nodes.new('NodeGroupOutput')

@@ -26,8 +26,8 @@ def main(input_name, mode, value, blend):
     socket = bsdf.inputs[input_name]
     if input_name == "Emission Strength":
         bsdf.inputs["Base Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-        bsdf.inputs["Specular"].default_value = 0.0
-        bsdf.inputs["Emission"].default_value = (1e-6, 1e-6, 1e-6, 1.0)
+        builders.set_principled(bsdf, "Specular", 0.0)
+        builders.set_principled(bsdf, "Emission", (1e-6, 1e-6, 1e-6, 1.0))
     else:
         builders.light("Sun", 'SUN', 1.0, (0, -2, 2), rotation=(math.pi / 2, 0, 0))
     if mode == "constant":

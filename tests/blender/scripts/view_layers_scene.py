@@ -22,6 +22,8 @@ import sys
 
 import bpy
 
+import builders
+
 INTEROCULAR = 0.3
 CONVERGENCE = 1.95
 DEPTH = 4.0
@@ -41,7 +43,7 @@ def emission_free_material(name, color):
     bsdf = mat.node_tree.nodes["Principled BSDF"]
     bsdf.inputs["Base Color"].default_value = (*color, 1.0)
     bsdf.inputs["Roughness"].default_value = 1.0
-    bsdf.inputs["Specular"].default_value = 0.0
+    builders.set_principled(bsdf, "Specular", 0.0)
     return mat
 
 

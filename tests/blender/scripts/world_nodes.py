@@ -10,6 +10,8 @@ import math
 import os
 
 import bpy
+
+import builders
 from harness import run
 
 STUDIO = "/usr/share/blender/datafiles/studiolights/world/courtyard.exr"
@@ -41,7 +43,7 @@ def scene_for(engine, samples):
     mat = bpy.data.materials.new("white")
     mat.use_nodes = True
     mat.node_tree.nodes["Principled BSDF"].inputs["Base Color"].default_value = (0.8,) * 3 + (1,)
-    mat.node_tree.nodes["Principled BSDF"].inputs["Specular"].default_value = 0.0
+    builders.set_principled(mat.node_tree.nodes["Principled BSDF"], "Specular", 0.0)
     mat.node_tree.nodes["Principled BSDF"].inputs["Roughness"].default_value = 1.0
     mesh.materials.append(mat)
     scene.collection.objects.link(floor)
