@@ -104,6 +104,16 @@ def set_sharp(node):
         node.inputs["Roughness"].default_value = 0.0
 
 
+def action_fcurves(animation_data):
+    """The F-curves of an ID's action: Action.fcurves before Blender 5.0, the channel bag of
+    the ID's action slot in 5.0's layered actions."""
+    action = animation_data.action
+    if hasattr(action, "fcurves"):
+        return action.fcurves
+    from bpy_extras import anim_utils
+    return anim_utils.action_get_channelbag_for_slot(action, animation_data.action_slot).fcurves
+
+
 def set_auto_smooth(mesh, angle=math.radians(30)):
     """Blender 3.x's Auto Smooth; from 4.1, where it is gone, sharp edges above `angle` instead
     (what Blender's own file conversion does)."""

@@ -31,10 +31,10 @@ def main(blend_path):
         ball.keyframe_insert("location", frame=frame)
     # Linear keys: a shape key halfway at frame 2, so every frame differs.
     for obj in (cam, ball):
-        for fcurve in obj.animation_data.action.fcurves:
+        for fcurve in builders.action_fcurves(obj.animation_data):
             for key in fcurve.keyframe_points:
                 key.interpolation = 'LINEAR'
-    for fcurve in sheet.data.shape_keys.animation_data.action.fcurves:
+    for fcurve in builders.action_fcurves(sheet.data.shape_keys.animation_data):
         for key in fcurve.keyframe_points:
             key.interpolation = 'LINEAR'
     scene.render.use_persistent_data = False

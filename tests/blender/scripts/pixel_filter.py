@@ -59,6 +59,10 @@ def build(engine, samples, film):
         scene.photon.max_depth = 0
     world = bpy.data.worlds.new("black")
     world.color = (0.0, 0.0, 0.0)
+    if world.node_tree is not None:  # Blender 5.0+ gives a new world a grey Background node
+        for node in world.node_tree.nodes:
+            if node.type == 'BACKGROUND':
+                node.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
     scene.world = world
     mat = bpy.data.materials.new("emit")
     mat.use_nodes = True
