@@ -383,9 +383,10 @@ TEST(Accel, CancelledBuildIsAbandonedPromptlyAndLeavesAnEmptyScene) {
   }
 
   // Cancelled at 30% of the full build (earlier when this build outran the first one, whose time
-  // includes one-time costs): done within 150 ms of the flag (times the slack of a sanitized or
-  // loaded machine), not at the end of the build. The latency is measured from the moment the
-  // flag is set, so a late canceller thread cannot hide a slow abandon.
+  // includes one-time costs): done within 300 ms of the flag (times the slack of a sanitized or
+  // loaded machine), not at the end of the build. Measured on the 2-core machine: 3-32 ms, and
+  // once 160 ms in a fresh-clone test run. The latency is measured from the moment the flag is
+  // set, so a late canceller thread cannot hide a slow abandon.
   for (double fraction : {0.3, 0.1, 0.03}) {
     std::atomic<bool> cancel(false);
     std::chrono::steady_clock::time_point flagged;
@@ -403,7 +404,7 @@ TEST(Accel, CancelledBuildIsAbandonedPromptlyAndLeavesAnEmptyScene) {
     const double latency = std::chrono::duration<double>(done - flagged).count();
     std::printf("cancelled at %.0f%% of a %.2f s build: abandoned %.0f ms after the flag\n",
                 100.0 * fraction, full_seconds, 1e3 * latency);
-    EXPECT_LT(latency, 0.15 * timing_slack())
+    EXPECT_LT(latency, 0.3 * timing_slack())
         << "full build " << full_seconds << " s, cancelled at " << fraction;
     Hit hit;
     EXPECT_FALSE(accel->intersect(down, kVisibleAll, &hit));
