@@ -26,7 +26,6 @@ import argparse
 import html
 import json
 import os
-import re
 import subprocess
 import sys
 import time
@@ -37,9 +36,11 @@ import OpenImageIO as oiio
 
 REPO = Path(__file__).resolve().parent.parent
 PASS_FRACTION = 0.99
-# The Blender whose Cycles rendered the references beside the manifests; references of other
-# Blenders live in test_scenes/nodes/<manifest>/blender-X.Y/ (made with tools/node_refs.py).
-REFERENCE_BLENDER = (3, 4)
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+# References of Blenders other than 3.4 live in test_scenes/nodes/<manifest>/blender-X.Y/ (made
+# with tools/node_refs.py).
+from regress_lib.blender_version import (  # noqa: E402
+    REFERENCE_BLENDER, blender_version, version_folder)
 
 
 def read_rgb(path):
@@ -99,23 +100,10 @@ def render_manifest(manifest, blender, addon_dir, out_dir, timeout):
     return log
 
 
-def blender_version(blender):
-    """(major, minor) of the Blender binary, from `blender --version`."""
-    out = subprocess.run([blender, "-b", "--factory-startup", "--version"], capture_output=True,
-                         text=True, timeout=120, check=False).stdout
-    match = re.search(r"Blender (\d+)\.(\d+)", out)
-    if match is None:
-        raise RuntimeError(f"cannot read the version of {blender}: {out[:200]!r}")
-    return int(match.group(1)), int(match.group(2))
-
-
 def reference_dir(manifest, version):
     """Where the Cycles references of `manifest` rendered by Blender `version` live: the
     manifest's folder for Blender 3.4 (the first ones), its blender-X.Y subfolder for others."""
-    family_dir = manifest.parent / manifest.stem
-    if tuple(version) == REFERENCE_BLENDER:
-        return family_dir
-    return family_dir / f"blender-{version[0]}.{version[1]}"
+    return version_folder(manifest.parent / manifest.stem, version)
 
 
 def reference_path(references, name):

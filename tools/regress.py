@@ -8,6 +8,7 @@ animations) and writes OUT/report.html and OUT/report.json.
 
 A sidecar NAME.json next to a .blend may set "thresholds", "frames", "timeout",
 "reference_engine" (CYCLES marks a validation scene), "reference_samples" and "description".
+References rendered by Blender 3.4 sit beside the scenes; another Blender X.Y's in blender-X.Y/.
 See docs/regression.md. Exit status 0 only when every scene passed (or, with --update, when
 every reference was rendered).
 """
@@ -22,6 +23,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from regress_lib import compare, render, report  # noqa: E402
+from regress_lib.blender_version import REFERENCE_BLENDER, blender_version  # noqa: E402
 
 
 def parse_args(argv=None):
@@ -127,6 +129,7 @@ def update_scene(scene, args):
             entry.update(status="CHANGED", reason=f"{reference.name} changed: {detail}")
         entry["images"] = report.write_images(args.out, f"{scene.name}_{frame:04d}",
                                               reference if reference.exists() else None, output)
+        reference.parent.mkdir(parents=True, exist_ok=True)
         shutil.copyfile(output, reference)
         result["frames"].append(entry)
         changes.append(entry)
@@ -174,7 +177,11 @@ def main(argv=None):
     if missing:
         print(f"regress: not a folder: {', '.join(missing)}", file=sys.stderr)
         return 2
-    scenes = render.find_scenes(args.folders, args.only)
+    version = blender_version(args.blender)
+    print(f"regress: Blender {version[0]}.{version[1]}, references "
+          f"{'beside the scenes' if version == REFERENCE_BLENDER else 'in blender-%d.%d/' % version}",
+          flush=True)
+    scenes = render.find_scenes(args.folders, args.only, version)
     if args.only:
         unknown = sorted(set(args.only) - {s.name for s in scenes})
         if unknown:

@@ -12,6 +12,8 @@ import pytest
 
 REPO = Path(__file__).resolve().parents[2]
 SCRIPTS = Path(__file__).resolve().parent / "scripts"
+sys.path.insert(0, str(REPO / "tools"))
+from regress_lib.blender_version import blender_version, version_folder  # noqa: E402
 
 
 def pytest_configure(config):
@@ -34,6 +36,23 @@ class Blender:
         self.stage = Path(stage)
         self.out_dir = Path(out_dir)
         self.out_dir.mkdir(parents=True, exist_ok=True)
+        self._version = None
+
+    @property
+    def version(self):
+        """(major, minor) of this Blender."""
+        if self._version is None:
+            self._version = blender_version(self.executable)
+        return self._version
+
+    def reference(self, path):
+        """This Blender's own rendering of the reference image `path` (stored for Blender 3.4
+        beside its scene, for Blender X.Y in blender-X.Y/ there: tools/regress.py --update)."""
+        path = Path(path)
+        own = version_folder(path.parent, self.version) / path.name
+        assert own.exists(), (f"no reference rendered by Blender {self.version[0]}."
+                              f"{self.version[1]}: {own}")
+        return own
 
     def env(self, stage=None):
         env = dict(os.environ)

@@ -3,7 +3,6 @@ tools/pack_extension.py makes from the staged add-on installs with `blender --co
 install-file`, is enabled, and renders. Skipped in Blender 3.4, which has no extensions."""
 
 import os
-import re
 import subprocess
 import sys
 from pathlib import Path
@@ -11,13 +10,6 @@ from pathlib import Path
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
-
-
-def blender_version(blender):
-    out = subprocess.run([blender.executable, "--version"], capture_output=True, text=True,
-                         stdin=subprocess.DEVNULL).stdout
-    found = re.search(r"Blender (\d+)\.(\d+)", out)
-    return (int(found.group(1)), int(found.group(2))) if found else (0, 0)
 
 
 def isolated_env(tmp_path):
@@ -38,7 +30,7 @@ def run(cmd, env):
 
 
 def test_extension_installs_enables_and_renders(blender, tmp_path):
-    if blender_version(blender) < (4, 2):
+    if blender.version < (4, 2):
         pytest.skip("extensions exist from Blender 4.2 (this Blender installs the legacy add-on)")
     zip_path = tmp_path / "photon-extension.zip"
     subprocess.run([sys.executable, str(REPO / "tools" / "pack_extension.py"),

@@ -58,7 +58,7 @@ def test_object_colours_match_cycles(blender, tmp_path, spectral):
                         "-f", "1"], timeout=600)
     assert "Photon: rendered frame" in proc.stdout, proc.log
     image = read_image(tmp_path / "spheres_0001.exr")[..., :3]
-    reference = read_image(SCENE.with_suffix(".exr"))[..., :3]
+    reference = read_image(blender.reference(SCENE.with_suffix(".exr")))[..., :3]
     assert image.shape == reference.shape
     regions = json.loads(SCENE.with_suffix(".json").read_text())["regions"]
     masks = object_masks(regions, *image.shape[:2])

@@ -57,7 +57,8 @@ def test_scene_matches_cycles(blender, tmp_path, name):
     assert "Photon: rendered frame" in proc.stdout, proc.log
     assert "not supported" not in proc.stdout, proc.log
     image = read_image(tmp_path / f"{name}_0001.exr")[..., :3].astype(np.float64)
-    reference = read_image(blend.with_suffix(".exr"))[..., :3].astype(np.float64)
+    reference = read_image(blender.reference(blend.with_suffix(".exr")))[..., :3]
+    reference = reference.astype(np.float64)
     assert image.shape == reference.shape
     mean_error = abs(image.mean() - reference.mean()) / reference.mean()
     regions = json.loads(blend.with_suffix(".json").read_text())["regions"]

@@ -25,13 +25,17 @@ FAKE_BLENDER = textwrap.dedent('''\
     -o PREFIX#### -F OPEN_EXR -x 1 -f N[,M...]"""
     import json, os, re, resource, shutil, signal, subprocess, sys, time
     args = sys.argv[1:]
+    version = os.environ.get("FAKE_BLENDER_VERSION", "3.4.1")
+    if "--version" in args:
+        print(f"Blender {{version}} (fake)")
+        sys.exit(0)
     with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "calls.jsonl"), "a") as f:
         f.write(json.dumps({{"args": args, "scripts": os.environ.get("BLENDER_USER_SCRIPTS")}})
                 + "\\n")
     blend = next(a for a in args if a.endswith(".blend"))
     def value(flag):
         return args[args.index(flag) + 1] if flag in args else None
-    print("Blender 3.4.1 (fake)")
+    print(f"Blender {{version}} (fake)")
     try:
         spec = json.load(open(blend))
     except (OSError, ValueError):
@@ -126,11 +130,12 @@ class Suite:
                 data["frames"] = frames
             (folder / f"{name}.json").write_text(json.dumps(data))
 
-    def run(self, *extra, folders=None, timeout=60):
+    def run(self, *extra, folders=None, timeout=60, version=None):
         cmd = [sys.executable, str(TOOL), *(str(f) for f in (folders or [self.scenes])),
                "--blender", str(self.blender), "--addon-dir", str(self.addon_dir),
                "--out", str(self.out), *extra]
-        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout)
+        env = dict(os.environ, **({"FAKE_BLENDER_VERSION": version} if version else {}))
+        proc = subprocess.run(cmd, capture_output=True, text=True, timeout=timeout, env=env)
         proc.log = f"$ {' '.join(cmd)}\n{proc.stdout}\n{proc.stderr}"
         return proc
 
@@ -402,6 +407,26 @@ def test_update_renders_validation_scenes_with_the_reference_engine(suite):
     scenes, _ = suite.report()
     assert scenes["val"]["status"] == "PASS", proc.log
     assert scenes["val"]["validation"] is True
+
+
+def test_another_blender_uses_its_own_references(suite):
+    # Blender 3.4's reference beside the scene; Blender 4.3 renders and reads blender-4.3/.
+    sidecar = {"reference_engine": "CYCLES", "reference_samples": 64}
+    suite.scene("val", render=gradient(), reference=gradient(scale=2.0),
+                cycles=gradient(scale=1.0001), sidecar=sidecar)
+    proc = suite.run(version="4.3.2")
+    assert proc.returncode == 1, proc.log
+    assert "Blender 4.3, references in blender-4.3/" in proc.stdout
+    assert "missing reference" in suite.report()[0]["val"]["reason"]
+    proc = suite.run("--update", version="4.3.2")
+    assert proc.returncode == 0, proc.log
+    np.testing.assert_array_equal(
+        compare.read_rgba(suite.scenes / "blender-4.3" / "val.exr"), gradient(scale=1.0001))
+    np.testing.assert_array_equal(compare.read_rgba(suite.scenes / "val.exr"),
+                                  gradient(scale=2.0))
+    assert suite.run(version="4.3.2").returncode == 0
+    # Blender 3.4 still compares with its own (here far off) reference.
+    assert suite.run().returncode == 1
 
 
 def test_update_keeps_references_when_the_render_fails(suite):

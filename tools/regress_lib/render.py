@@ -10,6 +10,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .blender_version import version_folder
+
 # Printed by the add-on once per finished frame: proves Photon (not a fallback engine) rendered.
 PHOTON_LINE = re.compile(r"^Photon: rendered frame (-?\d+) ", re.MULTILINE)
 DEFAULT_TIMEOUT = 120.0
@@ -27,6 +29,8 @@ class Scene:
     blend: Path
     sidecar: dict = field(default_factory=dict)
     sidecar_error: str = ""
+    # Blender (major, minor) whose references are used: its blender-X.Y/ subfolder unless 3.4.
+    version: tuple = None
 
     @property
     def frames(self):
@@ -45,10 +49,12 @@ class Scene:
         return self.sidecar.get("description", "")
 
     def reference_path(self, frame):
-        """NAME.exr for single-frame scenes, NAME_####.exr per frame for animations."""
+        """NAME.exr for single-frame scenes, NAME_####.exr per frame for animations, beside the
+        .blend for Blender 3.4's references and in blender-X.Y/ for Blender X.Y's."""
+        folder = version_folder(self.blend.parent, self.version)
         if len(self.frames) == 1:
-            return self.blend.with_suffix(".exr")
-        return self.blend.with_name(f"{self.name}_{frame:04d}.exr")
+            return folder / f"{self.name}.exr"
+        return folder / f"{self.name}_{frame:04d}.exr"
 
     def timeout(self, default, update=False):
         if update and self.is_validation:
@@ -77,15 +83,16 @@ def load_sidecar(blend):
         return {}, f"bad sidecar {path.name}: {exc}"
 
 
-def find_scenes(folders, only=None):
-    """Every NAME.blend in the folders (sorted by name), restricted to `only` names if given."""
+def find_scenes(folders, only=None, version=None):
+    """Every NAME.blend in the folders (sorted by name), restricted to `only` names if given;
+    `version` picks the Blender whose references are compared with."""
     scenes = []
     for folder in folders:
         for blend in sorted(Path(folder).glob("*.blend")):
             if only and blend.stem not in only:
                 continue
             sidecar, error = load_sidecar(blend)
-            scenes.append(Scene(blend.stem, blend, sidecar, error))
+            scenes.append(Scene(blend.stem, blend, sidecar, error, version))
     return scenes
 
 
