@@ -99,8 +99,8 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
   py::dict d = py::reinterpret_borrow<py::dict>(item);
   check_keys(d,
-             {"type", "sharp", "cycles4", "multiscatter", "abbe", "params", "normal_map", "normal",
-              "clearcoat_normal", "weight"},
+             {"type", "sharp", "cycles4", "multiscatter", "diffuse_multiscatter", "abbe", "params",
+              "normal_map", "normal", "clearcoat_normal", "weight"},
              what);
   if (!d.contains("type")) fail(what + " has no 'type'");
   const std::string type = py::str(d["type"]);
@@ -115,6 +115,9 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
                     (d.contains("cycles4") && d["cycles4"].cast<bool>());
   if (d.contains("multiscatter")) closure.multiscatter = d["multiscatter"].cast<bool>();
   if (!closure.cycles4) closure.multiscatter = false;
+  // Cycles 4.3+'s energy-preserving Oren-Nayar (a Diffuse BSDF's; Principled v2 always).
+  if (d.contains("diffuse_multiscatter"))
+    closure.diffuse_multiscatter = d["diffuse_multiscatter"].cast<bool>();
   if (d.contains("abbe")) {
     // Non-finite or negative: no dispersion; others inside real materials' range (the add-on
     // warns when it clamps).
@@ -255,6 +258,7 @@ py::dict describe_material(const Material& material) {
       d["cycles4"] = true;
       d["multiscatter"] = c.multiscatter;
     }
+    if (c.diffuse_multiscatter) d["diffuse_multiscatter"] = true;
     d["abbe"] = c.abbe;
     py::dict params;
     for (const ClosureParamSpec& info : closure_spec(ClosureType::kPrincipled).params)

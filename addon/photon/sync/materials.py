@@ -12,6 +12,8 @@ fall back to their nearest meaning (a shader: diffuse of its colour), never to s
 
 import math
 
+import bpy
+
 from .. import native
 from . import graph, nodes
 from .inputs import (DEFAULT_COLOR, MaterialContext, clamp_constant, closure_param,
@@ -40,7 +42,6 @@ PRINCIPLED_IGNORED = [
 PRINCIPLED_V2_IGNORED = [
     (("Sheen Weight",), 0.0, True, [("Sheen Roughness", None), ("Sheen Tint", None)]),
     (("Thin Film Thickness",), 0.0, True, [("Thin Film IOR", None)]),
-    (("Diffuse Roughness",), 0.0, True, []),
     (("Subsurface Weight",), 0.0, False,
      [("Subsurface Radius", None), ("Subsurface Scale", None), ("Subsurface IOR", None),
       ("Subsurface Anisotropy", None)]),
@@ -117,7 +118,10 @@ def _read_params(node, stack, table, ctx):
 def _bsdf_closure(node, stack, ctx):
     """The closure of a supported BSDF / emission node, or None if the node is unsupported."""
     kind = node.type
-    v2 = is_principled_v2(node) or is_glossy_v2(node)
+    # Blender 4's Glass and Refraction BSDFs: Cycles 4's microfacet model (the glass one
+    # interface with the Fresnel per microfacet).
+    v2 = is_principled_v2(node) or is_glossy_v2(node) or (
+        kind in ('BSDF_GLASS', 'BSDF_REFRACTION') and bpy.app.version >= (4, 0, 0))
     if is_principled_v2(node):
         closure_type, table, _ = closures_by_name()["PRINCIPLED_V2"]
     elif is_glossy_v2(node):
@@ -134,6 +138,9 @@ def _bsdf_closure(node, stack, ctx):
         # Cycles 4's microfacet model, and its Multiscatter GGX (albedo scaling) when chosen.
         closure["cycles4"] = True
         closure["multiscatter"] = getattr(node, "distribution", None) == 'MULTI_GGX'
+    if kind == 'BSDF_DIFFUSE' and bpy.app.version >= (4, 3, 0):
+        # Cycles 4.3's Oren-Nayar puts back the light its microfacets scatter among themselves.
+        closure["diffuse_multiscatter"] = True
     if kind == 'BSDF_PRINCIPLED':
         _note_ignored_principled(node, stack, ctx)
     else:
@@ -229,7 +236,7 @@ def _convert(material, reporter, textures):
 
 
 # Closures whose IOR material.photon.abbe_number makes vary with the wavelength.
-DISPERSIVE_CLOSURES = ("GLASS", "REFRACTION", "PRINCIPLED")
+DISPERSIVE_CLOSURES = ("GLASS", "REFRACTION", "PRINCIPLED", "PRINCIPLED_V2")
 
 
 # Abbe numbers of real materials (the native module's; unbounded when it did not load).

@@ -1,4 +1,4 @@
-"""Principled BSDF v2 (Blender 4.0+) spheres, one material each, in a 6 x 2 grid lit by a sun
+"""Principled BSDF v2 (Blender 4.0+) spheres, one material each, in a grid 6 wide lit by a sun
 and a grey world, rendered by Cycles and by Photon to EXR in the folder given. Args: out_dir,
 photon_samples, cycles_samples. Returns {"cycles": path, "photon": path, "version": [...],
 "regions": {name: [cx, cy, r] in pixels, y down}} (or {"skip": reason} before Blender 4.0)."""
@@ -15,8 +15,8 @@ import bpy  # noqa: E402
 from harness import run  # noqa: E402
 from principled_extras import clear, render_both  # noqa: E402
 
-COLS, ROWS = 6, 2
-RES_X, RES_Y = 384, 128
+COLS = 6
+RES_X = 384
 ORTHO_SCALE = 6.2
 RADIUS = 0.45
 
@@ -31,6 +31,18 @@ def principled_setup(**inputs):
             socket = p.inputs[name]
             socket.default_value = (*value, 1.0) if isinstance(value, tuple) and \
                 len(value) == 3 and socket.type == 'RGBA' else value
+    return setup
+
+
+def diffuse_setup(color, roughness):
+    def setup(mat):
+        tree = mat.node_tree
+        tree.nodes.remove(next(n for n in tree.nodes if n.type == 'BSDF_PRINCIPLED'))
+        diffuse = tree.nodes.new("ShaderNodeBsdfDiffuse")
+        diffuse.inputs["Color"].default_value = (*color, 1.0)
+        diffuse.inputs["Roughness"].default_value = roughness
+        out = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL')
+        tree.links.new(diffuse.outputs[0], out.inputs["Surface"])
     return setup
 
 
@@ -76,6 +88,16 @@ MATERIALS = [
     ("single_scatter", principled_setup(**{"Base Color": (0.2, 0.6, 0.3), "Metallic": 0.5,
                                            "Roughness": 0.7, "distribution": 'GGX'})),
 ]
+# Blender 4.3's energy-preserving Oren-Nayar: the Principled BSDF's Diffuse Roughness (new in
+# 4.3) and a rough Diffuse BSDF.
+if bpy.app.version >= (4, 3, 0):
+    MATERIALS += [
+        ("diffuse_roughness", principled_setup(**{"Base Color": (0.8, 0.5, 0.3),
+                                                  "Roughness": 0.5, "Diffuse Roughness": 1.0})),
+        ("diffuse_bsdf_rough", diffuse_setup((0.5, 0.7, 0.9), 0.8)),
+    ]
+ROWS = (len(MATERIALS) + COLS - 1) // COLS
+RES_Y = 64 * ROWS
 
 
 def build():

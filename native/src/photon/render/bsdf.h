@@ -29,7 +29,9 @@ enum class LobeType : uint8_t {
   kGgxGlass,
   kGgxRefraction,  // GGX transmission only, no Fresnel (Cycles' Refraction BSDF)
   kTransparent,    // straight through, unchanged direction (always a delta lobe)
-  // Oren-Nayar 1994 in the qualitative form of Cycles 3.4's bsdf_oren_nayar, sigma = `roughness`.
+  // Oren-Nayar 1994 in the qualitative form of Cycles 3.4's bsdf_oren_nayar, sigma = `roughness`
+  // (Fujii's "improved Oren-Nayar"); with `oren_nayar_multiscatter` also the energy lost to
+  // inter-reflection between the microfacets put back (Cycles 4.3+).
   kOrenNayar,
   // Cycles 3.4 Principled v1 sheen: f = weight (1 - wi.h)^5 (Burley 2012, sec. 5.3), no 1/pi.
   kSheen,
@@ -90,7 +92,8 @@ struct Lobe {
   // World-space direction of `alpha` for an anisotropic lobe (projected onto the normal's
   // plane), or zero for an arbitrary one.
   Vec3 tangent{0.0f};
-  // kF82Tint's edge tint, kGgxDielectric's transmission tint; in [0, 1].
+  // kF82Tint's edge tint, kGgxDielectric's transmission tint, kOrenNayar's albedo for its
+  // multiple scattering term; in [0, 1].
   Vec3 tint{1.0f};
   // The lobe's `ior` holds on both sides of the surface (a layer that only reflects, as Cycles
   // 4's Principled specular and coat): back faces do not invert it.
@@ -98,6 +101,9 @@ struct Lobe {
   // Height-correlated Smith masking-shadowing G2 = 1 / (1 + L(wo) + L(wi)) (Cycles 4) instead of
   // the separable G1(wo) G1(wi) (Cycles 3.4).
   bool correlated = false;
+  // kOrenNayar with the multiple scattering term of OpenPBR's energy-preserving Oren-Nayar
+  // (Cycles 4.3+'s Diffuse BSDF and Principled Diffuse Roughness).
+  bool oren_nayar_multiscatter = false;
 
   bool anisotropic() const { return alpha_y >= 0.0f; }
   // Whether the lobe's index of refraction depends on the wavelength: an Abbe number and a

@@ -268,6 +268,54 @@ inline float bump_shadowing(const Vec3& smooth_n, const Vec3& bumped_n, const Ve
   return g * (1.0f + g - g * g);
 }
 
+// `f` applied to each channel (SampledSpectrum's overload lives beside it, found by ADL).
+template <class F>
+float map_channels(float v, F f) {
+  return f(v);
+}
+template <class F>
+Vec3 map_channels(const Vec3& v, F f) {
+  return {f(v.x), f(v.y), f(v.z)};
+}
+
+// Fujii's G(theta) = sin(theta) (theta - 2/3 - sin(theta) cos(theta)) + 2/3 tan(theta) (1 -
+// sin^3(theta)): the improved Oren-Nayar's directional albedo is pi A + B G(cos theta). Near
+// grazing tan() blows up, where the first terms of its expansion pi/2 - 2/3 - cos(theta) serve.
+inline float oren_nayar_g(float cos_theta) {
+  if (cos_theta < 1e-6f) return (0.5f * kPi - 2.0f / 3.0f) - cos_theta;
+  const float sin_theta = std::sqrt(std::max(0.0f, 1.0f - cos_theta * cos_theta));
+  const float theta = std::acos(std::min(cos_theta, 1.0f));
+  return sin_theta * (theta - 2.0f / 3.0f - sin_theta * cos_theta) +
+         (2.0f / 3.0f) * (sin_theta / cos_theta) * (1.0f - sin_theta * sin_theta * sin_theta);
+}
+
+// The Oren-Nayar lobe's f / weight (local frame, both directions above). Single scattering is
+// Fujii's improved Oren-Nayar (https://mimosa-pudica.net/improved-oren-nayar.html), as Cycles
+// 3.4 evaluates it: A + B t with s = wi.wo - cos_i cos_o, t = s / max(cos_i, cos_o) where s > 0
+// (else s), A = 1 / (pi + (pi/2 - 2/3) sigma), B = sigma A. With `oren_nayar_multiscatter`
+// the energy it loses, 1 - E(cos), comes back as OpenPBR's multiple scattering lobe (as Cycles
+// 4.3+): f_ms = E_ms (1 - E(cos_i)) (1 - E(cos_o)) with E_ms = rho^2 E_avg / (pi (1 - E_avg)
+// (1 - rho (1 - E_avg))), E_avg = pi A + (2 pi - 5.6) / 3 B, rho = the albedo (`albedo`).
+template <class C>
+C oren_nayar(const Lobe& l, const C& albedo, const Vec3& wo, const Vec3& wi) {
+  const float sigma = l.roughness;
+  const float a = 1.0f / (kPi + ((3.0f * kPi - 4.0f) / 6.0f) * sigma);  // pi/2 - 2/3
+  const float b = sigma * a;
+  float t = dot(wi, wo) - wi.z * wo.z;
+  if (t > 0.0f) t /= std::max(wi.z, wo.z);
+  const float single = std::max(a + b * t, 0.0f);
+  if (!l.oren_nayar_multiscatter || b <= 0.0f) return C(single);
+  const float e_avg = kPi * a + ((2.0f * kPi - 5.6f) / 3.0f) * b;
+  const float lost =
+      (1.0f - (kPi * a + b * oren_nayar_g(wi.z))) * (1.0f - (kPi * a + b * oren_nayar_g(wo.z)));
+  return map_channels(albedo, [&](float rho) {
+    rho = std::clamp(rho, 0.0f, 1.0f);
+    const float e_ms =
+        kInvPi * rho * rho * (e_avg / (1.0f - e_avg)) / (1.0f - rho * (1.0f - e_avg));
+    return single + e_ms * lost;
+  });
+}
+
 // The lobes Cycles counts as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE).
 inline bool is_diffuse_type(const Lobe& l) {
   return l.type == LobeType::kLambert || l.type == LobeType::kBurleyDiffuse ||
@@ -308,14 +356,7 @@ LobeEval<C> eval_lobe(const Lobe& l, const C& weight, const C& f0, const C& tint
       break;
     case LobeType::kOrenNayar: {
       if (!shading_reflect) break;
-      // Cycles 3.4 bsdf_oren_nayar: f = A + B t with s = wi.wo - cos_i cos_o, t = s / max(cos_i,
-      // cos_o) where s > 0 (else s), A = 1 / (pi + (3 pi - 4) / 6 sigma), B = sigma A.
-      const float sigma = l.roughness;
-      const float a = 1.0f / (kPi + ((3.0f * kPi - 4.0f) / 6.0f) * sigma);
-      const float b = sigma * a;
-      float t = dot(wi, wo) - wi.z * wo.z;
-      if (t > 0.0f) t /= std::max(wi.z, wo.z);
-      r.f = weight * std::max(a + b * t, 0.0f);
+      r.f = weight * oren_nayar(l, tint, wo, wi);
       r.pdf = cosine_hemisphere_pdf(wi.z);
       break;
     }

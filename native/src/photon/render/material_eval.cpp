@@ -258,6 +258,7 @@ PrincipledV2Inputs principled_v2_inputs(const Closure& c, const InputReader& rea
   p.ior = in.scalar(Param::kIor);
   p.alpha = in.unit(Param::kAlpha);
   p.subsurface = in.unit(Param::kSubsurface);
+  p.diffuse_roughness = in.unit(Param::kDiffuseRoughness);
   p.specular_ior_level = in.scalar(Param::kSpecularIorLevel);
   p.specular_tint = in.color(Param::kSpecularTintColor);
   p.anisotropic = in.unit(Param::kAnisotropic);
@@ -312,10 +313,15 @@ void add_closure(const Closure& c, float w, const InputReader& reader, const Lob
   l.ior = std::max(in.scalar(Param::kIor), 1e-3f);
   switch (c.type) {
     case ClosureType::kDiffuse:
-      // Cycles 3.4: Lambert at roughness 0, else Oren-Nayar with sigma = roughness.
+      // Cycles 3.4: Lambert at roughness 0, else Oren-Nayar with sigma = roughness; Cycles
+      // 4.3+ adds the multiple scattering of the node's colour.
       l.type = r > 0.0f ? LobeType::kOrenNayar : LobeType::kLambert;
       l.roughness = r;
       l.alpha = 0.0f;
+      if (c.diffuse_multiscatter) {
+        l.oren_nayar_multiscatter = true;
+        l.tint = in.color(Param::kColor);
+      }
       break;
     case ClosureType::kAnisotropic: {
       // Cycles 3.4 Anisotropic BSDF: anisotropy a clamped to +-0.99, alpha_x = r^2 (1 - a) and
@@ -353,14 +359,35 @@ void add_closure(const Closure& c, float w, const InputReader& reader, const Lob
       l.fresnel = FresnelMode::kNone;
       break;
     case ClosureType::kGlass:
+      l.abbe = c.abbe;
+      if (c.cycles4) {
+        // Blender 4's Glass BSDF: one GGX interface reflecting and refracting with each
+        // microfacet's dielectric Fresnel (Cycles' generalized Schlick with F0 = F0(IOR) and
+        // a negative exponent: the real Fresnel), both tinted by the colour; Multiscatter GGX
+        // scales it up by the energy single scattering loses (the glass albedo table).
+        l.type = LobeType::kGgxDielectric;
+        l.fresnel = FresnelMode::kSchlickIor;
+        l.f0 = Vec3(principled_v2::f0_from_ior(l.ior));
+        l.tint = Vec3(1.0f);
+        l.correlated = true;
+        if (c.multiscatter && w > 0.0f) {
+          const float mu = std::clamp(dot(geo.wo, geo.n), 0.0f, 1.0f);
+          const float eta = geo.front ? l.ior : 1.0f / l.ior;
+          l.weight = l.weight * principled_v2::multiscatter_factor(
+                                    microfacet_albedo::glass_albedo(r, mu, eta),
+                                    microfacet_albedo::glass_albedo_average(r, eta),
+                                    min(color / w, Vec3(1.0f)));
+        }
+        break;
+      }
       l.type = LobeType::kGgxGlass;
       l.fresnel = FresnelMode::kDielectric;
-      l.abbe = c.abbe;
       break;
     case ClosureType::kRefraction:
       l.type = LobeType::kGgxRefraction;
       l.fresnel = FresnelMode::kDielectric;
       l.abbe = c.abbe;
+      l.correlated = c.cycles4;  // Cycles 4's height-correlated masking-shadowing
       break;
     case ClosureType::kTransparent:
       l.type = LobeType::kTransparent;

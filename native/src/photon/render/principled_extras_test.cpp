@@ -13,6 +13,7 @@
 #include "photon/base/optics.h"
 #include "photon/render/bsdf.h"
 #include "photon/render/bsdf_chi2_util.h"
+#include "photon/render/bsdf_lobes.h"
 #include "photon/render/material_eval.h"
 #include "photon/testing/test_scenes.h"
 
@@ -27,6 +28,14 @@ Lobe oren_nayar(float sigma) {
   Lobe l;
   l.type = LobeType::kOrenNayar;
   l.roughness = sigma;
+  return l;
+}
+
+// Cycles 4.3's Oren-Nayar: multiple scattering of albedo `albedo` put back.
+Lobe oren_nayar_ms(float sigma, const Vec3& albedo) {
+  Lobe l = oren_nayar(sigma);
+  l.oren_nayar_multiscatter = true;
+  l.tint = albedo;
   return l;
 }
 
@@ -96,6 +105,7 @@ std::vector<Case> cases() {
   return {
       {"OrenNayar_45", {oren_nayar(0.5f)}, 45},
       {"OrenNayar_80", {oren_nayar(1.0f)}, 80},
+      {"OrenNayarMultiscatter_60", {oren_nayar_ms(0.8f, Vec3(0.9f, 0.5f, 0.2f))}, 60},
       {"Sheen_30", {sheen()}, 30},
       {"Sheen_80", {sheen()}, 80},
       {"SheenOnBurley_60", {lambert(Vec3(0.5f)), sheen(Vec3(0.7f))}, 60},
@@ -364,7 +374,21 @@ TEST(PrincipledExtrasMaterial, DiffuseRoughnessIsOrenNayarAndZeroIsLambert) {
     ASSERT_EQ(sp.bsdf.lobe_count(), 1);
     EXPECT_EQ(sp.bsdf.lobe(0).type, r > 0.0f ? LobeType::kOrenNayar : LobeType::kLambert);
     EXPECT_NEAR(sp.bsdf.lobe(0).roughness, r, 1e-7f);
+    EXPECT_FALSE(sp.bsdf.lobe(0).oren_nayar_multiscatter);
   }
+  // Blender 4.3+: the multiple scattering term, of the node's colour (not its mix weight).
+  Closure c;
+  c.type = ClosureType::kDiffuse;
+  c.diffuse_multiscatter = true;
+  c[Param::kRoughness] = Input::constant(0.7f);
+  c[Param::kColor] = Input::constant(Vec3(0.9f, 0.5f, 0.2f));
+  c.weight = {{Input::constant(0.5f), false}};
+  QuadFixture f(Material{"matte", {c}});
+  const Lobe& l = f.shade().bsdf.lobe(0);
+  EXPECT_TRUE(l.oren_nayar_multiscatter);
+  EXPECT_NEAR(l.tint.x, 0.9f, 1e-6f);
+  EXPECT_NEAR(l.tint.z, 0.2f, 1e-6f);
+  EXPECT_NEAR(l.weight.x, 0.45f, 1e-6f);
 }
 
 TEST(PrincipledExtrasMaterial, AnisotropicBsdfNodeUsesCyclesAlphas) {
@@ -397,6 +421,43 @@ TEST(PrincipledExtrasClearcoat, OwnNormalMovesTheHighlight) {
   const Vec3 wo = kN;
   const Vec3 mirror_n2 = normalize(n2 * (2.0f * dot(wo, n2)) - wo);
   EXPECT_GT(b.eval(wo, mirror_n2).x, 100.0f * b.eval(wo, wo).x);
+}
+
+// Cycles 4.3's Oren-Nayar: single scattering's directional albedo is Fujii's closed form
+// pi A + B G(cos_o); with the multiple scattering term a white surface reflects all the light
+// (up to the fitted E_avg), and a coloured one more than single scattering alone, by the
+// series rho^2 E_avg (1 - E(cos_o)) / (1 - rho (1 - E_avg)).
+TEST(PrincipledExtrasFurnace, EnergyPreservingOrenNayarPutsTheLostLightBack) {
+  for (float sigma : {0.5f, 1.0f}) {
+    const double a = 1.0 / (kChi2Pi + (kChi2Pi / 2.0 - 2.0 / 3.0) * sigma), b = sigma * a;
+    const double e_avg = kChi2Pi * a + (2.0 * kChi2Pi - 5.6) / 3.0 * b;
+    for (float theta : {0.0f, 45.0f, 80.0f}) {
+      const Bsdf single = make({oren_nayar(sigma)});
+      const Vec3 wo = dir(single, theta);
+      const double e_o =
+          kChi2Pi * a + b * bsdf_lobes::oren_nayar_g(std::cos(theta * kChi2Pi / 180));
+      const double single_albedo = albedos(single, wo).integrated;
+      EXPECT_NEAR(single_albedo, e_o, 2e-3) << sigma << " " << theta;
+
+      const Bsdf white = make({oren_nayar_ms(sigma, Vec3(1.0f))});
+      const Albedos w = albedos(white, wo);
+      std::printf(
+          "  sigma %.1f theta %4.1f single %.4f with multiple scattering %.4f (sampled "
+          "%.4f +- %.4f)\n",
+          sigma, theta, single_albedo, w.integrated, w.sampled, w.sampled_error);
+      EXPECT_NEAR(w.integrated, 1.0, 3e-3) << sigma << " " << theta;
+      EXPECT_NEAR(w.sampled, w.integrated, 4.0 * w.sampled_error + 2e-3);
+
+      const double rho = 0.6;
+      const Bsdf grey = make({oren_nayar_ms(sigma, Vec3(static_cast<float>(rho)))});
+      const double expected =
+          single_albedo + rho * rho * e_avg * (1.0 - e_o) / (1.0 - rho * (1.0 - e_avg));
+      EXPECT_NEAR(albedos(grey, wo).integrated, expected, 3e-3) << sigma << " " << theta;
+    }
+  }
+  // At sigma 0 it is Lambert, with or without the term.
+  const Bsdf smooth = make({oren_nayar_ms(0.0f, Vec3(0.5f))});
+  EXPECT_NEAR(albedos(smooth, dir(smooth, 30)).integrated, 1.0, 2e-3);
 }
 
 }  // namespace

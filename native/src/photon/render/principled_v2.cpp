@@ -9,12 +9,12 @@
 namespace photon {
 namespace principled_v2 {
 
-namespace {
-
 float f0_from_ior(float ior) {
   const float r = (ior - 1.0f) / (ior + 1.0f);
   return r * r;
 }
+
+namespace {
 
 float ior_from_f0(float f0) {
   const float s = std::sqrt(std::clamp(f0, 0.0f, 0.99f));
@@ -254,6 +254,12 @@ Vec3 add_principled_v2(const PrincipledV2Inputs& in, float w, const PrincipledV2
   const float subsurface = std::clamp(in.subsurface, 0.0f, 1.0f);
   Lobe d;
   d.type = LobeType::kLambert;
+  if (in.diffuse_roughness > 0.0f) {
+    d.type = LobeType::kOrenNayar;
+    d.roughness = in.diffuse_roughness;
+    d.oren_nayar_multiscatter = true;
+    d.tint = clamped_base;
+  }
   d.weight = (base * (1.0f - subsurface) + clamped_base * subsurface) * weight;
   d.normal = geo.lobe_n;
   add(d);

@@ -17,16 +17,18 @@
 //               (level 0.5: the IOR's own), tinted at normal incidence by Specular Tint; below it
 //               the weight shrinks by 1 - max(its directional albedo) (a table over roughness,
 //               cos_o and eta).
-//   diffuse     Lambert of Base Color (Subsurface Weight's share too: Photon has no subsurface
-//               scattering and renders it as diffuse, which the add-on says).
+//   diffuse     Lambert of Base Color, or at Diffuse Roughness > 0 Cycles 4.3's energy-preserving
+//               Oren-Nayar of that sigma (render/bsdf_lobes.h oren_nayar) (Subsurface Weight's
+//               share too: Photon has no subsurface scattering and renders it as diffuse, which
+//               the add-on says).
 // With the Multiscatter GGX distribution each of metallic, transmission and specular is scaled
 // up by the energy single scattering loses, 1 + F_ms (1 - E(cos_o)) / E(cos_o) (Kulla & Conty
 // 2017 as Cycles applies it: microfacet_albedo.h). Microfacet lobes use the height-correlated
 // Smith G. Anisotropy: alpha_x = r^2 / aspect, alpha_y = r^2 aspect, aspect = sqrt(1 - 0.9
 // Anisotropic), along the tangent turned by Anisotropic Rotation turns.
 //
-// Not rendered (the add-on warns): Sheen (Cycles' microfiber sheen), Thin Film, Diffuse
-// Roughness (Cycles' energy-preserving Oren-Nayar), subsurface scattering itself.
+// Not rendered (the add-on warns): Sheen (Cycles' microfiber sheen), Thin Film, subsurface
+// scattering itself.
 #pragma once
 
 #include "photon/base/math.h"
@@ -42,6 +44,7 @@ struct PrincipledV2Inputs {
   float ior = 1.5f;
   float alpha = 1.0f;
   float subsurface = 0.0f;
+  float diffuse_roughness = 0.0f;  // Oren-Nayar sigma of the diffuse layer (0: Lambert)
   float specular_ior_level = 0.5f;
   Vec3 specular_tint{1.0f};
   float anisotropic = 0.0f;
@@ -76,6 +79,8 @@ Vec3 add_principled_v2(const PrincipledV2Inputs& in, float w, const PrincipledV2
 
 // The parts of the model the tests check on their own.
 namespace principled_v2 {
+// A dielectric's reflectance at normal incidence, ((ior - 1) / (ior + 1))^2.
+float f0_from_ior(float ior);
 // The IOR of the specular layer: the one whose F0 is 2 x level x F0(ior) (level 0.5: ior).
 float specular_eta(float ior, float level);
 // The F82-tint conductor's multiple-scattering Fresnel average F_ss (Kulla & Conty's

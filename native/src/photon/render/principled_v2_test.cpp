@@ -254,6 +254,27 @@ TEST(PrincipledV2, WhiteFurnaceConservesEnergyWithMultiscatter) {
 
 // ---- Reciprocity of the lobes (the layer weights depend on wo, as in Cycles) ----
 
+TEST(PrincipledV2, DiffuseRoughnessIsEnergyPreservingOrenNayar) {
+  PrincipledV2Inputs in;
+  in.base_color = Vec3(0.7f, 0.4f, 1.3f);
+  in.specular_ior_level = 0.0f;
+  for (float r : {0.0f, 0.6f}) {
+    in.diffuse_roughness = r;
+    const Bsdf b = principled(in, direction(0.8f));
+    const Lobe* diffuse = nullptr;
+    for (int i = 0; i < b.lobe_count(); ++i)
+      if (b.lobe(i).type == LobeType::kLambert || b.lobe(i).type == LobeType::kOrenNayar)
+        diffuse = &b.lobe(i);
+    ASSERT_NE(diffuse, nullptr);
+    EXPECT_EQ(diffuse->type, r > 0.0f ? LobeType::kOrenNayar : LobeType::kLambert);
+    if (r == 0.0f) continue;
+    EXPECT_NEAR(diffuse->roughness, r, 1e-7f);
+    EXPECT_TRUE(diffuse->oren_nayar_multiscatter);
+    EXPECT_NEAR(diffuse->tint.z, 1.0f, 1e-7f);  // the albedo clamped to [0, 1]
+    EXPECT_NEAR(diffuse->tint.y, 0.4f, 1e-7f);
+  }
+}
+
 TEST(PrincipledV2, LobesAreReciprocal) {
   std::vector<Lobe> lobes;
   Lobe f82;

@@ -135,6 +135,9 @@ struct Closure {
   // Cycles 4's Multiscatter GGX distribution: single-scattering lobes scaled up by the energy
   // they lose (albedo scaling, render/microfacet_albedo.h). Only with `cycles4`.
   bool multiscatter = false;
+  // Cycles 4.3+'s Oren-Nayar for a rough Diffuse BSDF: the multiple scattering between its
+  // microfacets put back (render/bsdf_lobes.h oren_nayar). Principled v2 always has it.
+  bool diffuse_multiscatter = false;
   // Abbe number of Glass, Refraction and Principled transmission (0: no dispersion): in
   // spectral mode the IOR, taken at the d line (587.6 nm), varies with the wavelength.
   float abbe = 0.0f;

@@ -99,6 +99,13 @@ inline float max_component(const SampledSpectrum& s) {
   return s.max_value();
 }
 // Each value clamped to [0, 1] (render/bsdf_lobes.h's Fresnel models).
+// `f` applied to each wavelength's value (the BSDF's per-channel formulas).
+template <class F>
+SampledSpectrum map_channels(SampledSpectrum s, F f) {
+  for (int i = 0; i < kSpectrumSamples; ++i) s[i] = f(s[i]);
+  return s;
+}
+
 inline SampledSpectrum saturate_channels(SampledSpectrum s) {
   for (int i = 0; i < kSpectrumSamples; ++i)
     s[i] = s[i] < 0.0f ? 0.0f : (s[i] > 1.0f ? 1.0f : s[i]);
