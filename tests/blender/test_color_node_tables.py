@@ -13,9 +13,16 @@ def tables(blender):
     return result
 
 
-def test_manifest_tables_are_what_the_addon_bakes(tables):
+# Cases whose table Blender itself evaluates differently from 3.4 (the manifest's): in 4.x an
+# RGB Curves node driven far outside [0, 1] (its conformance case is left out there too).
+DIFFERENT_IN_4X = {"rgb_curves_wide_range"}
+
+
+def test_manifest_tables_are_what_the_addon_bakes(blender, tables):
     assert len(tables["cases"]) >= 20
     for name, case in tables["cases"].items():
+        if blender.version >= (4, 0) and name in DIFFERENT_IN_4X:
+            continue
         manifest, baked = case["manifest"], case["baked"]
         assert len(manifest) == len(baked), name
         worst = max(abs(a - b) for a, b in zip(manifest, baked))

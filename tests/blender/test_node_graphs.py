@@ -41,12 +41,18 @@ def constant_weight(closure):
     return weight
 
 
-def diamond_weights(facs, textured_level=None):
+def glossy_closure(blender):
+    """The closure a Glossy BSDF node makes: from Blender 4.0 the node is the merged
+    Glossy/Anisotropic one, read as anisotropic GGX (isotropic at Anisotropy 0)."""
+    return "ANISOTROPIC" if blender.version >= (4, 0) else "GLOSSY"
+
+
+def diamond_weights(facs, glossy, textured_level=None):
     """{(leaf, texture factor): weight} of the diamond's output A_N, by the Mix Shader's
     definition (1 - fac) * first + fac * second applied level by level. The texture factor is
-    None, "t" or "1-t" (the textured level's Alpha)."""
+    None, "t" or "1-t" (the textured level's Alpha); `glossy` names the glossy leaf's closure."""
     a = {("DIFFUSE", None): 1.0}
-    b = {("GLOSSY", None): 1.0}
+    b = {(glossy, None): 1.0}
     for level, (fa, fb) in enumerate(facs, start=1):
         def mix(fac, first, second):
             out = Counter()
@@ -65,10 +71,11 @@ def diamond_weights(facs, textured_level=None):
 def test_constant_diamond_collapses_to_its_leaves_with_summed_weights(blender, depth):
     result = convert(blender, "diamond", depth)
     closures = result["closures"]
-    assert [c["type"] for c in closures] == ["DIFFUSE", "GLOSSY"]
-    expected = diamond_weights(result["facs"])
+    glossy = glossy_closure(blender)
+    assert [c["type"] for c in closures] == ["DIFFUSE", glossy]
+    expected = diamond_weights(result["facs"], glossy)
     assert constant_weight(closures[0]) == pytest.approx(expected[("DIFFUSE", None)], rel=1e-9)
-    assert constant_weight(closures[1]) == pytest.approx(expected[("GLOSSY", None)], rel=1e-9)
+    assert constant_weight(closures[1]) == pytest.approx(expected[(glossy, None)], rel=1e-9)
     assert sum(constant_weight(c) for c in closures) == pytest.approx(1.0, rel=1e-9)
     assert np.allclose(closures[0]["params"]["color"], [0.8, 0.2, 0.1])
     assert closures[1]["params"]["roughness"] == pytest.approx(0.4)
@@ -81,7 +88,8 @@ def test_textured_diamond_keeps_distinct_texture_products_apart(blender):
     closures = result["closures"]
     # One Alpha texture at one level: each leaf has a "t" and a "1-t" entry whose constant is
     # the sum over the 2^5 constant paths around it.
-    expected = diamond_weights(result["facs"], result["textured_level"])
+    expected = diamond_weights(result["facs"], glossy_closure(blender),
+                               result["textured_level"])
     assert len(expected) == 4
     got = {}
     for closure in closures:
