@@ -384,7 +384,8 @@ TEST(PrincipledExtrasMaterial, DiffuseRoughnessIsOrenNayarAndZeroIsLambert) {
   c[Param::kColor] = Input::constant(Vec3(0.9f, 0.5f, 0.2f));
   c.weight = {{Input::constant(0.5f), false}};
   QuadFixture f(Material{"matte", {c}});
-  const Lobe& l = f.shade().bsdf.lobe(0);
+  const ShadingPoint sp = f.shade();
+  const Lobe& l = sp.bsdf.lobe(0);
   EXPECT_TRUE(l.oren_nayar_multiscatter);
   EXPECT_NEAR(l.tint.x, 0.9f, 1e-6f);
   EXPECT_NEAR(l.tint.z, 0.2f, 1e-6f);
