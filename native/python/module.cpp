@@ -419,7 +419,8 @@ PYBIND11_MODULE(_photon, m) {
              const FloatArray& matrix, const std::vector<float>& color, float power, float radius,
              float spot_size, float spot_blend, float sun_angle, const std::string& shape,
              float size_x, float size_y, uint32_t visibility, const std::string& spectrum,
-             float temperature, const std::string& illuminant, bool spot_cosine_falloff) {
+             float temperature, const std::string& illuminant, bool spot_cosine_falloff,
+             float spread) {
             Light l;
             l.name = name;
             if (type == "POINT")
@@ -444,6 +445,7 @@ PYBIND11_MODULE(_photon, m) {
                                                               : AreaShape::kRectangle;
             l.size_x = size_x;
             l.size_y = (shape == "SQUARE" || shape == "DISK") ? size_x : size_y;
+            l.spread = spread;
             l.visibility = visibility & kVisibleAll;
             if (spectrum == "RGB")
               l.spectrum = LightSpectrum::kRgb;
@@ -475,7 +477,8 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("size_y") = 1.0f,
           py::arg("visibility") = static_cast<uint32_t>(kVisibleGlossy | kVisibleTransmission),
           py::arg("spectrum") = "RGB", py::arg("temperature") = 6500.0f,
-          py::arg("illuminant") = "D65", py::arg("spot_cosine_falloff") = true)
+          py::arg("illuminant") = "D65", py::arg("spot_cosine_falloff") = true,
+          py::arg("spread") = kPi)
       .def(
           "set_camera",
           [](Scene& scene, const std::string& projection, const FloatArray& matrix,

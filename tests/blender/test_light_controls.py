@@ -1,8 +1,9 @@
 """Cycles' light controls that used to change the image silently: a portal rendered as a real
 emitter (a 5 kW portal made the Cornell box 97x brighter), a narrow area-light spread and light
 node trees ignored. A portal now emits nothing, as in Cycles; the Emission node's constant
-Color and Strength scale the light as in Cycles; what Photon does not render (spread, an IES
-Texture, Light Falloff, an unconnected Light Output, a World volume) is said in a warning.
+Color and Strength scale the light as in Cycles; an area light's spread reaches the native
+light; what Photon does not render (an IES Texture, Light Falloff, an unconnected Light Output,
+a World volume) is said in a warning.
 About 10 s."""
 
 import math
@@ -30,16 +31,22 @@ def test_light_controls_reach_the_native_light_or_a_warning(blender):
     expected_factor = 4.0 / math.pi if result["version"] >= [4, 0, 0] else 1.0
     assert abs(result["area_factor"] - expected_factor) < 1e-6
     # Without nodes, or with the default Emission node: the light's own colour and power.
-    assert args["plain"] == PLAIN and warnings["plain"] == []
-    assert args["default_nodes"] == PLAIN and warnings["default_nodes"] == []
+    area = dict(PLAIN, spread=round(math.pi, 6))
+    assert args["plain"] == area and warnings["plain"] == []
+    assert args["default_nodes"] == area and warnings["default_nodes"] == []
     # A portal emits nothing (Cycles' portals only guide the world's light).
     assert args["portal"] is None
     assert len(warnings["portal"]) == 1 and "is a portal" in warnings["portal"][0]
-    # The spread is named, the light still renders.
-    assert args["narrow"] == PLAIN
-    assert warnings["narrow"] == [
-        "Area light 'narrow': a spread of 30 degrees is not rendered by Photon yet; it emits "
-        "over its whole hemisphere (180 degrees)"]
+    # The spread reaches the native light; below a degree (Blender 4.0+ allows 0) it is a
+    # degree, with a warning.
+    assert args["narrow"] == dict(PLAIN, spread=0.5236) and warnings["narrow"] == []
+    assert args["beam"] == dict(PLAIN, spread=round(math.radians(1.0), 6))
+    if result["version"] >= [4, 0, 0]:
+        assert warnings["beam"] == [
+            "Area light 'beam': a spread of 0.00 degrees is rendered as 1 degree, the narrowest "
+            "Photon renders"]
+    else:
+        assert warnings["beam"] == []  # Blender 3.x keeps the spread at a degree or more
     # Constant Emission Color and Strength multiply the light's, as in Cycles.
     assert args["constants"]["color"] == [0.5, 0.25, 0.25]
     assert args["constants"]["power"] == 500.0 and warnings["constants"] == []

@@ -15,8 +15,8 @@ from harness import read_image  # noqa: E402
 
 REPO = Path(__file__).resolve().parents[2]
 VALIDATION = REPO / "test_scenes" / "validation"
-SCENES = ["checker_point", "checker_spot", "checker_area", "checker_sun", "bump_normal",
-          "wood_marble", "mix_monkey", "hdri_row"]
+SCENES = ["checker_point", "checker_spot", "checker_area", "checker_sun", "checker_area_spread",
+          "bump_normal", "wood_marble", "mix_monkey", "hdri_row"]
 MEAN_TOLERANCE = 0.02
 REGION_TOLERANCE = 0.05
 

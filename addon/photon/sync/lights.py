@@ -121,8 +121,9 @@ def node_emission(light, name, reporter):
 
 FLOAT32_MAX = float(np.finfo(np.float32).max)
 
-# Below this (radians) an area light's spread is narrower than its hemisphere.
-FULL_SPREAD = math.pi - 1e-4
+# Cycles 3.x renders a spread narrower than a degree as a degree (Blender 3.x's own minimum);
+# Blender 4.0+ goes down to 0, a parallel beam Photon renders as 1 degree.
+MIN_SPREAD = math.radians(1.0)
 
 
 def light_arguments(native, obj, matrix, reporter):
@@ -184,10 +185,10 @@ def light_arguments(native, obj, matrix, reporter):
             reporter.warning(f"Area light '{obj.name}' has zero size; skipped")
             return None
         spread = float(getattr(light, "spread", math.pi))
-        if spread < FULL_SPREAD:
-            reporter.warning(f"Area light '{obj.name}': a spread of {math.degrees(spread):.0f} "
-                             f"degrees is not rendered by Photon yet; it emits over its whole "
-                             f"hemisphere (180 degrees)")
+        if spread < MIN_SPREAD * (1.0 - 1e-6):
+            reporter.warning(f"Area light '{obj.name}': a spread of {math.degrees(spread):.2f} "
+                             f"degrees is rendered as 1 degree, the narrowest Photon renders")
+        kwargs["spread"] = max(spread, MIN_SPREAD)
     if not getattr(light, "normalize", True):
         kwargs["power"] *= unnormalized_power_factor(light)
     # The factors above can take a huge but finite power past float32, which the native light

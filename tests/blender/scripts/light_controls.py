@@ -47,6 +47,9 @@ def main():
     portal.cycles.is_portal = True
     narrow = lights["narrow"] = light("narrow")
     narrow.spread = 0.5236  # 30 degrees
+    # Blender 4.0+ allows a spread of 0 (3.x stops at 1 degree).
+    lights["beam"] = light("beam")
+    lights["beam"].spread = 0.0
     constants = lights["constants"] = light("constants", "POINT")
     emission = emission_of(constants)
     emission.inputs["Strength"].default_value = 5.0
@@ -74,6 +77,8 @@ def main():
         result["arguments"][name] = None if args is None else {
             "color": [round(c, 6) for c in args["color"]],
             "power": round(args["power"] / factor, 6), "spectrum": args["spectrum"]}
+        if args is not None and "spread" in args:
+            result["arguments"][name]["spread"] = round(args["spread"], 6)
         result["warnings"][name] = reporter.warnings
     return result
 

@@ -115,7 +115,7 @@ void add_light(Fingerprint* f, const Light& l) {
   f->add(l.name), f->add(l.type), f->add(l.light_to_world), f->add(l.color), f->add(l.power);
   f->add(l.radius), f->add(l.spot_size), f->add(l.spot_blend), f->add(l.sun_angle);
   f->add(l.spot_cosine_falloff);
-  f->add(l.shape), f->add(l.size_x), f->add(l.size_y), f->add(l.visibility);
+  f->add(l.shape), f->add(l.size_x), f->add(l.size_y), f->add(l.spread), f->add(l.visibility);
   f->add(l.spectrum), f->add(l.temperature), f->add(l.illuminant);
 }
 

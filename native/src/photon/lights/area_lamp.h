@@ -4,8 +4,14 @@
 //  - Photons: a uniform point and a cosine-distributed direction, flux pi L A; caustic photons
 //    only into the part of the lamp's hemisphere that heads into a target (photon_aim.h).
 //  - Bidirectional estimators: the same point (1 / A) and direction (cos / pi).
+// A spread narrower than 180 degrees (area_spread.h) scales the radiance by a(theta) and keeps
+// the power: photons leave with directions distributed as cos a / pi, caustic photons aim only
+// within the spread's cone, and direct lighting samples only the part of the lamp that can
+// reach the receiver (as Cycles 3.x does for rectangles), so narrow spreads stay smooth.
 #pragma once
 
+#include "photon/base/spherical_caps.h"
+#include "photon/lights/area_spread.h"
 #include "photon/lights/lamp.h"
 
 namespace photon {
@@ -35,6 +41,21 @@ class AreaLamp final : public Lamp {
   Vec3 point(Vec2 u) const;
   // Whether the point d (relative to the centre, in the lamp's plane) lies on the lamp.
   bool inside(const Vec3& d) const;
+  // The part of the lamp direct lighting samples for a receiver at p: the whole lamp, or
+  // with a spread, the part of its bounding rectangle within tan(h) * distance of p's foot
+  // point in each axis (outside it a(theta) is 0), in the lamp's coordinates scaled to
+  // [-1, 1], with its area in the lamp's plane. False if no point of the lamp reaches p.
+  struct Window {
+    bool whole = true;
+    float u0 = -1.0f, u1 = 1.0f, v0 = -1.0f, v1 = 1.0f;
+    float area = 0.0f;
+  };
+  bool direct_window(const Vec3& p, Window* w) const;
+  // sample_li's end with a spread: `window_area` is the part of the lamp it sampled.
+  bool sample_spread_li(float cos_light, float dist2, float window_area, bool bidirectional,
+                        LightSample* out) const;
+  // The directions it emits into: its hemisphere, or its spread's cone.
+  Cap emission_cap() const;
 
   AreaShape shape_;
   Vec3 position_;
@@ -43,6 +64,7 @@ class AreaLamp final : public Lamp {
   Vec3 radiance_;         // W/m^2/sr
   float area_;
   float radius_;  // Blender's lamp radius, widening the cone of caustic aiming
+  AreaSpread spread_;
 };
 
 // The area lamp of `d`, or null (with a warning) when its size is zero.

@@ -336,6 +336,54 @@ TEST(AreaLight, IrradianceUnderADiscMatchesTheClosedForm) {
   EXPECT_NEAR(e.x, expected, 2e-3 * expected);
 }
 
+// With a spread, direct lighting samples only the part of a rectangle that reaches the
+// receiver: its irradiance is still that of the radiance a ray meets (quadrature over
+// eval_li), and eval_li reports the density its samples have.
+TEST(AreaLight, SpreadIrradianceMatchesQuadratureAndSampleDensities) {
+  for (AreaShape shape : {AreaShape::kRectangle, AreaShape::kEllipse})
+    for (float degrees : {3.0f, 30.0f, 90.0f}) {
+      Light light = make_light(LightType::kArea, Vec3(0.0f, 0.0f, 1.0f), 40.0f);
+      light.shape = shape;
+      light.size_x = 2.0f;
+      light.size_y = 1.2f;
+      light.spread = degrees * kPi / 180.0f;
+      LightSet set({light}, nullptr);
+      const Emitter& e = set.lamp(0);
+      for (const Vec3& p : {Vec3(0.0f, 0.0f, 0.0f), Vec3(0.7f, -0.3f, 0.2f)}) {
+        // Midpoint quadrature over the lamp (facing down, centred above the origin) of the
+        // radiance a ray meets, for a receiver facing up.
+        double expected = 0.0;
+        const int steps = 1500;
+        for (int j = 0; j < steps; ++j)
+          for (int i = 0; i < steps; ++i) {
+            const double u = (i + 0.5) / steps - 0.5, v = (j + 0.5) / steps - 0.5;
+            if (shape == AreaShape::kEllipse && 4.0 * (u * u + v * v) > 1.0) continue;
+            const Vec3 d = Vec3(static_cast<float>(u * 2.0), static_cast<float>(v * 1.2), 1.0f) - p;
+            const double d2 = length_squared(d);
+            const Vec3 w = d / std::sqrt(static_cast<float>(d2));
+            LightHit h;
+            if (e.eval_li(p, w, &h)) expected += h.radiance.x * w.z * w.z / d2;
+          }
+        expected *= 2.0 * 1.2 / (static_cast<double>(steps) * steps);
+        ASSERT_GT(expected, 0.0);
+        const Vec3 got = average_over_grid(set, 0, p, 256, [](const LightSample& ls) {
+          return ls.weight * std::max(0.0f, ls.wi.z);
+        });
+        EXPECT_NEAR(got.x, expected, 3e-3 * expected) << degrees << " at " << p.x;
+        for (int k = 0; k < 16; ++k) {
+          LightSample ls;
+          if (!e.sample_li(p, LightSampleU{0.0f, Vec2((k % 4 + 0.5f) / 4, (k / 4 + 0.5f) / 4)},
+                           nullptr, &ls))
+            continue;
+          LightHit h;
+          ASSERT_TRUE(e.eval_li(p, ls.wi, &h));
+          EXPECT_NEAR(h.pdf, ls.pdf, 1e-3f * ls.pdf);
+          EXPECT_TRUE(VecNear(h.radiance * (1.0f / h.pdf), ls.weight, 1e-3f));
+        }
+      }
+    }
+}
+
 TEST(AreaLight, EmitsOnlyDownItsAxis) {
   Light light = make_light(LightType::kArea, Vec3(0.0f, 0.0f, 1.0f), 20.0f);
   LightSet set({light}, nullptr);

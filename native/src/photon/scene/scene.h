@@ -111,6 +111,7 @@ struct Light {
   float sun_angle = 0.0f;  // angular diameter in radians
   AreaShape shape = AreaShape::kRectangle;
   float size_x = 1.0f, size_y = 1.0f;
+  float spread = kPi;  // area: full angle its soft box lets light out over (pi: a bare lamp)
   uint32_t visibility = kVisibleGlossy | kVisibleTransmission;  // lamps hide from camera rays
   LightSpectrum spectrum = LightSpectrum::kRgb;
   float temperature = 6500.0f;  // kelvin, kBlackbody
