@@ -239,6 +239,10 @@ class FinalRender:
             state = "prepared (no pixels: PHOTON_PREPARE_ONLY)"
         reporter.info(render_report.frame_line(state, scene, region_w, region_h, settings, stats,
                                                sync_stats, elapsed, self.layer, view))
+        result = engine.get_result()
+        for key, value in render_report.metadata_fields(self.layer, settings, stats, sync_stats,
+                                                        elapsed):
+            result.stamp_data_add_field(key, value)
         if prepared_files:
             prepared_state.report(reporter, prepared_files, stats)
         for line in render_report.prepare_lines(stats.integrator):

@@ -1,7 +1,10 @@
 """The info lines a final render reports once a view is rendered: the frame's summary (samples,
 threads, sync, textures, BVH and render times), what the integrator prepared (photon maps,
 irradiance cache, radiosity), SPPM/VCM iterations and Persistent Data reuse. Tests, render farms
-and users read them: their wording is kept."""
+and users read them: their wording is kept. The same figures go into the image's metadata, as
+Cycles writes its own (metadata_fields)."""
+
+import resource
 
 
 def _samples_label(settings, stats):
@@ -100,3 +103,35 @@ def persistent_data_line(sync_stats, stats):
     meshes = sync_stats.meshes_reused + sync_stats.meshes_exported
     return (f"persistent data: reused {sync_stats.meshes_reused} of {meshes} "
             f"meshes, {stats.bvh_reused} of {stats.bvh_count} BVHs")
+
+
+def timecode(seconds):
+    """A duration as Blender writes render times into metadata (Cycles' cycles.*_time fields):
+    MM:SS.cc, or HH:MM:SS.cc from an hour on."""
+    centiseconds = int(round(max(float(seconds), 0.0) * 100.0))
+    hours, rest = divmod(centiseconds, 360000)
+    minutes, rest = divmod(rest, 6000)
+    secs, hundredths = divmod(rest, 100)
+    if hours:
+        return f"{hours:02d}:{minutes:02d}:{secs:02d}.{hundredths:02d}"
+    return f"{minutes:02d}:{secs:02d}.{hundredths:02d}"
+
+
+def metadata_fields(layer, settings, stats, sync_stats, elapsed):
+    """[(key, value)] of a rendered view for the render result's metadata (EXR headers, the
+    Metadata panel), under photon.<view layer>. as Cycles writes cycles.<view layer>.*: the
+    integrator, samples (or iterations), threads, the total, synchronization, preparation
+    (BVH, textures, photon maps and caches) and render times, and the process's peak memory."""
+    prefix = f"photon.{layer}."
+    fields = [("integrator", settings.integrator.name), ("samples", str(settings.samples))]
+    if stats.iterations.iterations:
+        fields.append(("iterations", str(stats.iterations.iterations)))
+    preparation = stats.build_seconds + stats.texture_seconds + stats.prepare_seconds
+    peak_mib = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0  # kB on Linux
+    fields += [("threads", str(stats.threads)),
+               ("total_time", timecode(elapsed)),
+               ("synchronization_time", timecode(sync_stats.seconds)),
+               ("preparation_time", timecode(preparation)),
+               ("render_time", timecode(stats.render_seconds)),
+               ("peak_memory", f"{peak_mib:.1f}M")]
+    return [(prefix + key, value) for key, value in fields]

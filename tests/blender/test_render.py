@@ -60,6 +60,34 @@ def test_exr_output_is_scene_linear_float(blender, tmp_path):
     assert image[0, 0, :3] == pytest.approx([0.2, 0.3, 0.4], abs=1e-3)
 
 
+def test_exr_metadata_holds_the_render_statistics(blender, tmp_path):
+    """As Cycles writes cycles.<view layer>.samples and its times into the image's metadata,
+    Photon writes photon.<view layer>.*: integrator, samples, threads, times (Blender's
+    MM:SS.cc timecodes) and peak memory."""
+    import re
+
+    import OpenImageIO as oiio
+    proc = render_frames(blender, CORNELL, tmp_path / "meta_", "-f", "1", extra=QUICK)
+    spec = oiio.ImageInput.open(str(tmp_path / "meta_0001.exr")).spec()
+    fields = {a.name: a.value for a in spec.extra_attribs if a.name.startswith("photon.")}
+    layer = "photon.ViewLayer."
+    assert fields[layer + "integrator"] == "PHOTON_MAP", fields
+    assert fields[layer + "samples"] == "8"
+    match = re.search(r"\((\d+) spp, (\d+) threads\)", proc.stdout)
+    assert match and fields[layer + "threads"] == match.group(2), proc.log
+    times = {}
+    for key in ("total_time", "synchronization_time", "preparation_time", "render_time"):
+        value = fields[layer + key]
+        assert re.fullmatch(r"\d\d:\d\d\.\d\d", value), (key, value)
+        minutes, seconds = value.split(":")
+        times[key] = 60 * int(minutes) + float(seconds)
+    # The photon maps and the render take time; the parts add up to no more than the total.
+    assert times["preparation_time"] > 0.0 and times["render_time"] > 0.0
+    parts = times["synchronization_time"] + times["preparation_time"] + times["render_time"]
+    assert parts <= times["total_time"] + 0.03, times
+    assert re.fullmatch(r"\d+\.\dM", fields[layer + "peak_memory"])
+
+
 def test_png_output(blender, tmp_path):
     render_frames(blender, CORNELL, tmp_path / "cornell_", "-f", "1", fmt="PNG", extra=QUICK)
     image = read_image(tmp_path / "cornell_0001.png")
