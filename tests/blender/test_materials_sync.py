@@ -184,6 +184,38 @@ def test_unsupported_nodes_fall_back_to_their_nearest_meaning(converted):
         "rendering it as diffuse"]
 
 
+def test_colour_and_value_outputs_into_a_shader_input_emit_as_in_cycles(converted):
+    """Cycles turns a colour (or value) output linked into a shader input into an Emission of
+    that colour at strength 1 (of white at that strength), with no warning."""
+    checker = only_closure(converted, "ColorToSurface")
+    assert checker["type"] == "EMISSION" and checker["params"]["strength"] == 1.0
+    assert set(checker["params"]["color"]) == {"register", "value"}  # the checker's program
+    assert material(converted, "ColorToSurface")["warnings"] == []
+    value = only_closure(converted, "ValueToSurface")
+    assert value["type"] == "EMISSION" and value["params"] == {
+        "color": [1.0, 1.0, 1.0], "strength": 2.5}
+    assert material(converted, "ValueToSurface")["warnings"] == []
+    closures = material(converted, "MixedWithColor")["closures"]
+    assert [c["type"] for c in closures][1:] == ["EMISSION"], closures
+    assert close(closures[1]["params"]["color"], [0.9, 0.3, 0.1])
+    assert closures[1]["weight"] == [{"fac": 0.25, "complement": False}]
+
+
+def test_colour_into_the_surface_renders_as_cycles_does(blender, tmp_path):
+    """A Checker's Color straight into the Material Output: the checker, unlit, in both."""
+    images = {}
+    for engine in ("CYCLES", "PHOTON"):
+        out = tmp_path / f"{engine}.exr"
+        result, proc = blender.run_script("color_to_surface.py", engine, out)
+        assert "exception" not in result, result.get("exception")
+        images[engine] = read_image(out)[:, :, :3]
+    ours, theirs = images["PHOTON"], images["CYCLES"]
+    assert theirs.mean() > 0.1, "Cycles' render is black"
+    # Emission seen directly: only the checker's edges differ, by their pixel-filter noise.
+    assert np.abs(ours.mean(axis=(0, 1)) / theirs.mean(axis=(0, 1)) - 1.0).max() < 0.01
+    assert np.mean(np.abs(ours - theirs) > 0.05) < 0.1
+
+
 def test_node_group_inputs_reach_the_inner_shader(blender, converted):
     closure = only_closure(converted, "Grouped")
     assert closure["type"] == ("PRINCIPLED" if blender.version < (4, 0) else "PRINCIPLED_V2")

@@ -33,10 +33,13 @@ class _Vertex:
     """One (node, group stack) of the DAG. `edges`: (child, constant, factor key or None) for
     the shader inputs of a Mix or Add Shader; `closure`: the closure of any other node."""
 
-    __slots__ = ("node", "stack", "edges", "closure", "weights", "done")
+    __slots__ = ("node", "stack", "output", "fed", "edges", "closure", "weights", "done")
 
-    def __init__(self, src):
+    def __init__(self, src, fed):
         self.node, self.stack = src.node, src.stack
+        # The output socket that feeds a shader input, and the first (input, stack) it feeds:
+        # a colour or value output there is read through that input (Cycles' Emission).
+        self.output, self.fed = src.socket, fed
         self.edges = []
         self.closure = None
         self.weights = {}  # sorted tuple of texture factor keys -> summed constant weight
@@ -79,7 +82,9 @@ class _Compiler:
         src = nodes.source(socket, stack, self.ctx.links)
         if src.node is None:
             return None, False  # an unlinked shader input adds nothing (Cycles: black)
-        key = (src.node, src.stack)
+        # A shader node has one closure; a colour or value output is its own emission.
+        key = (src.node, src.stack,
+               None if src.socket.type == 'SHADER' else src.socket.identifier)
         vertex = self.vertices.get(key)
         if vertex is not None:
             if not vertex.done:  # a cycle (Blender marks such links invalid; a guard)
@@ -91,7 +96,7 @@ class _Compiler:
             self.ctx.warn_once(("nesting",), f"Material '{self.ctx.name}': node groups nested "
                                              f"deeper than {MAX_GROUP_NESTING} are ignored")
             return None, False
-        vertex = _Vertex(src)
+        vertex = _Vertex(src, (socket, stack))
         self.vertices[key] = vertex
         return vertex, True
 
@@ -99,7 +104,7 @@ class _Compiler:
         """Reads a newly reached vertex: its shader inputs, or its closure (a leaf)."""
         inputs = self._shader_inputs(vertex)
         if inputs is None:
-            vertex.closure = self.make_closure(vertex.node, vertex.stack)
+            vertex.closure = self.make_closure(vertex)
             self.leaves.append(vertex)
             return iter(())
         return iter(inputs)
@@ -162,8 +167,10 @@ def _pieces(weight):
 
 def collect_closures(surface, ctx, make_closure):
     """The closures feeding shader input `surface` of a material, each with its weight:
-    [closure dict with "weight"]. `make_closure(node, stack)` gives the closure dict of a
-    non-mixing shader node (called once per node and group stack)."""
+    [closure dict with "weight"]. `make_closure(vertex)` gives the closure dict of a vertex
+    that is not a Mix or Add Shader (called once per node and group stack): a shader node, or a
+    colour or value output linked straight into a shader input (`vertex.output`, read through
+    the input `vertex.fed`)."""
     compiler = _Compiler(ctx, make_closure)
     root = compiler.walk(surface)
     if root is None:

@@ -182,8 +182,24 @@ def _fallback_closure(node, stack, ctx):
     return {"type": "DIFFUSE", "sharp": False, "params": {"color": color}}
 
 
-def _leaf_closure(node, stack, ctx):
-    """The closure of a shader node that is not a Mix or Add Shader."""
+def _converted_emission(vertex, ctx):
+    """A colour or value output linked into a shader input, as Cycles converts it (ShaderGraph's
+    automatic conversion): an Emission of that colour at strength 1, or of white at that
+    strength. Artists plug a texture straight into the Material Output to see it unlit."""
+    fed, stack = vertex.fed
+    params = {"color": [1.0, 1.0, 1.0], "strength": 1.0}
+    if vertex.output.type in ('VALUE', 'INT', 'BOOLEAN'):
+        params["strength"] = read_input(fed, stack, closure_param('EMISSION', "strength"), ctx)
+    else:
+        params["color"] = read_input(fed, stack, closure_param('EMISSION', "color"), ctx)
+    return {"type": "EMISSION", "sharp": False, "params": params}
+
+
+def _leaf_closure(vertex, ctx):
+    """The closure of a graph vertex that is not a Mix or Add Shader."""
+    node, stack = vertex.node, vertex.stack
+    if vertex.output.type != 'SHADER':
+        return _converted_emission(vertex, ctx)
     closure = _bsdf_closure(node, stack, ctx)
     return closure if closure is not None else _fallback_closure(node, stack, ctx)
 
@@ -216,8 +232,7 @@ def _convert(material, reporter, textures):
         reporter.warning(f"Material '{name}' has no shader connected to its output; "
                          f"rendering its viewport colour")
         return name, _diffuse_of(read_constant_color(material.diffuse_color, ctx)), ctx
-    closures = graph.collect_closures(
-        surface, ctx, lambda node, stack: _leaf_closure(node, stack, ctx))
+    closures = graph.collect_closures(surface, ctx, lambda vertex: _leaf_closure(vertex, ctx))
     for socket_name in ("Volume", "Displacement"):
         socket = output.inputs.get(socket_name)
         if socket is not None and nodes.source(socket, (), ctx.links).node is not None:

@@ -235,6 +235,24 @@ def build(folder):
     bsdf.inputs["Emission Strength"].default_value = 1e30
     bsdf.inputs["IOR"].default_value = -3.0
 
+    # A colour output straight into the Surface: Cycles' Emission of that colour; a value
+    # output: white emission at that strength; a Mix Shader of a shader and a colour.
+    mat, nodes, links, bsdf, out = new_material("ColorToSurface")
+    checker = nodes.new("ShaderNodeTexChecker")
+    links.new(checker.outputs["Color"], out.inputs["Surface"])
+    mat, nodes, links, bsdf, out = new_material("ValueToSurface")
+    value = nodes.new("ShaderNodeValue")
+    value.outputs[0].default_value = 2.5
+    links.new(value.outputs[0], out.inputs["Surface"])
+    mat, nodes, links, bsdf, out = new_material("MixedWithColor")
+    rgb = nodes.new("ShaderNodeRGB")
+    rgb.outputs[0].default_value = (0.9, 0.3, 0.1, 1.0)
+    mix = nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.25
+    links.new(bsdf.outputs[0], mix.inputs[1])
+    links.new(rgb.outputs[0], mix.inputs[2])
+    links.new(mix.outputs[0], out.inputs["Surface"])
+
     # No nodes: the viewport colour. Nothing connected: the viewport colour and a warning.
     mat = bpy.data.materials.new("NoNodes")
     mat.use_nodes = False
