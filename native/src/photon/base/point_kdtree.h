@@ -79,7 +79,15 @@ class PointKdTree {
   // (cleared first) as a max-heap on distance: out->front() is the farthest.
   template <class Accept>
   void k_nearest(const Vec3& p, size_t k, float max_radius, Accept&& accept,
-                 std::vector<KdNeighbor>* out) const;
+                 std::vector<KdNeighbor>* out) const {
+    k_nearest(
+        p, k, max_radius, accept, [](const Node&, float) { return true; }, out);
+  }
+  // As above, with a second test `accept_near(node, squared distance)` asked only of nodes
+  // that `accept` takes and that are nearer than the k found so far (for tests that cost more).
+  template <class Accept, class AcceptNear>
+  void k_nearest(const Vec3& p, size_t k, float max_radius, Accept&& accept,
+                 AcceptNear&& accept_near, std::vector<KdNeighbor>* out) const;
 
  private:
   int axis_of(size_t i) const {
@@ -163,9 +171,10 @@ void PointKdTree<Node, LeafSize>::visit(size_t lo, size_t hi, const Vec3& p, flo
 }
 
 template <class Node, size_t LeafSize>
-template <class Accept>
+template <class Accept, class AcceptNear>
 void PointKdTree<Node, LeafSize>::k_nearest(const Vec3& p, size_t k, float max_radius,
-                                            Accept&& accept, std::vector<KdNeighbor>* out) const {
+                                            Accept&& accept, AcceptNear&& accept_near,
+                                            std::vector<KdNeighbor>* out) const {
   static_assert(LeafSize == 1, "k_nearest descends to single nodes");
   out->clear();
   if (nodes_.empty() || k == 0) return;
@@ -202,7 +211,7 @@ void PointKdTree<Node, LeafSize>::k_nearest(const Vec3& p, size_t k, float max_r
                     dy = Traits::coordinate(node, 1) - q[1],
                     dz = Traits::coordinate(node, 2) - q[2];
         const float d2 = dx * dx + dy * dy + dz * dz;
-        if (d2 < max_d2) {
+        if (d2 < max_d2 && accept_near(node, d2)) {
           if (out->size() < k) {
             out->push_back({mid, d2});
             std::push_heap(out->begin(), out->end(), farther);

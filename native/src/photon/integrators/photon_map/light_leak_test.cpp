@@ -119,6 +119,37 @@ TEST(LightLeak, ParallelSurfaceAcrossAGapGivesNoPhotons) {
   EXPECT_NEAR(sum / 100, 5.0 / kPi, 0.04 * 5.0 / kPi);
 }
 
+// A face lit on both sides: densely inside a closed box (a lamp), sparsely outside (a world
+// seen through the gap under the box). The radiance precomputed at an outside photon's own
+// position counts that photon; the disc must be that of the outside photons, not one shrunk
+// by the inside photons at the same place, which would count it over a tiny area (this lit the
+// floor under a sealed lamp's box 25% brighter than without the lamp).
+TEST(LightLeak, EstimateAtAPhotonOfTheDimSideKeepsToItsOwnSide) {
+  std::vector<Photon> photons =
+      square(2, 40000, 0.5f, normalize(Vec3(0.1f, 0.2f, -1.0f)), Vec3(0, 0, 1));  // inside
+  const std::vector<Photon> outside =
+      square(3, 2000, 0.5f, normalize(Vec3(-0.2f, 0.1f, 1.0f)), Vec3(0, 0, -1));
+  photons.insert(photons.end(), outside.begin(), outside.end());
+  const PhotonMap map(photons);
+  // The outside's 2 W over 4 m^2: radiance 0.5 / pi for albedo 1.
+  const double expected = 0.5 / kPi;
+  std::vector<PhotonNeighbor> scratch;
+  double at_photon = 0.0, plain = 0.0;
+  int n = 0;
+  for (size_t i = 0; i < outside.size(); i += 20) {
+    const Vec3 p = outside[i].pos();
+    if (std::fabs(p.x) > 0.7f || std::fabs(p.y) > 0.7f) continue;  // away from the edges
+    at_photon += map.radiance_estimate(p, Vec3(0, 0, -1), 50, 1.5f, kPhotonAny, &scratch, true).x;
+    plain += map.radiance_estimate(p, Vec3(0, 0, -1), 50, 1.5f, kPhotonAny, &scratch).x;
+    ++n;
+  }
+  ASSERT_GT(n, 20);
+  EXPECT_NEAR(at_photon / n, expected, 0.08 * expected);
+  // What the disc of all photons made of it (2.2 times the radiance here): the photon itself
+  // and its few outside neighbours over a disc sized for 21 times as many photons.
+  EXPECT_GT(plain / n, 1.5 * expected);
+}
+
 // A gently curved surface keeps its photons: a sphere of radius 2 m, queried with a 0.3 m disc.
 TEST(LightLeak, CurvedSurfaceKeepsItsPhotons) {
   std::vector<Photon> photons;

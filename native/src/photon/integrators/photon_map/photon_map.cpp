@@ -228,11 +228,12 @@ Vec3 PhotonMap::power(const Photon& ph) const {
 }
 
 Vec3 PhotonMap::radiance_estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
-                                  uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch) const {
+                                  uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch,
+                                  bool at_photon) const {
   if (!spectral_)
-    return estimate(p, n, k, max_radius, flag_mask, scratch,
+    return estimate(p, n, k, max_radius, flag_mask, at_photon, scratch,
                     [](const Photon& ph) { return ph.power(); });
-  return estimate(p, n, k, max_radius, flag_mask, scratch, [](const Photon& ph) {
+  return estimate(p, n, k, max_radius, flag_mask, at_photon, scratch, [](const Photon& ph) {
     return spectral::wavelength_rec709(ph.wavelength()) * ph.spectral_power();
   });
 }
@@ -242,7 +243,7 @@ Vec3 PhotonMap::reflected_estimate(const Vec3& p, const Vec3& n, size_t k, float
                                    std::vector<PhotonNeighbor>* scratch) const {
   if (!spectral_) return radiance_estimate(p, n, k, max_radius, flag_mask, scratch) * albedo;
   const spectral::ReflectanceSpectrum reflectance(albedo);
-  return estimate(p, n, k, max_radius, flag_mask, scratch, [&](const Photon& ph) {
+  return estimate(p, n, k, max_radius, flag_mask, false, scratch, [&](const Photon& ph) {
     const float lambda = ph.wavelength();
     return spectral::wavelength_rec709(lambda) * (ph.spectral_power() * reflectance(lambda));
   });
@@ -250,9 +251,15 @@ Vec3 PhotonMap::reflected_estimate(const Vec3& p, const Vec3& n, size_t k, float
 
 template <class Value>
 Vec3 PhotonMap::estimate(const Vec3& p, const Vec3& n, size_t k, float max_radius,
-                         uint8_t flag_mask, std::vector<PhotonNeighbor>* scratch,
-                         Value&& value) const {
-  k_nearest(p, k, max_radius, flag_mask, scratch);
+                         uint8_t flag_mask, bool on_surface_only,
+                         std::vector<PhotonNeighbor>* scratch, Value&& value) const {
+  if (on_surface_only)
+    tree_.k_nearest(
+        p, k, max_radius, [flag_mask](const Photon& ph) { return (ph.flags & flag_mask) != 0; },
+        [&](const Photon& ph, float d2) { return photon_on_surface(ph, p, n, std::sqrt(d2)); },
+        scratch);
+  else
+    k_nearest(p, k, max_radius, flag_mask, scratch);
   if (scratch->empty()) return Vec3(0.0f);
   // With fewer than k photons inside max_radius the disc is the whole search disc; otherwise it
   // is the disc through the farthest of the k (Jensen's expanding sphere).

@@ -243,7 +243,7 @@ void PhotonMapIntegrator::prepare(const RenderContext& context, const PrepareCon
         records[i].p = points[i].p;
         records[i].n = points[i].n;
         records[i].radiance = state_.global.radiance_estimate(
-            points[i].p, points[i].n, k, state_.global_radius, kPhotonAny, &scratch);
+            points[i].p, points[i].n, k, state_.global_radius, kPhotonAny, &scratch, true);
         // The same neighbours show where the indirect light comes from.
         records[i].guide = build_guide(state_.global, scratch, Frame(points[i].n));
       }
