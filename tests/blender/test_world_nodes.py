@@ -1,7 +1,7 @@
 """World node trees against Cycles: a Light Path "Is Camera Ray" mix of two Backgrounds (the
 camera sees one, the floor is lit by the other) and an HDRI through a rotated Environment
 Texture (the background the camera sees, and the floor it lights through the importance-sampled
-environment light)."""
+environment light), also wired straight into the World Output without a Background node."""
 
 import sys
 from pathlib import Path
@@ -40,8 +40,11 @@ def test_camera_rays_see_one_background_and_the_floor_is_lit_by_the_other(render
     assert np.abs(floor - floor_cycles).max() <= 0.03 * floor_cycles.max(), (floor, floor_cycles)
 
 
-def test_hdri_background_and_lighting_match_cycles(renders):
-    sky, sky_cycles = region_means(renders["hdri"], SKY)
+@pytest.mark.parametrize("case", ["hdri", "hdri_direct"])
+def test_hdri_background_and_lighting_match_cycles(renders, case):
+    """hdri_direct: the Environment Texture's Color straight into the World Output, which
+    Cycles renders as an emission of it (a Background of strength 1)."""
+    sky, sky_cycles = region_means(renders[case], SKY)
     assert np.abs(sky - sky_cycles).max() <= 0.01 * sky_cycles.max(), (sky, sky_cycles)
-    floor, floor_cycles = region_means(renders["hdri"], FLOOR)
+    floor, floor_cycles = region_means(renders[case], FLOOR)
     assert np.abs(floor - floor_cycles).max() <= 0.03 * floor_cycles.max(), (floor, floor_cycles)

@@ -61,6 +61,10 @@ class _WorldCompiler:
         if node is None or depth > MAX_DEPTH:
             return self._black()
         b = self.builder
+        if src.socket.type != 'SHADER':
+            # Cycles turns a colour (or value) linked into a shader input into an emission of
+            # it: an Environment Texture wired straight into the World Output lights the scene.
+            return b.value_of(socket, stack, 'color')
         if node.type in _EMITTERS:
             color = b.value_of(node.inputs["Color"], src.stack, 'color')
             strength = b.value_of(node.inputs["Strength"], src.stack, 'float')

@@ -1,9 +1,10 @@
 """World node trees rendered by Cycles and by Photon to EXR in the folder given. Args: out_dir,
-photon_samples, cycles_samples. Two worlds:
+photon_samples, cycles_samples. Three worlds:
   camera_trick: Mix Shader of two Backgrounds by Light Path "Is Camera Ray" (camera rays see
       blue, everything else is lit by white), over a white diffuse floor;
   hdri: Blender's studio HDRI through an Environment Texture rotated by a Mapping node, seen
-      by the camera above the horizon and lighting a white diffuse floor below it.
+      by the camera above the horizon and lighting a white diffuse floor below it;
+  hdri_direct: the same Environment Texture's Color wired straight into the World Output.
 Returns {case: {"cycles": path, "photon": path}}."""
 
 import math
@@ -89,9 +90,18 @@ def hdri_world(scene):
     scene.world = world
 
 
+def hdri_direct_world(scene):
+    """The HDRI's Color wired straight into the World Output, without a Background node."""
+    hdri_world(scene)
+    nodes, links = scene.world.node_tree.nodes, scene.world.node_tree.links
+    links.new(nodes["Environment Texture"].outputs["Color"],
+              nodes["World Output"].inputs["Surface"])
+
+
 def main(out_dir, photon_samples, cycles_samples):
     result = {}
-    for case, make_world in (("camera_trick", camera_trick_world), ("hdri", hdri_world)):
+    for case, make_world in (("camera_trick", camera_trick_world), ("hdri", hdri_world),
+                             ("hdri_direct", hdri_direct_world)):
         result[case] = {}
         for engine, samples in (("CYCLES", int(cycles_samples)),
                                 ("PHOTON", int(photon_samples))):
