@@ -1,8 +1,8 @@
 """Blender's standard passes beyond Combined (View Layer > Passes > Data: Z, Mist, Normal,
 Position, UV, Object Index, Material Index, Denoising Data; > Light: Diffuse / Glossy /
-Transmission Color, Emission; > Cryptomatte: Object, Material, Asset): which the view layer
-enables, their registration, the native settings that make the renderer write them, and one
-warning naming the enabled passes Photon does not render."""
+Transmission Color, Emission; > Cryptomatte: Object, Material, Asset; > Shader AOV): which the
+view layer enables, their registration, the native settings that make the renderer write them,
+and one warning naming the enabled passes Photon does not render."""
 
 from . import cryptomatte
 
@@ -64,6 +64,19 @@ def enabled(native, view_layer):
     return [p for p in native.DATA_PASSES if p[0] in names]
 
 
+def shader_aovs(view_layer):
+    """{name: 'COLOR' | 'VALUE'} of the view layer's shader AOVs, in its order, without those
+    Blender marks invalid (a name used twice, or by another pass), which Cycles skips too."""
+    return {aov.name: aov.type for aov in getattr(view_layer, "aovs", ())
+            if getattr(aov, "is_valid", True) and aov.type in ('COLOR', 'VALUE')}
+
+
+def invalid_aovs(view_layer):
+    """Names of the view layer's shader AOVs Blender marks invalid."""
+    return [aov.name for aov in getattr(view_layer, "aovs", ())
+            if not getattr(aov, "is_valid", True)]
+
+
 def cryptomatte_bits(native, view_layer):
     """The native CRYPTOMATTE_* bits of the Cryptomatte passes the view layer enables."""
     bits = 0
@@ -76,9 +89,12 @@ def cryptomatte_bits(native, view_layer):
 def register(engine, native, scene, view_layer):
     """Registers the enabled data and Cryptomatte passes (the compositor's Render Layers node
     shows them)."""
+    aovs = shader_aovs(view_layer)
     for name, channels, chan_id in native.data_pass_names(settings(native, scene, view_layer)):
-        engine.register_pass(scene, view_layer, name, channels, chan_id,
-                             _PASS_TYPES.get(name, "COLOR"))
+        kind = aovs.get(name) if name not in _PASS_TYPES else None
+        pass_type = ("VALUE" if kind == 'VALUE' else "COLOR") if kind else \
+            _PASS_TYPES.get(name, "COLOR")
+        engine.register_pass(scene, view_layer, name, channels, chan_id, pass_type)
 
 
 def settings(native, scene, view_layer, origin=None):
@@ -92,6 +108,7 @@ def settings(native, scene, view_layer, origin=None):
     out.cryptomatte_depth = int(getattr(view_layer, "pass_cryptomatte_depth", 6))
     out.cryptomatte_default_material = cryptomatte.name_id(cryptomatte.DEFAULT_MATERIAL)
     out.alpha_threshold = float(getattr(view_layer, "pass_alpha_threshold", 0.5))
+    out.aovs = list(shader_aovs(view_layer).items())
     world = scene.world
     mist = getattr(world, "mist_settings", None) if world is not None else None
     if mist is None:  # Cycles' film defaults without a world
@@ -107,13 +124,14 @@ def settings(native, scene, view_layer, origin=None):
 
 def unsupported(view_layer):
     """Labels of the passes the view layer enables that Photon does not render (they are not
-    registered, so the result has none of them), AOVs and light groups included."""
+    registered, so the result has none of them), light groups and invalid AOVs included."""
     labels = [label for prop, label in _UNSUPPORTED_TOGGLES if getattr(view_layer, prop, False)]
     cycles = getattr(view_layer, "cycles", None)
     if cycles is not None:
         labels += [label for prop, label in _UNSUPPORTED_CYCLES_TOGGLES
                    if getattr(cycles, prop, False)]
-    labels += [f"AOV '{aov.name}'" for aov in getattr(view_layer, "aovs", ())]
+    labels += [f"AOV '{name}' (its name is used twice or by another pass)"
+               for name in invalid_aovs(view_layer)]
     labels += [f"Light Group '{group.name}'" for group in getattr(view_layer, "lightgroups", ())]
     return labels
 

@@ -266,6 +266,30 @@ class PHOTON_PT_passes_cryptomatte(PhotonViewLayerPanel, bpy.types.Panel):
         layout.prop(view_layer, "pass_cryptomatte_depth", text="Levels")
 
 
+class PHOTON_PT_passes_aov(PhotonViewLayerPanel, bpy.types.Panel):
+    """View Layer > Shader AOV, as Blender draws it for EEVEE and Cycles: the AOVs that AOV
+    Output nodes write (sync/aovs.py)."""
+    bl_label = "Shader AOV"
+    bl_parent_id = "PHOTON_PT_passes"
+
+    def draw(self, context):
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        view_layer = context.view_layer
+        row = layout.row()
+        list_type = "VIEWLAYER_UL_aov" if hasattr(bpy.types, "VIEWLAYER_UL_aov") else "UI_UL_list"
+        row.column().template_list(list_type, "aovs", view_layer, "aovs", view_layer,
+                                   "active_aov_index", rows=3)
+        sub = row.column().column(align=True)
+        sub.operator("scene.view_layer_add_aov", icon='ADD', text="")
+        sub.operator("scene.view_layer_remove_aov", icon='REMOVE', text="")
+        aov = view_layer.active_aov
+        if aov and not aov.is_valid:
+            layout.label(text="Conflicts with another render pass with the same name",
+                         icon='ERROR')
+
+
 class PHOTON_PT_layer_override(PhotonViewLayerPanel, bpy.types.Panel):
     """The view layer's Material Override (Blender draws it only in Cycles' own panel)."""
     bl_label = "Override"
@@ -459,7 +483,7 @@ classes = (PHOTON_PT_render, PHOTON_PT_spectral, PHOTON_PT_photon_mapping, PHOTO
            PHOTON_PT_vcm,
            PHOTON_PT_simplify, PHOTON_PT_simplify_viewport, PHOTON_PT_simplify_render,
            PHOTON_PT_performance, PHOTON_PT_film, PHOTON_PT_passes, PHOTON_PT_passes_data,
-           PHOTON_PT_passes_cryptomatte, PHOTON_PT_layer_override,
+           PHOTON_PT_passes_cryptomatte, PHOTON_PT_passes_aov, PHOTON_PT_layer_override,
            PHOTON_PT_light, PHOTON_PT_spot, PHOTON_PT_material, PHOTON_PT_object_ray_visibility,
            PHOTON_PT_object_mask)
 

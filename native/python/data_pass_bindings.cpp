@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <memory>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "photon/integrators/data_passes.h"
 
@@ -37,7 +40,29 @@ void register_data_pass_classes(py::module_& m) {
           [](DataPassSettings& s, const std::vector<float>& v) {
             if (v.size() != 3) throw py::value_error("origin needs 3 floats");
             s.origin = Vec3(v[0], v[1], v[2]);
-          });
+          })
+      .def_property(
+          "aovs",
+          [](const DataPassSettings& s) {
+            py::list out;
+            for (const ShaderAovPass& aov : s.aovs)
+              out.append(py::make_tuple(aov.name, aov.color ? "COLOR" : "VALUE"));
+            return out;
+          },
+          [](DataPassSettings& s, const std::vector<std::pair<std::string, std::string>>& v) {
+            std::vector<ShaderAovPass> aovs;
+            for (const auto& [name, type] : v) {
+              if (type != "COLOR" && type != "VALUE")
+                throw py::value_error("shader AOV '" + name + "': type must be COLOR or VALUE");
+              for (const ShaderAovPass& other : aovs)
+                if (other.name == name)
+                  throw py::value_error("shader AOV '" + name + "' is listed twice");
+              aovs.push_back({name, type == "COLOR"});
+            }
+            s.aovs = std::move(aovs);
+          },
+          "[(name, 'COLOR' | 'VALUE')]: the view layer's shader AOVs, written after the "
+          "Cryptomatte layers");
   py::list table;
   for (const DataPassInfo& p : data_pass_table())
     table.append(py::make_tuple(p.name, p.channels, p.channel_ids, p.bit));

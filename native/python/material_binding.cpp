@@ -197,7 +197,7 @@ py::object describe_input(const Input& in, ParamKind kind) {
 }  // namespace
 
 Material parse_material(const std::string& name, const py::handle& closures, int64_t texture_count,
-                        const py::handle& program, std::string* warning) {
+                        const py::handle& program, std::string* warning, const py::handle& aovs) {
   if (!py::isinstance<py::list>(closures) && !py::isinstance<py::tuple>(closures))
     fail("closures must be a list of dicts");
   Material material;
@@ -207,6 +207,26 @@ Material parse_material(const std::string& name, const py::handle& closures, int
     material.closures.push_back(
         parse_closure(item, "material '" + name + "' closure " + std::to_string(i++)));
   if (!program.is_none()) material.program = parse_program(program);
+  if (!aovs.is_none()) {
+    if (!py::isinstance<py::list>(aovs) && !py::isinstance<py::tuple>(aovs))
+      fail("material '" + name + "': aovs must be a list of dicts");
+    for (auto item : py::reinterpret_borrow<py::sequence>(aovs)) {
+      const std::string what = "material '" + name + "' AOV output";
+      if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
+      py::dict d = py::reinterpret_borrow<py::dict>(item);
+      check_keys(d, {"name", "type", "value"}, what);
+      if (!d.contains("name") || !d.contains("type") || !d.contains("value"))
+        fail(what + " needs 'name', 'type' and 'value'");
+      MaterialAov aov;
+      aov.name = py::str(d["name"]);
+      const std::string type = py::str(d["type"]);
+      if (type != "COLOR" && type != "VALUE") fail(what + ": type must be COLOR or VALUE");
+      aov.color = type == "COLOR";
+      aov.value = parse_input(d["value"], aov.color ? ParamKind::kColor : ParamKind::kScalar,
+                              Input::constant(0.0f), what + " '" + aov.name + "'");
+      material.aovs.push_back(std::move(aov));
+    }
+  }
   sanitize_material(&material, texture_count < 0 ? SIZE_MAX : static_cast<size_t>(texture_count),
                     warning);
   return material;
@@ -286,6 +306,15 @@ py::dict describe_material(const Material& material) {
   py::dict out;
   out["name"] = material.name;
   out["closures"] = closures;
+  py::list aovs;
+  for (const MaterialAov& aov : material.aovs) {
+    py::dict d;
+    d["name"] = aov.name;
+    d["type"] = aov.color ? "COLOR" : "VALUE";
+    d["value"] = describe_input(aov.value, aov.color ? ParamKind::kColor : ParamKind::kScalar);
+    aovs.append(d);
+  }
+  out["aovs"] = aovs;
   return out;
 }
 
@@ -363,10 +392,13 @@ void register_material_functions(py::module_& m) {
       });
   m.def(
       "describe_material",
-      [](const std::string& name, const py::list& closures, int64_t texture_count) {
-        return describe_material(parse_material(name, closures, texture_count));
+      [](const std::string& name, const py::list& closures, int64_t texture_count,
+         const py::object& aovs) {
+        return describe_material(
+            parse_material(name, closures, texture_count, py::none(), nullptr, aovs));
       },
       py::arg("name"), py::arg("closures"), py::arg("texture_count") = -1,
+      py::arg("aovs") = py::none(),
       "Parses closure dicts as Scene.add_material does and returns the Material as dicts "
       "(every param listed, clamped values and fallbacks applied).");
   m.def(

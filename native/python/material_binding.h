@@ -17,11 +17,13 @@ namespace photon_python {
 // texture indices outside [0, texture_count) become the param's default constant
 // (texture_count < 0: any non-negative index is accepted).
 // `program` (None or a program dict, program_binding.h) is compiled into Material::program;
-// `warning` (may be null) receives why an invalid program was dropped.
+// `warning` (may be null) receives why an invalid program was dropped. `aovs` (None or a list
+// of {"name", "type": "COLOR" | "VALUE", "value": input}) are the AOV Output nodes.
 photon::Material parse_material(const std::string& name, const pybind11::handle& closures,
                                 int64_t texture_count,
                                 const pybind11::handle& program = pybind11::none(),
-                                std::string* warning = nullptr);
+                                std::string* warning = nullptr,
+                                const pybind11::handle& aovs = pybind11::none());
 
 // An Image Texture's settings; unknown extension / interpolation names raise ValueError.
 photon::ImageTexture parse_texture(const std::string& path, bool srgb, const std::string& extension,

@@ -400,19 +400,21 @@ PYBIND11_MODULE(_photon, m) {
       .def(
           "add_material",
           [](Scene& scene, const std::string& name, const py::list& closures,
-             const py::object& program, float pass_index) {
+             const py::object& program, float pass_index, const py::object& aovs) {
             std::string warning;
             Material material = photon_python::parse_material(
-                name, closures, static_cast<int64_t>(scene.textures.size()), program, &warning);
+                name, closures, static_cast<int64_t>(scene.textures.size()), program, &warning,
+                aovs);
             if (!warning.empty()) throw py::value_error(warning);
             material.pass_index = pass_index;
             scene.materials.push_back(std::move(material));
             return scene.materials.size() - 1;
           },
           py::arg("name"), py::arg("closures"), py::arg("program") = py::none(),
-          py::arg("pass_index") = 0.0f,
+          py::arg("pass_index") = 0.0f, py::arg("aovs") = py::none(),
           "Adds a material from closure dicts (schema: addon/photon/sync/materials.py); "
-          "texture indices refer to add_texture's.")
+          "texture indices refer to add_texture's. `aovs`: its AOV Output nodes, "
+          "[{'name', 'type': 'COLOR' | 'VALUE', 'value': input}].")
       .def(
           "add_light",
           [](Scene& scene, const std::string& name, const std::string& type,

@@ -23,12 +23,13 @@ def test_object_visibility_shows_the_ray_flags_photon_reads(blender):
             "PHOTON_PT_object_mask"} <= names
 
 
-def test_view_layer_passes_offer_cryptomatte_and_denoising_data(blender):
+def test_view_layer_passes_offer_cryptomatte_denoising_data_and_shader_aovs(blender):
     """Passes Photon writes have their toggles under Photon Passes (Blender's own Passes
     panel, which lists passes Photon does not write, is hidden)."""
     data = panels(blender)["view_layer"]
     children = {name: parent for name, _label, parent, _order in data}
     assert children.get("PHOTON_PT_passes_cryptomatte") == "PHOTON_PT_passes", data
+    assert children.get("PHOTON_PT_passes_aov") == "PHOTON_PT_passes", data
     assert children.get("PHOTON_PT_passes_data") == "PHOTON_PT_passes", data
     assert "VIEWLAYER_PT_layer_passes" not in children
 

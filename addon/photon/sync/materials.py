@@ -15,7 +15,7 @@ import math
 import bpy
 
 from .. import native
-from . import graph, nodes
+from . import aovs as sync_aovs, graph, nodes
 from .inputs import (DEFAULT_COLOR, MaterialContext, clamp_constant, closure_param,
                      closure_table, closures_by_name, read_input, read_normal_map)
 from .shader_program import RENDER_COLOR, program_attributes
@@ -210,11 +210,25 @@ def _diffuse_of(color):
              "weight": []}]
 
 
-def convert_material(material, reporter, textures):
-    """(name, closures, program) for Scene.add_material; textures is a TextureTable; program
-    is None when every input is a constant or a plain image lookup."""
+def convert_material(material, reporter, textures, aovs=None):
+    """(name, closures, program, aov outputs) for Scene.add_material; textures is a
+    TextureTable; program is None when every input is a constant or a plain image lookup;
+    `aovs` ({name: 'COLOR' | 'VALUE'}) are the view layer's shader AOVs the material's AOV
+    Output nodes may write."""
     name, closures, ctx = _convert(material, reporter, textures)
-    return name, closures, (ctx.program_dict() if ctx is not None else None)
+    outputs = []
+    if aovs and ctx is not None and material.use_nodes and material.node_tree is not None \
+            and closures_from_nodes(material, ctx):
+        outputs = sync_aovs.material_aovs(material.node_tree, aovs, ctx)
+    return name, closures, (ctx.program_dict() if ctx is not None else None), outputs
+
+
+def closures_from_nodes(material, ctx):
+    """Whether the material's Surface output is linked (Cycles compiles a material's AOV
+    Output nodes only then)."""
+    output = nodes.output_node(material.node_tree, 'OUTPUT_MATERIAL')
+    surface = output.inputs.get("Surface") if output else None
+    return surface is not None and nodes.source(surface, (), ctx.links).node is not None
 
 
 def _convert(material, reporter, textures):
@@ -302,9 +316,10 @@ def read_constant_color(value, ctx):
 class MaterialTable:
     """Converts each Blender material once per render and hands out native indices."""
 
-    def __init__(self, native_scene, reporter, pixels_type=None):
+    def __init__(self, native_scene, reporter, pixels_type=None, aovs=None):
         self._scene = native_scene
         self._reporter = reporter
+        self._aovs = aovs  # {name: 'COLOR' | 'VALUE'}: the view layer's shader AOVs
         self._index = {}
         self.names = {}  # native index -> the Blender material's name (None: no material)
         self._attributes = {}  # native index -> program_attributes() of its program
@@ -315,17 +330,21 @@ class MaterialTable:
         key = material.name_full if material is not None else None
         found = self._index.get(key)
         if found is None:
-            name, closures, program = convert_material(material, self._reporter, self.textures)
+            name, closures, program, aovs = convert_material(material, self._reporter,
+                                                             self.textures, self._aovs)
             pass_index = float(getattr(material, "pass_index", 0)) if material else 0.0
             try:
-                found = self._scene.add_material(name, closures, program, pass_index)
+                found = self._scene.add_material(name, closures, program, pass_index,
+                                                 aovs=aovs or None)
             except ValueError as error:
                 if program is None:
                     raise
                 self._reporter.warning(f"Material '{name}': its nodes could not be compiled "
                                        f"({error}); rendering its inputs' constant values")
+                plain_aovs = [dict(a, value=sync_aovs.plain_value(a["value"], a["type"]))
+                              for a in aovs]
                 found = self._scene.add_material(name, _without_registers(closures), None,
-                                                 pass_index)
+                                                 pass_index, aovs=plain_aovs or None)
                 program = None
             self._attributes[found] = program_attributes(program)
             self._index[key] = found
@@ -341,7 +360,8 @@ class MaterialTable:
         if index is None:
             return None
         textures_before = self._scene.texture_count
-        name, closures, program = convert_material(material, self._reporter, self.textures)
+        name, closures, program, _aovs = convert_material(material, self._reporter,
+                                                          self.textures)
         if self._scene.texture_count != textures_before:
             return None
         if not set(program_attributes(program)) <= set(self._attributes.get(index, {})):

@@ -6,7 +6,8 @@ import numpy as np
 
 from . import object_info
 from .cancel import SyncPoll
-from .. import cryptomatte, texture_cache
+from .. import cryptomatte, data_passes, texture_cache
+from . import aovs as sync_aovs
 from . import camera as sync_camera
 from . import hair as sync_hair
 from . import layers as sync_layers
@@ -94,8 +95,11 @@ def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, me
         mesh_cache.begin(depsgraph)
         export_mesh = mesh_cache.export
     scene = depsgraph.scene
+    render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
+    # Shader AOVs are final-render passes: the viewport compiles no AOV Output node.
+    aovs = data_passes.shader_aovs(depsgraph.view_layer) if render_mode else {}
     materials = sync_materials.MaterialTable(native_scene, reporter,
-                                             getattr(native, "TexturePixels", None))
+                                             getattr(native, "TexturePixels", None), aovs)
     stats._release.append(materials.release)
     stats.material_table = materials
 
@@ -113,7 +117,6 @@ def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, me
     hair_view = None       # the camera the ribbons face, read once the first hair shows up
     hair_strands = {}      # (object, particle system) -> strands, shared by its instances
     has_hair = {}          # object name -> whether it has hair systems to render
-    render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
     crypto = stats.cryptomatte = cryptomatte.Names.for_view_layer(depsgraph.view_layer)
 
     def crypto_ids(obj):
@@ -260,6 +263,11 @@ def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, me
     sync_camera.export_camera(native_scene, scene, depsgraph, reporter, origin=origin)
     world, _ = sync_world.export_world(native_scene, scene.world, reporter, materials.textures,
                                        getattr(native, "MAX_EMISSION", None))
+    world_aovs = sync_aovs.world_aov_names(scene.world, aovs)
+    if world_aovs:
+        reporter.warning(f"World '{scene.world.name}': its AOV Output nodes are not written "
+                         f"(Photon writes shader AOVs from surfaces only); where the camera sees "
+                         f"the world, AOV {', '.join(repr(n) for n in world_aovs)} stays 0")
     poll()
     if native_scene.texture_count:
         # Where the session converts the images (it reads the folder when it starts).

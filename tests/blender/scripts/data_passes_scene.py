@@ -10,6 +10,10 @@ on either side of View Layer > Passes > Alpha Threshold (0.5).
 `shaders` gives the objects materials with every kind of closure (Principled metal and glass,
 Glossy, Glass, Translucent and Emission nodes) and enables the colour passes and Emit.
 `denoise` enables the Denoising Data passes (Denoising Normal, Albedo, Depth).
+`aov` adds shader AOVs (View Layer > Shader AOV: "tint" colour, "height" value, "unused" value)
+and AOV Output nodes writing them: the floor a noise colour and its height, the sphere a constant
+colour and its height from inside a node group, the cube's top only a Value into the colour AOV
+(which writes its Color input), the veils (with `veil`) 100 into "height".
 """
 
 import math
@@ -133,6 +137,55 @@ if "shaders" in extra:
     area.data.size = 0.6
     area.visible_camera = True
 
+
+
+def aov_output(tree, name, color=None, value=None):
+    """An AOV Output node in `tree` writing AOV `name` (sockets: an output to link, or a
+    constant)."""
+    node = tree.nodes.new("ShaderNodeOutputAOV")
+    if hasattr(node, "aov_name"):
+        node.aov_name = name
+    else:
+        node.name = name  # Blender 3.x: the AOV name hides the node's name
+    for socket, given in (("Color", color), ("Value", value)):
+        if given is None:
+            continue
+        if isinstance(given, bpy.types.NodeSocket):
+            tree.links.new(given, node.inputs[socket])
+        else:
+            node.inputs[socket].default_value = given
+    return node
+
+
+def height_group():
+    """A node group that writes the shading point's height into AOV "height"."""
+    group = bpy.data.node_groups.new("HeightAOV", "ShaderNodeTree")
+    geometry = group.nodes.new("ShaderNodeNewGeometry")
+    split = group.nodes.new("ShaderNodeSeparateXYZ")
+    group.links.new(geometry.outputs["Position"], split.inputs[0])
+    aov_output(group, "height", value=split.outputs["Z"])
+    return group
+
+
+if "aov" in extra:
+    for name, kind in (("tint", "COLOR"), ("height", "VALUE"), ("unused", "VALUE")):
+        aov = layer.aovs.add()
+        aov.name, aov.type = name, kind
+    tree = floor.data.materials[0].node_tree
+    noise = tree.nodes.new("ShaderNodeTexNoise")
+    noise.inputs["Scale"].default_value = 0.8
+    geometry = tree.nodes.new("ShaderNodeNewGeometry")
+    split = tree.nodes.new("ShaderNodeSeparateXYZ")
+    tree.links.new(geometry.outputs["Position"], split.inputs[0])
+    aov_output(tree, "tint", color=noise.outputs["Color"])
+    aov_output(tree, "height", value=split.outputs["Z"])
+    aov_output(tree, "unused", value=7.0).mute = True  # muted: writes nothing
+    tree = sphere.data.materials[0].node_tree
+    aov_output(tree, "tint", color=(0.2, 0.4, 0.6, 1.0))
+    tree.nodes.new("ShaderNodeGroup").node_tree = height_group()
+    aov_output(cube.data.materials[1].node_tree, "tint", value=5.0)
+    aov_output(cube.data.materials[0].node_tree, "elsewhere", value=3.0)  # not a view layer AOV
+
 render.engine = engine
 # Photon reads Cycles' Film settings too: Box, and Photon's own Box width below.
 scene.cycles.pixel_filter_type = "BOX"
@@ -158,3 +211,5 @@ if "veil" in extra:
         mat.node_tree.nodes["Principled BSDF"].inputs["Alpha"].default_value = alpha
         mat.blend_method = "BLEND"
         veil.data.materials.append(mat)
+        if "aov" in extra:
+            aov_output(mat.node_tree, "height", value=100.0)

@@ -277,7 +277,8 @@ def main(folder):
     result = {"materials": {}}
     for mat in bpy.data.materials:
         reporter.current = mat.name
-        name, closures, program = sync_materials.convert_material(mat, reporter, textures)
+        name, closures, program, _aovs = sync_materials.convert_material(mat, reporter,
+                                                                         textures)
         result["materials"][name] = {"closures": closures, "program": program,
                                      "warnings": reporter.warnings.get(mat.name, [])}
     result["textures"] = scene.textures

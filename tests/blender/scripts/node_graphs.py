@@ -179,7 +179,7 @@ def convert(mat):
     textures = sync_textures.TextureTable(scene, reporter, _photon.TexturePixels)
     reporter.current = mat.name
     start = time.perf_counter()
-    name, closures, _program = sync_materials.convert_material(mat, reporter, textures)
+    name, closures, _program, _aovs = sync_materials.convert_material(mat, reporter, textures)
     seconds = time.perf_counter() - start
     textures.release()
     return {"name": name, "closures": closures, "seconds": seconds,

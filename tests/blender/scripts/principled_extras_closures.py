@@ -42,7 +42,8 @@ def main():
     result = {}
     for mat in bpy.data.materials:
         reporter.current = mat.name
-        name, closures, program = sync_materials.convert_material(mat, reporter, textures)
+        name, closures, program, _aovs = sync_materials.convert_material(mat, reporter,
+                                                                         textures)
         result[name] = {"closures": closures, "warnings": reporter.warnings.get(mat.name, []),
                         "program": program is not None}
     return result

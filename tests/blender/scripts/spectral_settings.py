@@ -69,8 +69,8 @@ def main():
                              ("Diffuse", "ShaderNodeBsdfDiffuse", 20.0),
                              ("PlainGlass", "ShaderNodeBsdfGlass", 0.0),
                              ("Absurd", "ShaderNodeBsdfGlass", 0.001)):
-        _, found, _ = sync_materials.convert_material(glass_material(name, node, abbe), reporter,
-                                                      textures)
+        _, found, _, _ = sync_materials.convert_material(glass_material(name, node, abbe),
+                                                         reporter, textures)
         closures[name] = found
     result["closures"] = closures
 

@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include "photon/base/math.h"
 
@@ -33,6 +35,13 @@ enum CryptomatteBits : uint32_t {
   kCryptoAsset = 1u << 2,
 };
 
+// A shader AOV of the view layer (View Layer > Shader AOV): the AOV Output nodes of that name
+// write it, colour (RGBA: the value and the share of samples that wrote it) or value.
+struct ShaderAovPass {
+  std::string name;
+  bool color = true;
+};
+
 // The data passes a render writes besides the image.
 struct DataPassSettings {
   uint32_t mask = 0;  // DataPassBits
@@ -50,6 +59,7 @@ struct DataPassSettings {
   // The Cryptomatte material ID of surfaces without a material (the add-on hashes the name
   // Cycles gives its default surface).
   float cryptomatte_default_material = 0.0f;
+  std::vector<ShaderAovPass> aovs;  // after the Cryptomatte layers in a pixel
 };
 
 }  // namespace photon

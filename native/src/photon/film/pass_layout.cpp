@@ -77,6 +77,12 @@ std::vector<DataPassSlot> data_pass_slots(const DataPassSettings& settings) {
       offset += 4;
     }
   }
+  // As Cycles registers shader AOVs: colour RGBA, value X.
+  for (const ShaderAovPass& aov : settings.aovs) {
+    const int channels = aov.color ? 4 : 1;
+    slots.push_back({aov.name, channels, aov.color ? "RGBA" : "X", offset});
+    offset += channels;
+  }
   return slots;
 }
 

@@ -36,8 +36,8 @@ int data_pass_floats(uint32_t mask);
 // Offset of `bit`'s first float within a pixel of `mask` (-1 when `bit` is not in `mask`).
 int data_pass_offset(uint32_t mask, uint32_t bit);
 
-// A pass within a pixel's floats (data passes, then Cryptomatte layers), named and laid out
-// as Blender registers it ("CryptoObject00", 4 channels "RGBA").
+// A pass within a pixel's floats (data passes, then Cryptomatte layers, then shader AOVs), named
+// and laid out as Blender registers it ("CryptoObject00", 4 channels "RGBA").
 struct DataPassSlot {
   std::string name;
   int channels = 0;

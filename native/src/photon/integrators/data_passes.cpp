@@ -162,6 +162,23 @@ DataPassRow::DataPassRow(const RenderContext& context, const DataPassSettings& s
     crypto_kinds_.push_back(kind.bit);
     crypto_rows_.emplace_back(width, settings.cryptomatte_depth);
   }
+  for (const ShaderAovPass& aov : settings.aovs) {
+    aov_offsets_.push_back(aov_floats_);
+    aov_floats_ += aov.color ? 4 : 1;
+  }
+  if (aov_floats_ > 0 && context.scene) {
+    // Each AOV Output node writes the pass of its name and kind (Cycles' get_aov_offset); a
+    // node whose name the view layer does not list writes nothing.
+    for (const Material& m : context.scene->materials) {
+      std::vector<std::pair<int, int>> writes;
+      for (size_t k = 0; k < m.aovs.size(); ++k)
+        for (size_t j = 0; j < settings.aovs.size(); ++j)
+          if (settings.aovs[j].name == m.aovs[k].name && settings.aovs[j].color == m.aovs[k].color)
+            writes.emplace_back(static_cast<int>(k), static_cast<int>(j));
+      if (!writes.empty()) material_aovs_.emplace(&m, std::move(writes));
+    }
+  }
+  aov_sums_.assign(width * aov_floats_, 0.0f);
 }
 
 DataPassRow::~DataPassRow() = default;
@@ -171,6 +188,7 @@ void DataPassRow::clear() {
   std::fill(mist_.begin(), mist_.end(), 0.0f);
   std::fill(first_hit_.begin(), first_hit_.end(), 0);
   for (CryptomatteRow& row : crypto_rows_) row.clear();
+  std::fill(aov_sums_.begin(), aov_sums_.end(), 0.0f);
 }
 
 void DataPassRow::add_denoising_features(float* px, int sample, uint64_t pixel_index,
@@ -207,6 +225,32 @@ void DataPassRow::add_cryptomatte(size_t i, const SurfaceInteraction& si, float 
   }
 }
 
+void DataPassRow::add_aovs(size_t i, const SurfaceInteraction& si, const Vec3& wo,
+                           const ShadeRay& ray) {
+  if (!si.mat) return;
+  const auto found = material_aovs_.find(si.mat);
+  if (found == material_aovs_.end()) return;
+  constexpr size_t kStackAovs = 16;
+  Vec3 stack_values[kStackAovs];
+  std::vector<Vec3> heap_values;
+  Vec3* values = stack_values;
+  if (si.mat->aovs.size() > kStackAovs) {
+    heap_values.resize(si.mat->aovs.size());
+    values = heap_values.data();
+  }
+  eval_material_aovs(*si.mat, si, wo, *context_.accel, context_.textures, ray, values);
+  float* px = &aov_sums_[i * aov_floats_];
+  for (const auto& [k, j] : found->second) {
+    float* p = px + aov_offsets_[j];
+    if (settings_.aovs[j].color) {
+      add3(p, values[k]);
+      p[3] += 1.0f;  // Cycles writes alpha 1 with the colour
+    } else {
+      p[0] += values[k].x;
+    }
+  }
+}
+
 void DataPassRow::add_lamps(Ray ray, float t_end, const Vec3& throughput, float* px) const {
   // Lamps the camera sees (Object > Visibility > Camera) go into Emit; Cycles' camera rays
   // pass through a lamp they meet and go on to what lies behind it, each lamp on the way
@@ -227,7 +271,8 @@ void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& cam
                       const CameraHit& first) {
   const uint32_t mask = settings_.mask;
   const bool crypto = !crypto_rows_.empty();
-  if (!mask && !crypto) return;
+  const bool aovs = !material_aovs_.empty();
+  if (!mask && !crypto && !aovs) return;
   // Written once per pixel (first sample) or once per sample, at the first hit opaque enough.
   constexpr uint32_t kFirstSample =
       kPassDepth | kPassPosition | kPassObjectIndex | kPassMaterialIndex;
@@ -245,7 +290,7 @@ void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& cam
   Ray ray = camera_ray;
   Hit hit = first.hit;
   bool found = first.found;
-  bool single_done = single == 0;  // Cycles' PATH_RAY_SINGLE_PASS_DONE
+  bool single_done = single == 0 && !aovs;  // Cycles' PATH_RAY_SINGLE_PASS_DONE
   Vec3 throughput(1.0f);
   float path_length = 0.0f;
   // A camera path's transparent hits count towards its depth, as in the image (path_walker.h).
@@ -266,6 +311,8 @@ void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& cam
     const Vec3 transparency = transparent_weight(shading);
     const Vec3 alpha = clamp01(Vec3(1.0f) - transparency);
 
+    // Cycles' shaders write AOVs at every hit before the single-sample passes are done.
+    if (!single_done && aovs) add_aovs(i, si, wo, shade_ray);
     // Cycles writes the single-sample passes at the first hit whose alpha reaches View Layer >
     // Passes > Alpha Threshold (any hit when the threshold is 0).
     if (!single_done &&
@@ -349,6 +396,10 @@ void DataPassRow::finish(int samples, float* out) const {
     if (mask & kPassDenoisingDepth) dst[data_pass_offset(mask, kPassDenoisingDepth)] *= inv;
     for (size_t k = 0; k < crypto_rows_.size(); ++k)
       crypto_rows_[k].write(i, samples, dst + floats_ + k * crypto_floats);
+    // Shader AOVs are not light: averaged without the exposure (as Cycles' AOV passes).
+    const float* aov = &aov_sums_[i * aov_floats_];
+    float* aov_dst = dst + floats_ + crypto_rows_.size() * crypto_floats;
+    for (int c = 0; c < aov_floats_; ++c) aov_dst[c] = aov[c] * inv;
   }
 }
 

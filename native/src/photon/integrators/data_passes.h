@@ -14,6 +14,9 @@
 //    straight through Transparent closures, weighted by the share of the sample they take
 //    (Cycles: the path throughput's average times one minus the transparency's), as
 //    film/cryptomatte.h lays them out.
+//  - Shader AOVs take the AOV Output nodes' values at every hit up to and including the first
+//    opaque enough for the single-sample passes (Cycles' svm_node_aov_check), averaged over all
+//    samples; a colour AOV's alpha is the share of samples that wrote it.
 // Values depend on (seed, pixel, sample) only.
 #pragma once
 
@@ -21,11 +24,14 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "photon/film/cryptomatte.h"
 #include "photon/film/pass_layout.h"
 #include "photon/integrators/integrator.h"
+#include "photon/render/shader_globals.h"
 
 namespace photon {
 
@@ -51,6 +57,8 @@ class DataPassRow {
                               const CameraHit& first) const;
   // Counts a surface met with `weight` into the enabled Cryptomatte rows.
   void add_cryptomatte(size_t i, const SurfaceInteraction& si, float weight);
+  // Adds the shader AOVs the hit's material writes to pixel `i`.
+  void add_aovs(size_t i, const SurfaceInteraction& si, const Vec3& wo, const ShadeRay& ray);
 
   const RenderContext& context_;
   DataPassSettings settings_;
@@ -63,6 +71,12 @@ class DataPassRow {
   // The enabled Cryptomatte kinds in pass order (Object, Material, Asset) and their rows.
   std::vector<uint32_t> crypto_kinds_;
   std::vector<CryptomatteRow> crypto_rows_;
+  // Shader AOVs: each pass's first float in a pixel's aov_floats_, and for each material that
+  // writes any, (index into Material::aovs, pass) pairs.
+  std::vector<int> aov_offsets_;
+  int aov_floats_ = 0;
+  std::unordered_map<const Material*, std::vector<std::pair<int, int>>> material_aovs_;
+  std::vector<float> aov_sums_;  // width * aov_floats_
 };
 
 }  // namespace photon

@@ -11,6 +11,7 @@
 
 #include "photon/scene/material_params.h"
 #include "photon/session/render_session.h"
+#include "photon/shading/program_eval.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
@@ -305,6 +306,63 @@ TEST(DataPasses, CryptomatteCountsWhatTheSamplesSeeThroughTransparency) {
   // A corner pixel sees the background: no IDs at all.
   const float* corner = &fa.data[0];
   for (int f = 1; f < fa.floats; ++f) EXPECT_EQ(corner[f], 0.0f) << f;
+}
+
+// Shader AOVs on the veiled quad: the quad's AOV Output nodes write its position (through its
+// program) as a colour and its x as a value, and a constant 2 into "flag", into which the veil
+// writes 1. Each writes the pass of its name and kind only; the veil's and the quad's values
+// add up while the veil is below the alpha threshold, as Cycles writes AOVs until the
+// single-sample passes are done.
+TEST(DataPasses, ShaderAovsWriteUntilTheFirstOpaqueEnoughHit) {
+  auto scene = std::make_shared<Scene>(*veiled_quad_scene());
+  Material& quad = scene->materials[0];
+  NodeDesc geometry;
+  geometry.type = "ShaderNodeNewGeometry";
+  geometry.outputs = {{"Position", 0}};
+  quad.program.registers.assign(3, 0.0f);
+  std::string error;
+  ASSERT_EQ(compile_node(geometry, &quad.program, &error), CompileStatus::kCompiled) << error;
+  Input position;
+  position.reg = 0;
+  quad.aovs = {{"pos", true, position},
+               {"px", false, position},
+               {"flag", false, Input::constant(2.0f)},
+               {"pos", false, Input::constant(5.0f)}};  // a value AOV: no "pos" value pass
+  scene->materials[1].aovs = {{"flag", false, Input::constant(1.0f)}};
+
+  RenderSettings s = settings(24, 1, kPassPosition);
+  s.data_passes.aovs = {{"pos", true}, {"px", false}, {"flag", false}, {"none", true}};
+  const std::vector<DataPassSlot> slots = data_pass_slots(s.data_passes);
+  ASSERT_EQ(slots.size(), 5u);
+  EXPECT_EQ(slots[1].name, "pos");
+  EXPECT_EQ(slots[1].channel_ids, "RGBA");
+  EXPECT_EQ(slots[2].channel_ids, "X");
+  EXPECT_EQ(slots[4].offset, 3 + 4 + 1 + 1);
+  RenderSettings other = s;
+  other.tile_size = 7;
+  other.threads = 3;
+  const Frame through = render(scene, s);
+  EXPECT_EQ(through.data, render(scene, other).data);
+  s.data_passes.alpha_threshold = 0.0f;
+  const Frame first = render(scene, s);
+
+  const int c = 12;
+  const auto at = [&](const Frame& f, int x, int y, int slot) {
+    return &f.data[(static_cast<size_t>(y) * f.width + x) * f.floats + slots[slot].offset];
+  };
+  const float* p = through.pass(c, c, kPassPosition, kPassPosition);
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(at(through, c, c, 1)[k], p[k]);
+  EXPECT_EQ(at(through, c, c, 1)[3], 1.0f);
+  EXPECT_EQ(*at(through, c, c, 2), p[0]);
+  EXPECT_EQ(*at(through, c, c, 3), 3.0f);
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(at(through, c, c, 4)[k], 0.0f);
+  // Threshold 0: the veil is the first hit, and only its AOV is written.
+  for (int k = 0; k < 4; ++k) EXPECT_EQ(at(first, c, c, 1)[k], 0.0f);
+  EXPECT_EQ(*at(first, c, c, 3), 1.0f);
+  // A corner sees the veil (it covers the image) and the background behind it, which writes no
+  // AOV.
+  for (int f = 3; f < through.floats; ++f)
+    EXPECT_EQ(through.data[f], f == slots[3].offset ? 1.0f : 0.0f) << f;
 }
 
 // SPPM and VCM trace their own camera paths per iteration; their data passes come from the camera

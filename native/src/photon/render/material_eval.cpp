@@ -507,6 +507,25 @@ ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const A
   return out;
 }
 
+void eval_material_aovs(const Material& material, const SurfaceInteraction& si, const Vec3& wo,
+                        const Accel& accel, const TextureSet* textures, const ShadeRay& ray,
+                        Vec3* out) {
+  if (material.aovs.empty()) return;
+  InputReader in{si.uv, textures};
+  ProgramRun run(material, si, wo, &accel, textures, ray);
+  in.registers = run.registers();
+  for (size_t k = 0; k < material.aovs.size(); ++k) {
+    const MaterialAov& aov = material.aovs[k];
+    bool textured;
+    const Vec3 v = in.raw(aov.value, &textured);
+    // A register holds what the socket holds; a texture's colour into the Value input becomes
+    // its luminance (Blender's implicit conversion).
+    const bool texture_color = aov.value.reg < 0 && aov.value.texture >= 0 &&
+                               aov.value.channel == TextureChannel::kColor && textured;
+    out[k] = aov.color ? v : Vec3(texture_color ? luminance(v) : v.x, 0.0f, 0.0f);
+  }
+}
+
 Vec3 emitted_radiance(const Material& material, const SurfaceInteraction& si,
                       const TextureSet* textures, const Vec3* wo) {
   if (!material.may_emit()) return Vec3(0.0f);

@@ -25,6 +25,13 @@ const char* input_label(ClosureType type, Param p);
 ShadingPoint shade_surface(const SurfaceInteraction& si, const Vec3& wo, const Accel& accel,
                            const TextureSet* textures, const ShadeRay& ray = ShadeRay{});
 
+// The material's AOV outputs at `si` seen along `ray` from `wo`: out[k] for material.aovs[k] (a
+// value AOV in .x), as the nodes compute them, unclamped (non-finite values read as 0). Runs the
+// program again; only camera hits that write shader AOVs need it.
+void eval_material_aovs(const Material& material, const SurfaceInteraction& si, const Vec3& wo,
+                        const Accel& accel, const TextureSet* textures, const ShadeRay& ray,
+                        Vec3* out);
+
 // Emitted radiance only (for emissive triangles as lights): cheaper than shade_surface.
 // `wo` (towards the viewer) matters only to programs that read the incoming direction; without
 // it the geometric normal stands in.

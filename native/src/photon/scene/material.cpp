@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "photon/scene/material_params.h"
 #include "photon/scene/shader_program.h"
@@ -74,6 +75,10 @@ void sanitize_material(Material* material, size_t texture_count, std::string* wa
       sanitize_input(&f.fac, kMixFactor.range, Input::constant(kMixFactor.default_value),
                      texture_count, registers);
   }
+  // AOV values are written as the nodes compute them (Cycles clamps nothing), finite only.
+  const ParamRange any{-std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
+  for (MaterialAov& aov : material->aovs)
+    sanitize_input(&aov.value, any, Input::constant(0.0f), texture_count, registers);
 }
 
 std::array<Input, static_cast<size_t>(Param::kCount)> Closure::default_params() {

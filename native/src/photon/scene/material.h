@@ -153,6 +153,15 @@ struct Closure {
   static std::array<Input, static_cast<size_t>(Param::kCount)> default_params();
 };
 
+// An AOV Output node whose name is one of the view layer's shader AOVs (Cycles' OutputAOVNode):
+// its Color input for a colour AOV, its Value input for a value AOV (in value.x), written at the
+// camera's first hits (integrators/data_passes.h).
+struct MaterialAov {
+  std::string name;
+  bool color = true;
+  Input value;
+};
+
 struct Material {
   std::string name;
   std::vector<Closure> closures;  // empty: black (Cycles renders an empty output black)
@@ -161,6 +170,7 @@ struct Material {
   ShaderProgram program;
   float pass_index = 0.0f;            // Object Info's Material Index
   float cryptomatte_material = 0.0f;  // Cryptomatte ID from the name's hash (zero: none)
+  std::vector<MaterialAov> aovs;
 
   // Single-closure materials for tests, the CLI and the built-in scenes.
   static Material diffuse(const Vec3& color, const std::string& name = "diffuse");
