@@ -64,17 +64,22 @@ def enabled(native, view_layer):
     return [p for p in native.DATA_PASSES if p[0] in names]
 
 
-def shader_aovs(view_layer):
-    """{name: 'COLOR' | 'VALUE'} of the view layer's shader AOVs, in its order, without those
-    Blender marks invalid (a name used twice, or by another pass), which Cycles skips too."""
-    return {aov.name: aov.type for aov in getattr(view_layer, "aovs", ())
-            if getattr(aov, "is_valid", True) and aov.type in ('COLOR', 'VALUE')}
+def _view_layer_aovs(view_layer):
+    return [aov for aov in getattr(view_layer, "aovs", ()) if aov.type in ('COLOR', 'VALUE')]
 
 
-def invalid_aovs(view_layer):
-    """Names of the view layer's shader AOVs Blender marks invalid."""
-    return [aov.name for aov in getattr(view_layer, "aovs", ())
-            if not getattr(aov, "is_valid", True)]
+def shader_aovs(native, scene, view_layer):
+    """{name: 'COLOR' | 'VALUE'} of the view layer's shader AOVs Photon writes, in its order.
+    Left out, as Cycles leaves them out: those Blender marks invalid, and those named like a
+    pass the render writes anyway (Blender checks that only when the list is edited in its UI,
+    so a script can add an AOV called Mist beside the Mist pass)."""
+    return dict(settings(native, scene, view_layer).aovs)
+
+
+def skipped_aovs(native, scene, view_layer):
+    """Names of the view layer's shader AOVs that shader_aovs leaves out."""
+    written = shader_aovs(native, scene, view_layer)
+    return [aov.name for aov in _view_layer_aovs(view_layer) if aov.name not in written]
 
 
 def cryptomatte_bits(native, view_layer):
@@ -89,7 +94,7 @@ def cryptomatte_bits(native, view_layer):
 def register(engine, native, scene, view_layer):
     """Registers the enabled data and Cryptomatte passes (the compositor's Render Layers node
     shows them)."""
-    aovs = shader_aovs(view_layer)
+    aovs = shader_aovs(native, scene, view_layer)
     for name, channels, chan_id in native.data_pass_names(settings(native, scene, view_layer)):
         kind = aovs.get(name) if name not in _PASS_TYPES else None
         pass_type = ("VALUE" if kind == 'VALUE' else "COLOR") if kind else \
@@ -108,7 +113,6 @@ def settings(native, scene, view_layer, origin=None):
     out.cryptomatte_depth = int(getattr(view_layer, "pass_cryptomatte_depth", 6))
     out.cryptomatte_default_material = cryptomatte.name_id(cryptomatte.DEFAULT_MATERIAL)
     out.alpha_threshold = float(getattr(view_layer, "pass_alpha_threshold", 0.5))
-    out.aovs = list(shader_aovs(view_layer).items())
     world = scene.world
     mist = getattr(world, "mist_settings", None) if world is not None else None
     if mist is None:  # Cycles' film defaults without a world
@@ -119,26 +123,31 @@ def settings(native, scene, view_layer, origin=None):
         out.mist_falloff = _MIST_FALLOFF.get(mist.falloff, 2.0)
     if origin is not None:
         out.origin = [float(v) for v in origin]
+    from . import properties
+    taken = {"Combined", *properties.enabled_passes(view_layer)}
+    taken.update(name for name, _channels, _ids in native.data_pass_names(out))
+    out.aovs = [(aov.name, aov.type) for aov in _view_layer_aovs(view_layer)
+                if getattr(aov, "is_valid", True) and aov.name not in taken]
     return out
 
 
-def unsupported(view_layer):
+def unsupported(view_layer, skipped_aov_names=()):
     """Labels of the passes the view layer enables that Photon does not render (they are not
-    registered, so the result has none of them), light groups and invalid AOVs included."""
+    registered, so the result has none of them), light groups and `skipped_aov_names`
+    (skipped_aovs) included."""
     labels = [label for prop, label in _UNSUPPORTED_TOGGLES if getattr(view_layer, prop, False)]
     cycles = getattr(view_layer, "cycles", None)
     if cycles is not None:
         labels += [label for prop, label in _UNSUPPORTED_CYCLES_TOGGLES
                    if getattr(cycles, prop, False)]
-    labels += [f"AOV '{name}' (its name is used twice or by another pass)"
-               for name in invalid_aovs(view_layer)]
+    labels += [f"AOV '{name}' (another pass has its name)" for name in skipped_aov_names]
     labels += [f"Light Group '{group.name}'" for group in getattr(view_layer, "lightgroups", ())]
     return labels
 
 
-def warn_unsupported(reporter, view_layer):
+def warn_unsupported(reporter, native, scene, view_layer):
     """One warning naming every enabled pass Photon does not render."""
-    labels = unsupported(view_layer)
+    labels = unsupported(view_layer, skipped_aovs(native, scene, view_layer))
     if labels:
         reporter.warning(f"passes not rendered by Photon (View Layer > Passes), left out of "
                          f"the result: {', '.join(labels)}")

@@ -84,7 +84,7 @@ class FinalRender:
         scene = depsgraph.scene
         view_layer = depsgraph.view_layer
         self.light_passes = passes.add_light_passes(engine, view_layer)
-        data_passes.warn_unsupported(reporter, view_layer)
+        data_passes.warn_unsupported(reporter, native, scene, view_layer)
         views = self._views(scene)
 
         if scene.render.use_motion_blur:

@@ -232,3 +232,21 @@ def test_shader_aovs_match_cycles(blender, tmp_path):
         assert not passes["tint"][sky].any()
     top = inside & (cycles["IndexMA"][..., 0] == 11)  # the cube's top face
     assert top.sum() > 20 and (photon["tint"][top] == (0.0, 0.0, 0.0, 1.0)).all()
+
+
+def test_shader_aov_named_like_a_pass_is_skipped_and_reported(blender, tmp_path):
+    """An AOV called Mist beside the Mist pass (a script can add one: Blender checks names only
+    when the list is edited in its UI): as in Cycles, the Mist pass stays the mist, and Photon
+    names the skipped AOV in its one warning about passes it does not write."""
+    proc = render(blender, tmp_path / "photon_", "PHOTON", "aov", "clash")
+    render(blender, tmp_path / "cycles_", "CYCLES", "aov", "clash")
+    photon = read_passes(tmp_path / "photon_0001.exr")
+    cycles = read_passes(tmp_path / "cycles_0001.exr")
+    lines = [line for line in proc.stdout.splitlines()
+             if line.startswith("Photon: warning: ") and "not rendered by Photon" in line]
+    assert len(lines) == 1 and "AOV 'Mist'" in lines[0], proc.log
+    diff = np.abs(photon["Mist"] - cycles["Mist"]).max(-1)
+    inside = interior(cycles["IndexOB"])
+    assert not ((diff > jitter_tolerance(cycles["Mist"])) & inside).any()
+    assert photon["Mist"].min() < 0.5 < photon["Mist"].max()
+    assert np.abs(photon["height"] - cycles["height"]).max() < 0.05

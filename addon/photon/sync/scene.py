@@ -97,7 +97,7 @@ def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, me
     scene = depsgraph.scene
     render_mode = getattr(depsgraph, "mode", 'RENDER') == 'RENDER'
     # Shader AOVs are final-render passes: the viewport compiles no AOV Output node.
-    aovs = data_passes.shader_aovs(depsgraph.view_layer) if render_mode else {}
+    aovs = data_passes.shader_aovs(native, scene, depsgraph.view_layer) if render_mode else {}
     materials = sync_materials.MaterialTable(native_scene, reporter,
                                              getattr(native, "TexturePixels", None), aovs)
     stats._release.append(materials.release)

@@ -10,7 +10,7 @@ on either side of View Layer > Passes > Alpha Threshold (0.5).
 `shaders` gives the objects materials with every kind of closure (Principled metal and glass,
 Glossy, Glass, Translucent and Emission nodes) and enables the colour passes and Emit.
 `denoise` enables the Denoising Data passes (Denoising Normal, Albedo, Depth).
-`aov` adds shader AOVs (View Layer > Shader AOV: "tint" colour, "height" value, "unused" value)
+`aov` (with `clash`: and an AOV named Mist) adds shader AOVs (View Layer > Shader AOV: "tint" colour, "height" value, "unused" value)
 and AOV Output nodes writing them: the floor a noise colour and its height, the sphere a constant
 colour and its height from inside a node group, the cube's top only a Value into the colour AOV
 (which writes its Color input), the veils (with `veil`) 100 into "height".
@@ -168,7 +168,10 @@ def height_group():
 
 
 if "aov" in extra:
-    for name, kind in (("tint", "COLOR"), ("height", "VALUE"), ("unused", "VALUE")):
+    names = (("tint", "COLOR"), ("height", "VALUE"), ("unused", "VALUE"))
+    if "clash" in extra:
+        names += (("Mist", "VALUE"),)  # the Mist pass's name: Blender marks the AOV invalid
+    for name, kind in names:
         aov = layer.aovs.add()
         aov.name, aov.type = name, kind
     tree = floor.data.materials[0].node_tree
