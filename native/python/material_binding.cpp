@@ -196,6 +196,30 @@ py::object describe_input(const Input& in, ParamKind kind) {
 
 }  // namespace
 
+std::vector<MaterialAov> parse_aovs(const py::handle& aovs, const std::string& owner) {
+  std::vector<MaterialAov> out;
+  if (aovs.is_none()) return out;
+  if (!py::isinstance<py::list>(aovs) && !py::isinstance<py::tuple>(aovs))
+    fail(owner + ": aovs must be a list of dicts");
+  for (auto item : py::reinterpret_borrow<py::sequence>(aovs)) {
+    const std::string what = owner + " AOV output";
+    if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
+    py::dict d = py::reinterpret_borrow<py::dict>(item);
+    check_keys(d, {"name", "type", "value"}, what);
+    if (!d.contains("name") || !d.contains("type") || !d.contains("value"))
+      fail(what + " needs 'name', 'type' and 'value'");
+    MaterialAov aov;
+    aov.name = py::str(d["name"]);
+    const std::string type = py::str(d["type"]);
+    if (type != "COLOR" && type != "VALUE") fail(what + ": type must be COLOR or VALUE");
+    aov.color = type == "COLOR";
+    aov.value = parse_input(d["value"], aov.color ? ParamKind::kColor : ParamKind::kScalar,
+                            Input::constant(0.0f), what + " '" + aov.name + "'");
+    out.push_back(std::move(aov));
+  }
+  return out;
+}
+
 Material parse_material(const std::string& name, const py::handle& closures, int64_t texture_count,
                         const py::handle& program, std::string* warning, const py::handle& aovs) {
   if (!py::isinstance<py::list>(closures) && !py::isinstance<py::tuple>(closures))
@@ -207,26 +231,7 @@ Material parse_material(const std::string& name, const py::handle& closures, int
     material.closures.push_back(
         parse_closure(item, "material '" + name + "' closure " + std::to_string(i++)));
   if (!program.is_none()) material.program = parse_program(program);
-  if (!aovs.is_none()) {
-    if (!py::isinstance<py::list>(aovs) && !py::isinstance<py::tuple>(aovs))
-      fail("material '" + name + "': aovs must be a list of dicts");
-    for (auto item : py::reinterpret_borrow<py::sequence>(aovs)) {
-      const std::string what = "material '" + name + "' AOV output";
-      if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
-      py::dict d = py::reinterpret_borrow<py::dict>(item);
-      check_keys(d, {"name", "type", "value"}, what);
-      if (!d.contains("name") || !d.contains("type") || !d.contains("value"))
-        fail(what + " needs 'name', 'type' and 'value'");
-      MaterialAov aov;
-      aov.name = py::str(d["name"]);
-      const std::string type = py::str(d["type"]);
-      if (type != "COLOR" && type != "VALUE") fail(what + ": type must be COLOR or VALUE");
-      aov.color = type == "COLOR";
-      aov.value = parse_input(d["value"], aov.color ? ParamKind::kColor : ParamKind::kScalar,
-                              Input::constant(0.0f), what + " '" + aov.name + "'");
-      material.aovs.push_back(std::move(aov));
-    }
-  }
+  material.aovs = parse_aovs(aovs, "material '" + name + "'");
   sanitize_material(&material, texture_count < 0 ? SIZE_MAX : static_cast<size_t>(texture_count),
                     warning);
   return material;

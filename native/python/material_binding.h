@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 
 #include <string>
+#include <vector>
 
 #include "photon/scene/material.h"
 
@@ -24,6 +25,10 @@ photon::Material parse_material(const std::string& name, const pybind11::handle&
                                 const pybind11::handle& program = pybind11::none(),
                                 std::string* warning = nullptr,
                                 const pybind11::handle& aovs = pybind11::none());
+
+// AOV Output nodes: None or [{"name", "type": "COLOR" | "VALUE", "value": input}] (`owner`
+// names them in errors); not yet sanitized.
+std::vector<photon::MaterialAov> parse_aovs(const pybind11::handle& aovs, const std::string& owner);
 
 // An Image Texture's settings; unknown extension / interpolation names raise ValueError.
 photon::ImageTexture parse_texture(const std::string& path, bool srgb, const std::string& extension,

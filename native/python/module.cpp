@@ -533,6 +533,20 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("program"), py::arg("radiance_reg"), py::arg("reads_ray_type") = false,
           "Sets the world's node program (program_binding.h); the radiance is in three registers "
           "from radiance_reg. set_world's colour stays the fallback.")
+      .def(
+          "set_world_aovs",
+          [](Scene& scene, const py::object& aovs) {
+            std::vector<MaterialAov> parsed = photon_python::parse_aovs(aovs, "the world");
+            const size_t registers =
+                scene.world.program.empty() ? 0 : scene.world.program.registers.size();
+            // The world has no UV map: an image read without coordinates keeps its constant.
+            for (MaterialAov& aov : parsed) sanitize_aov(&aov, 0, registers);
+            scene.world.aovs = std::move(parsed);
+          },
+          py::arg("aovs"),
+          "Sets the world's AOV Output nodes ([{'name', 'type': 'COLOR' | 'VALUE', 'value': "
+          "input}], registers of the world program set before), written where camera rays "
+          "leave the scene.")
       .def_property_readonly("mesh_count", [](const Scene& s) { return s.meshes.size(); })
       .def_property_readonly("instance_count", [](const Scene& s) { return s.instances.size(); })
       .def_property_readonly("light_count", [](const Scene& s) { return s.lights.size(); })

@@ -202,7 +202,8 @@ def test_shader_aovs_match_cycles(blender, tmp_path):
     a constant, from inside a node group; a colour AOV node with only its Value set writes its
     Color, black), at every hit up to the first at least Alpha Threshold opaque: through the
     Alpha 0 veil both the veil's 100 and the height behind it, at the Alpha 0.7 veil its 100
-    alone. Muted nodes and names the view layer does not list write nothing."""
+    alone. The world writes a gradient of the direction and 50 where the camera sees it. Muted
+    nodes and names the view layer does not list write nothing."""
     render(blender, tmp_path / "photon_", "PHOTON", "aov", "veil")
     render(blender, tmp_path / "cycles_", "CYCLES", "aov", "veil")
     photon = read_passes(tmp_path / "photon_0001.exr")
@@ -228,8 +229,10 @@ def test_shader_aovs_match_cycles(blender, tmp_path):
         assert (passes["height"][inside & (index == 13)] == 100.0).all()
         through = inside & (cycles["Depth"][..., 0] < 1e9) & (index != 13) & (index != 12)
         assert (passes["height"][through] >= 100.0).any(), "nothing seen through the veil"
-        sky = cycles["Depth"][..., 0] >= 1e9
-        assert not passes["tint"][sky].any()
+        sky = inside & (cycles["Depth"][..., 0] >= 1e9)
+        assert sky.sum() > 50 and (passes["tint"][sky][..., 3] == 1.0).all()
+        assert passes["tint"][sky][..., :3].std() > 0.01, "the world's gradient is flat"
+        assert np.isin(passes["height"][sky], (50.0, 150.0)).all()
     top = inside & (cycles["IndexMA"][..., 0] == 11)  # the cube's top face
     assert top.sum() > 20 and (photon["tint"][top] == (0.0, 0.0, 0.0, 1.0)).all()
 

@@ -1,11 +1,11 @@
-"""Shader AOVs (View Layer > Shader AOV): the AOV Output nodes of a node tree as the native
-material's AOV list, [{"name", "type": "COLOR" | "VALUE", "value": input}].
+"""Shader AOVs (View Layer > Shader AOV): the AOV Output nodes of a material's or the world's
+node tree as the native AOV list, [{"name", "type": "COLOR" | "VALUE", "value": input}].
 
 As in Cycles (OutputAOVNode::simplify_settings), a node writes the view layer's AOV of its name
 and kind (its Color input into a colour AOV, its Value input into a value AOV), inside node
 groups too; a node whose name the view layer does not list compiles to nothing, so an unused
-AOV Output costs no shading time. The native film writes the values at the camera's first hits
-(native/src/photon/integrators/data_passes.h)."""
+AOV Output costs no shading time. The native film writes the values at the camera's first hits,
+the world's where camera rays leave the scene (native/src/photon/integrators/data_passes.h)."""
 
 from . import nodes
 from .inputs import Param, read_input
@@ -38,31 +38,39 @@ def output_nodes(tree, stack=(), depth=0):
             yield from output_nodes(node.node_tree, stack + (node,), depth + 1)
 
 
-def material_aovs(tree, wanted, ctx):
-    """The native AOV list of a material's node tree for the view layer's AOVs `wanted`
-    ({name: 'COLOR' | 'VALUE'}); inputs fed by nodes are compiled into ctx's program."""
+def _socket(node, kind):
+    return node.inputs.get("Color" if kind == 'COLOR' else "Value")
+
+
+def wanted_outputs(tree, wanted):
+    """(node, group stack, kind) of the AOV Output nodes in `tree` that write one of the view
+    layer's AOVs `wanted` ({name: 'COLOR' | 'VALUE'})."""
     if not wanted:
         return []
-    out = []
+    found = []
     for node, stack in output_nodes(tree):
         kind = wanted.get(aov_name(node))
-        if kind is None:
-            continue
-        socket = node.inputs.get("Color" if kind == 'COLOR' else "Value")
-        if socket is None:
-            continue
-        value = read_input(socket, stack, _PARAMS[kind], ctx)
-        out.append({"name": aov_name(node), "type": kind, "value": value})
-    return out
+        if kind is not None and _socket(node, kind) is not None:
+            found.append((node, stack, kind))
+    return found
 
 
-def world_aov_names(world, wanted):
-    """Names of the view layer's AOVs that the world's AOV Output nodes would write (Photon
-    writes shader AOVs from surfaces only)."""
-    if world is None or not world.use_nodes or world.node_tree is None or not wanted:
-        return []
-    return sorted({aov_name(node) for node, _stack in output_nodes(world.node_tree)
-                   if aov_name(node) in wanted})
+def is_linked(node, stack, kind):
+    """Whether the input an AOV Output node writes is fed by a node."""
+    return nodes.source(_socket(node, kind), stack).node is not None
+
+
+def read_outputs(outputs, ctx):
+    """The native AOV list of wanted_outputs(); inputs fed by nodes are compiled into ctx's
+    program."""
+    return [{"name": aov_name(node), "type": kind,
+             "value": read_input(_socket(node, kind), stack, _PARAMS[kind], ctx)}
+            for node, stack, kind in outputs]
+
+
+def material_aovs(tree, wanted, ctx):
+    """The native AOV list of a material's node tree for the view layer's AOVs `wanted`."""
+    return read_outputs(wanted_outputs(tree, wanted), ctx)
 
 
 def plain_value(value, kind):

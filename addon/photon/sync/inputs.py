@@ -39,6 +39,10 @@ class MaterialContext:
             self._program = ProgramBuilder(self)
         return self._program
 
+    def use_program(self, builder):
+        """Compiles inputs into `builder` (the world's ProgramBuilder) instead of a new one."""
+        self._program = builder
+
     def program_dict(self):
         return self._program.program() if self._program is not None else None
 

@@ -7,7 +7,6 @@ import numpy as np
 from . import object_info
 from .cancel import SyncPoll
 from .. import cryptomatte, data_passes, texture_cache
-from . import aovs as sync_aovs
 from . import camera as sync_camera
 from . import hair as sync_hair
 from . import layers as sync_layers
@@ -262,12 +261,7 @@ def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, me
 
     sync_camera.export_camera(native_scene, scene, depsgraph, reporter, origin=origin)
     world, _ = sync_world.export_world(native_scene, scene.world, reporter, materials.textures,
-                                       getattr(native, "MAX_EMISSION", None))
-    world_aovs = sync_aovs.world_aov_names(scene.world, aovs)
-    if world_aovs:
-        reporter.warning(f"World '{scene.world.name}': its AOV Output nodes are not written "
-                         f"(Photon writes shader AOVs from surfaces only); where the camera sees "
-                         f"the world, AOV {', '.join(repr(n) for n in world_aovs)} stays 0")
+                                       getattr(native, "MAX_EMISSION", None), aovs)
     poll()
     if native_scene.texture_count:
         # Where the session converts the images (it reads the folder when it starts).

@@ -4,7 +4,7 @@ plain values (materials.world_color), else a shader program evaluated per direct
 them, and Mix / Add Shaders of Backgrounds (the Light Path "Is Camera Ray" trick included:
 camera rays and lighting rays evaluate the tree with their own ray type)."""
 
-from . import nodes
+from . import aovs as sync_aovs, nodes
 from .inputs import MaterialContext
 from .materials import world_color
 from .shader_program import ProgramBuilder
@@ -50,6 +50,7 @@ class _WorldCompiler:
     def __init__(self, world, reporter, textures):
         self.ctx = MaterialContext(world.name, reporter, textures, kind="World")
         self.builder = ProgramBuilder(self.ctx, world=True)
+        self.ctx.use_program(self.builder)  # AOV inputs compile into the world's program
 
     def _black(self):
         return self.builder.constant([0.0, 0.0, 0.0])
@@ -111,26 +112,45 @@ def warn_world_volume(world, reporter):
                          f"the scene is rendered without it")
 
 
-def export_world(native_scene, world, reporter, textures, max_emission=None):
+def export_world(native_scene, world, reporter, textures, max_emission=None, aovs=None):
     """Sets the native world (`textures`: the materials' TextureTable, so an image is added
-    once); returns its constant colour, or [1, 1, 1] for a world with a program (what the
-    'no lights' warning looks at), and whether a program was set."""
+    once) and its AOV Output nodes for the view layer's AOVs `aovs` ({name: kind}); returns
+    its constant colour, or [1, 1, 1] for a world with a program (what the 'no lights' warning
+    looks at), and whether a program was set."""
     warn_world_volume(world, reporter)
-    color = world_color(world, reporter, max_emission) if _is_constant(world) else None
+    src = _surface_source(world)
+    # As for materials, Cycles compiles AOV Output nodes only when the Surface is linked.
+    outputs = sync_aovs.wanted_outputs(world.node_tree, aovs) \
+        if aovs and src is not None and src.node is not None else []
+    linked_aovs = any(sync_aovs.is_linked(node, stack, kind) for node, stack, kind in outputs)
+    color = world_color(world, reporter, max_emission) \
+        if _is_constant(world) and not linked_aovs else None
     if color is not None:
         native_scene.set_world(color)
+        ctx = MaterialContext(world.name, reporter, textures, kind="World")
+        _set_aovs(native_scene, sync_aovs.read_outputs(outputs, ctx))
         return color, False
     compiler = _WorldCompiler(world, reporter, textures)
     reg = compiler.radiance(nodes.output_node(world.node_tree, 'OUTPUT_WORLD')
                             .inputs["Surface"], ())
+    world_aovs = sync_aovs.read_outputs(outputs, compiler.ctx)
     program = compiler.builder.program()
     native_scene.set_world([0.0, 0.0, 0.0])
     if program is None:
+        _set_aovs(native_scene, world_aovs)
         return [0.0, 0.0, 0.0], False
     try:
         native_scene.set_world_program(program, reg, _reads_ray_type(world.node_tree))
     except ValueError as error:
         reporter.warning(f"World '{world.name}': its nodes could not be compiled ({error}); "
                          f"rendering it black")
+        _set_aovs(native_scene, [dict(a, value=sync_aovs.plain_value(a["value"], a["type"]))
+                                 for a in world_aovs])
         return [0.0, 0.0, 0.0], False
+    _set_aovs(native_scene, world_aovs)
     return [1.0, 1.0, 1.0], True
+
+
+def _set_aovs(native_scene, world_aovs):
+    if world_aovs:
+        native_scene.set_world_aovs(world_aovs)

@@ -13,7 +13,8 @@ Glossy, Glass, Translucent and Emission nodes) and enables the colour passes and
 `aov` (with `clash`: and an AOV named Mist) adds shader AOVs (View Layer > Shader AOV: "tint" colour, "height" value, "unused" value)
 and AOV Output nodes writing them: the floor a noise colour and its height, the sphere a constant
 colour and its height from inside a node group, the cube's top only a Value into the colour AOV
-(which writes its Color input), the veils (with `veil`) 100 into "height".
+(which writes its Color input), the veils (with `veil`) 100 into "height", the world a gradient
+of the direction into "tint" and 50 into "height".
 """
 
 import math
@@ -188,6 +189,11 @@ if "aov" in extra:
     tree.nodes.new("ShaderNodeGroup").node_tree = height_group()
     aov_output(cube.data.materials[1].node_tree, "tint", value=5.0)
     aov_output(cube.data.materials[0].node_tree, "elsewhere", value=3.0)  # not a view layer AOV
+    tree = world.node_tree
+    gradient = tree.nodes.new("ShaderNodeTexGradient")
+    gradient.gradient_type = "LINEAR"
+    aov_output(tree, "tint", color=gradient.outputs["Color"])
+    aov_output(tree, "height", value=50.0)
 
 render.engine = engine
 # Photon reads Cycles' Film settings too: Box, and Photon's own Box width below.

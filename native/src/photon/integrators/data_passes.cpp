@@ -11,6 +11,7 @@
 #include "photon/render/bsdf_lobes.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
+#include "photon/render/world_shader.h"
 
 namespace photon {
 namespace {
@@ -169,14 +170,21 @@ DataPassRow::DataPassRow(const RenderContext& context, const DataPassSettings& s
   if (aov_floats_ > 0 && context.scene) {
     // Each AOV Output node writes the pass of its name and kind (Cycles' get_aov_offset); a
     // node whose name the view layer does not list writes nothing.
-    for (const Material& m : context.scene->materials) {
+    const auto writes_of = [&settings](const std::vector<MaterialAov>& outputs) {
       std::vector<std::pair<int, int>> writes;
-      for (size_t k = 0; k < m.aovs.size(); ++k)
+      for (size_t k = 0; k < outputs.size(); ++k)
         for (size_t j = 0; j < settings.aovs.size(); ++j)
-          if (settings.aovs[j].name == m.aovs[k].name && settings.aovs[j].color == m.aovs[k].color)
+          if (settings.aovs[j].name == outputs[k].name &&
+              settings.aovs[j].color == outputs[k].color)
             writes.emplace_back(static_cast<int>(k), static_cast<int>(j));
+      return writes;
+    };
+    for (const Material& m : context.scene->materials) {
+      std::vector<std::pair<int, int>> writes = writes_of(m.aovs);
       if (!writes.empty()) material_aovs_.emplace(&m, std::move(writes));
     }
+    if (!context.settings->transparent_background)
+      world_aovs_ = writes_of(context.scene->world.aovs);
   }
   aov_sums_.assign(width * aov_floats_, 0.0f);
 }
@@ -225,22 +233,28 @@ void DataPassRow::add_cryptomatte(size_t i, const SurfaceInteraction& si, float 
   }
 }
 
-void DataPassRow::add_aovs(size_t i, const SurfaceInteraction& si, const Vec3& wo,
-                           const ShadeRay& ray) {
-  if (!si.mat) return;
-  const auto found = material_aovs_.find(si.mat);
-  if (found == material_aovs_.end()) return;
-  constexpr size_t kStackAovs = 16;
-  Vec3 stack_values[kStackAovs];
-  std::vector<Vec3> heap_values;
-  Vec3* values = stack_values;
-  if (si.mat->aovs.size() > kStackAovs) {
-    heap_values.resize(si.mat->aovs.size());
-    values = heap_values.data();
+namespace {
+
+// An owner's AOV values: on the stack for up to 16 outputs.
+class AovValues {
+ public:
+  explicit AovValues(size_t count) {
+    if (count > kStack) heap_.resize(count);
   }
-  eval_material_aovs(*si.mat, si, wo, *context_.accel, context_.textures, ray, values);
+  Vec3* data() { return heap_.empty() ? stack_ : heap_.data(); }
+
+ private:
+  static constexpr size_t kStack = 16;
+  Vec3 stack_[kStack];
+  std::vector<Vec3> heap_;
+};
+
+}  // namespace
+
+void DataPassRow::add_aov_values(size_t i, const std::vector<std::pair<int, int>>& writes,
+                                 const Vec3* values) {
   float* px = &aov_sums_[i * aov_floats_];
-  for (const auto& [k, j] : found->second) {
+  for (const auto& [k, j] : writes) {
     float* p = px + aov_offsets_[j];
     if (settings_.aovs[j].color) {
       add3(p, values[k]);
@@ -249,6 +263,23 @@ void DataPassRow::add_aovs(size_t i, const SurfaceInteraction& si, const Vec3& w
       p[0] += values[k].x;
     }
   }
+}
+
+void DataPassRow::add_aovs(size_t i, const SurfaceInteraction& si, const Vec3& wo,
+                           const ShadeRay& ray) {
+  if (!si.mat) return;
+  const auto found = material_aovs_.find(si.mat);
+  if (found == material_aovs_.end()) return;
+  AovValues values(si.mat->aovs.size());
+  eval_material_aovs(*si.mat, si, wo, *context_.accel, context_.textures, ray, values.data());
+  add_aov_values(i, found->second, values.data());
+}
+
+void DataPassRow::add_world_aovs(size_t i, const Vec3& direction) {
+  const World& world = context_.scene->world;
+  AovValues values(world.aovs.size());
+  world_aovs(world, direction, context_.textures, values.data());
+  add_aov_values(i, world_aovs_, values.data());
 }
 
 void DataPassRow::add_lamps(Ray ray, float t_end, const Vec3& throughput, float* px) const {
@@ -271,7 +302,7 @@ void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& cam
                       const CameraHit& first) {
   const uint32_t mask = settings_.mask;
   const bool crypto = !crypto_rows_.empty();
-  const bool aovs = !material_aovs_.empty();
+  const bool aovs = !material_aovs_.empty() || !world_aovs_.empty();
   if (!mask && !crypto && !aovs) return;
   // Written once per pixel (first sample) or once per sample, at the first hit opaque enough.
   constexpr uint32_t kFirstSample =
@@ -297,6 +328,7 @@ void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& cam
   const int max_hits = std::max(context_.settings->max_depth, 0) + 1;
   for (int n = 0; n < max_hits; ++n) {
     if (mask & kPassEmission) add_lamps(ray, found ? hit.t : ray.tmax, throughput, px);
+    if (!found && !single_done && !world_aovs_.empty()) add_world_aovs(i, ray.direction);
     if (!found || (single_done && !along_path)) break;
     const SurfaceInteraction si = context_.accel->interaction(hit);
     const Vec3 to_point = si.p - camera_position(camera);

@@ -16,7 +16,9 @@
 //    film/cryptomatte.h lays them out.
 //  - Shader AOVs take the AOV Output nodes' values at every hit up to and including the first
 //    opaque enough for the single-sample passes (Cycles' svm_node_aov_check), averaged over all
-//    samples; a colour AOV's alpha is the share of samples that wrote it.
+//    samples; a colour AOV's alpha is the share of samples that wrote it. The world writes its
+//    own where the camera ray leaves the scene, unless the film is transparent (Cycles does not
+//    evaluate the background for those rays then).
 // Values depend on (seed, pixel, sample) only.
 #pragma once
 
@@ -59,6 +61,10 @@ class DataPassRow {
   void add_cryptomatte(size_t i, const SurfaceInteraction& si, float weight);
   // Adds the shader AOVs the hit's material writes to pixel `i`.
   void add_aovs(size_t i, const SurfaceInteraction& si, const Vec3& wo, const ShadeRay& ray);
+  // Adds the shader AOVs the world writes for a camera ray leaving the scene along `direction`.
+  void add_world_aovs(size_t i, const Vec3& direction);
+  // Adds `values` (of an owner's AOV outputs) by the (output, pass) pairs `writes`.
+  void add_aov_values(size_t i, const std::vector<std::pair<int, int>>& writes, const Vec3* values);
 
   const RenderContext& context_;
   DataPassSettings settings_;
@@ -76,7 +82,8 @@ class DataPassRow {
   std::vector<int> aov_offsets_;
   int aov_floats_ = 0;
   std::unordered_map<const Material*, std::vector<std::pair<int, int>>> material_aovs_;
-  std::vector<float> aov_sums_;  // width * aov_floats_
+  std::vector<std::pair<int, int>> world_aovs_;  // the same for the world's outputs
+  std::vector<float> aov_sums_;                  // width * aov_floats_
 };
 
 }  // namespace photon

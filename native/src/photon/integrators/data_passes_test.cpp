@@ -310,9 +310,9 @@ TEST(DataPasses, CryptomatteCountsWhatTheSamplesSeeThroughTransparency) {
 
 // Shader AOVs on the veiled quad: the quad's AOV Output nodes write its position (through its
 // program) as a colour and its x as a value, and a constant 2 into "flag", into which the veil
-// writes 1. Each writes the pass of its name and kind only; the veil's and the quad's values
-// add up while the veil is below the alpha threshold, as Cycles writes AOVs until the
-// single-sample passes are done.
+// writes 1 and the world 4. Each writes the pass of its name and kind only; the veil's and the
+// quad's (or the world's) values add up while the veil is below the alpha threshold, as Cycles
+// writes AOVs until the single-sample passes are done; a transparent film's world writes none.
 TEST(DataPasses, ShaderAovsWriteUntilTheFirstOpaqueEnoughHit) {
   auto scene = std::make_shared<Scene>(*veiled_quad_scene());
   Material& quad = scene->materials[0];
@@ -329,6 +329,7 @@ TEST(DataPasses, ShaderAovsWriteUntilTheFirstOpaqueEnoughHit) {
                {"flag", false, Input::constant(2.0f)},
                {"pos", false, Input::constant(5.0f)}};  // a value AOV: no "pos" value pass
   scene->materials[1].aovs = {{"flag", false, Input::constant(1.0f)}};
+  scene->world.aovs = {{"flag", false, Input::constant(4.0f)}};
 
   RenderSettings s = settings(24, 1, kPassPosition);
   s.data_passes.aovs = {{"pos", true}, {"px", false}, {"flag", false}, {"none", true}};
@@ -359,10 +360,14 @@ TEST(DataPasses, ShaderAovsWriteUntilTheFirstOpaqueEnoughHit) {
   // Threshold 0: the veil is the first hit, and only its AOV is written.
   for (int k = 0; k < 4; ++k) EXPECT_EQ(at(first, c, c, 1)[k], 0.0f);
   EXPECT_EQ(*at(first, c, c, 3), 1.0f);
-  // A corner sees the veil (it covers the image) and the background behind it, which writes no
-  // AOV.
+  // A corner sees the veil (it covers the image) and the world behind it.
   for (int f = 3; f < through.floats; ++f)
-    EXPECT_EQ(through.data[f], f == slots[3].offset ? 1.0f : 0.0f) << f;
+    EXPECT_EQ(through.data[f], f == slots[3].offset ? 5.0f : 0.0f) << f;
+  s.data_passes.alpha_threshold = 0.5f;
+  s.transparent_background = true;
+  const Frame transparent = render(scene, s);
+  EXPECT_EQ(transparent.data[slots[3].offset], 1.0f);
+  EXPECT_EQ(*at(transparent, c, c, 3), 3.0f);
 }
 
 // SPPM and VCM trace their own camera paths per iteration; their data passes come from the camera

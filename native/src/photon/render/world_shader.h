@@ -18,6 +18,10 @@ class TextureSet;
 Vec3 world_radiance(const World& world, const Vec3& direction, uint32_t ray_flags,
                     const TextureSet* textures);
 
+// The world's AOV outputs for a camera ray leaving the scene along `direction`: out[k] for
+// world.aovs[k] (a value AOV in .x), unclamped, non-finite values read as 0.
+void world_aovs(const World& world, const Vec3& direction, const TextureSet* textures, Vec3* out);
+
 // Ray flags of the rays that light the scene from the world (not camera rays).
 constexpr uint32_t kWorldLightingRay = kRayDiffuse | kRayReflect;
 

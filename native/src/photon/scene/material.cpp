@@ -75,10 +75,13 @@ void sanitize_material(Material* material, size_t texture_count, std::string* wa
       sanitize_input(&f.fac, kMixFactor.range, Input::constant(kMixFactor.default_value),
                      texture_count, registers);
   }
+  for (MaterialAov& aov : material->aovs) sanitize_aov(&aov, texture_count, registers);
+}
+
+void sanitize_aov(MaterialAov* aov, size_t texture_count, size_t register_count) {
   // AOV values are written as the nodes compute them (Cycles clamps nothing), finite only.
   const ParamRange any{-std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
-  for (MaterialAov& aov : material->aovs)
-    sanitize_input(&aov.value, any, Input::constant(0.0f), texture_count, registers);
+  sanitize_input(&aov->value, any, Input::constant(0.0f), texture_count, register_count);
 }
 
 std::array<Input, static_cast<size_t>(Param::kCount)> Closure::default_params() {

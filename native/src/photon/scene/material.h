@@ -213,5 +213,8 @@ ParamRange emitter_range();
 // [0, 100] and mix factors to [0, 1] (0.5 when not finite). A program that names registers or
 // tables outside itself is dropped (its inputs take their constants) and `warning` says why.
 void sanitize_material(Material* material, size_t texture_count, std::string* warning = nullptr);
+// An AOV output made safe the same way (registers checked against `register_count`): its value
+// unclamped but finite.
+void sanitize_aov(MaterialAov* aov, size_t texture_count, size_t register_count);
 
 }  // namespace photon

@@ -146,6 +146,9 @@ struct World {
   ShaderProgram program;
   int32_t radiance_reg = -1;
   bool reads_ray_type = false;  // the tree reads Light Path: camera rays see another radiance
+  // The tree's AOV Output nodes (registers of `program`), written where camera rays leave the
+  // scene (render/world_shader.h).
+  std::vector<MaterialAov> aovs;
   // Radiance arriving from a direction (world space, unit, pointing away from the scene), for
   // worlds that vary with direction (an HDRI, a sky); it replaces `color` when set. Called from
   // many threads at once. Importance sampled through a table of sample_map_width x
