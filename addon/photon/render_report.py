@@ -7,11 +7,19 @@ Cycles writes its own (metadata_fields)."""
 import resource
 
 
+def rendered_samples(settings, stats):
+    """Camera samples per pixel the render took: Samples, or fewer when Time Limit stopped it."""
+    pixels = max(settings.x1 - settings.x0, 0) * max(settings.y1 - settings.y0, 0)
+    if pixels and stats.camera_samples and not stats.iterations.iterations:
+        return stats.camera_samples // pixels
+    return settings.samples
+
+
 def _samples_label(settings, stats):
     """'64 spp', or 'N SPPM iterations' / 'N VCM iterations' for the iterative ones."""
     if stats.iterations.iterations:
         return f"{stats.iterations.iterations} {settings.integrator.name} iterations"
-    return f"{settings.samples} spp"
+    return f"{rendered_samples(settings, stats)} spp"
 
 
 def _texture_stats(stats):
@@ -123,7 +131,8 @@ def metadata_fields(layer, settings, stats, sync_stats, elapsed):
     integrator, samples (or iterations), threads, the total, synchronization, preparation
     (BVH, textures, photon maps and caches) and render times, and the process's peak memory."""
     prefix = f"photon.{layer}."
-    fields = [("integrator", settings.integrator.name), ("samples", str(settings.samples))]
+    fields = [("integrator", settings.integrator.name),
+              ("samples", str(rendered_samples(settings, stats)))]
     if stats.iterations.iterations:
         fields.append(("iterations", str(stats.iterations.iterations)))
     preparation = stats.build_seconds + stats.texture_seconds + stats.prepare_seconds

@@ -88,6 +88,28 @@ def test_exr_metadata_holds_the_render_statistics(blender, tmp_path):
     assert re.fullmatch(r"\d+\.\dM", fields[layer + "peak_memory"])
 
 
+def test_time_limit_stops_at_whole_samples_and_says_how_many(blender, tmp_path):
+    """Render > Time Limit: far more samples than the budget allows stop once it is spent, each
+    pixel with the same samples; the warning, the summary line and the metadata give the
+    count."""
+    import re
+
+    import OpenImageIO as oiio
+    limit = ("--python-expr", "import bpy; p = bpy.context.scene.photon; p.samples = 100000; "
+             "p.photons = 20000; p.caustic_photons = 10000; p.time_limit = 2.0")
+    proc = render_frames(blender, CORNELL, tmp_path / "limit_", "-f", "1", extra=limit)
+    said = re.search(r"Time Limit reached after (\d+) of 100000 samples", proc.stdout)
+    assert said, proc.log
+    reached = int(said.group(1))
+    assert 1 <= reached < 100000
+    assert f"({reached} spp," in proc.stdout, proc.log
+    spec = oiio.ImageInput.open(str(tmp_path / "limit_0001.exr")).spec()
+    fields = {a.name: a.value for a in spec.extra_attribs if a.name.startswith("photon.")}
+    assert fields["photon.ViewLayer.samples"] == str(reached), fields
+    image = read_image(tmp_path / "limit_0001.exr")
+    assert np.isfinite(image).all() and image[..., :3].mean() > 0.05
+
+
 def test_png_output(blender, tmp_path):
     render_frames(blender, CORNELL, tmp_path / "cornell_", "-f", "1", fmt="PNG", extra=QUICK)
     image = read_image(tmp_path / "cornell_0001.png")

@@ -53,7 +53,11 @@ def _band_expr(manifest, band):
     lo, hi = blend_info.band_border(manifest["height"], y0, y1)
     expr = ("import bpy; r = bpy.context.scene.render; r.use_border = True; "
             "r.use_crop_to_border = False; r.border_min_x, r.border_max_x = 0.0, 1.0; "
-            f"r.border_min_y, r.border_max_y = {lo!r}, {hi!r}")
+            f"r.border_min_y, r.border_max_y = {lo!r}, {hi!r}"
+            # Bands of one frame need the same samples, or the stitched frame's noise would
+            # change at their seams: a Time Limit would stop each band elsewhere.
+            "; p = getattr(bpy.context.scene, 'photon', None)"
+            "; p is not None and setattr(p, 'time_limit', 0.0)")
     if manifest["band_format"] != manifest["file_format"]:
         expr += (f"; r.image_settings.file_format = {manifest['band_format']!r}"
                  "; r.image_settings.color_depth = '8'")

@@ -73,8 +73,16 @@ class Sampler {
  public:
   // `sample_count` is the number of samples the pixel will take (0 = unknown: indices are then
   // scrambled over the whole 32-bit range, which keeps independence but not stratification).
-  Sampler(uint64_t seed, uint64_t stream, uint32_t sample_index, uint32_t sample_count = 0)
-      : key_(hash_combine(seed, stream)), sample_(sample_index), count_(sample_count) {}
+  // With `block_first`, the samples [block_first, block_first + sample_count) are stratified
+  // among themselves: a pixel whose sample count is not known ahead (a time limit) takes its
+  // samples in blocks, and as the blocks are consecutive runs of the R2 sequence their union is
+  // as well stratified as one block of them all.
+  Sampler(uint64_t seed, uint64_t stream, uint32_t sample_index, uint32_t sample_count = 0,
+          uint32_t block_first = 0)
+      : key_(hash_combine(seed, stream)),
+        sample_(sample_index),
+        count_(sample_count),
+        block_first_(block_first) {}
 
   float get_1d() { return to_unit_float(mix64(key_ ^ mix64(sample_ * 0x100000001B3ull + dim_++))); }
 
@@ -87,8 +95,8 @@ class Sampler {
     const uint64_t h = mix64(key_ ^ mix64(tag ^ 0x5EC7A1ull));
     const float jitter = to_unit_float(mix64(h ^ sample_));
     if (!count_) return jitter;
-    const uint32_t stratum =
-        permute_index(static_cast<uint32_t>(sample_), count_, static_cast<uint32_t>(h >> 32));
+    const uint32_t stratum = permute_index(static_cast<uint32_t>(sample_) - block_first_, count_,
+                                           static_cast<uint32_t>(h >> 32));
     return clamp_below_one((static_cast<float>(stratum) + jitter) / static_cast<float>(count_));
   }
 
@@ -97,8 +105,10 @@ class Sampler {
     constexpr double kA1 = 1.0 / kG, kA2 = 1.0 / (kG * kG);
     const uint64_t rot = mix64(key_ ^ (0xA5A5A5A5ull + dim_++));
     const uint32_t perm_key = static_cast<uint32_t>(rot >> 32);
-    const uint32_t sample = count_ ? permute_index(static_cast<uint32_t>(sample_), count_, perm_key)
-                                   : static_cast<uint32_t>(mix64(sample_ ^ rot));
+    const uint32_t sample =
+        count_ ? block_first_ +
+                     permute_index(static_cast<uint32_t>(sample_) - block_first_, count_, perm_key)
+               : static_cast<uint32_t>(mix64(sample_ ^ rot));
     double u = 0.5 + kA1 * sample + to_unit_float(rot);
     double v = 0.5 + kA2 * sample + to_unit_float(rot << 24);
     u -= static_cast<double>(static_cast<uint64_t>(u));
@@ -111,6 +121,7 @@ class Sampler {
   uint64_t key_;
   uint64_t sample_;
   uint32_t count_;
+  uint32_t block_first_;
   uint64_t dim_ = 0;
 };
 

@@ -481,5 +481,29 @@ TEST(Sampling, InvertConcentricDiskIsTheInverse) {
     }
 }
 
+// Samples taken in consecutive blocks, each stratified among itself (a time-limited render's
+// rounds), visit the same R2 points as one block of them all: the same set in each 2D
+// dimension, in another order.
+TEST(Sampler, ConsecutiveBlocksVisitTheSamePointsAsOneBlock) {
+  const auto points = [](const std::vector<std::pair<uint32_t, uint32_t>>& blocks) {
+    std::vector<std::pair<float, float>> out;
+    for (const auto& [first, count] : blocks)
+      for (uint32_t k = first; k < first + count; ++k) {
+        Sampler sampler(7, 1234, k, count, first);
+        sampler.get_2d();
+        const Vec2 p = sampler.get_2d();  // a later dimension, with its own order
+        out.emplace_back(p.x, p.y);
+      }
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  EXPECT_EQ(points({{0, 1}, {1, 2}, {3, 4}, {7, 8}}), points({{0, 15}}));
+  // Each block's 1D strata are filled once.
+  std::vector<int> strata(8, 0);
+  for (uint32_t k = 7; k < 15; ++k)
+    ++strata[static_cast<int>(Sampler(7, 1234, k, 8, 7).stratified_1d(5) * 8.0f)];
+  for (int n : strata) EXPECT_EQ(n, 1);
+}
+
 }  // namespace
 }  // namespace photon

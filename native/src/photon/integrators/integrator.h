@@ -54,6 +54,9 @@ struct RenderControl {
   int tile_size = 64;  // film pixels per tile side, for integrators that render in tiles
   // A time budget for this call (0: none), for integrators that stop between iterations.
   double time_limit = 0.0;
+  // Pixel integrators: this call's passes are stratified among themselves (Sampler's blocks),
+  // for calls whose passes add up to a count not known ahead.
+  bool stratify_each_call = false;
 
   bool stopped() const {
     return (cancel && cancel->load(std::memory_order_relaxed)) || (interrupted && interrupted());

@@ -16,9 +16,13 @@ namespace {
 // One tile's rows, sample after sample: the camera rays of a row and their first hits.
 class TileTracer {
  public:
-  TileTracer(const RenderContext& context, Film& film, size_t width)
+  // The pixels' samples are stratified over [block_first, block_first + count).
+  TileTracer(const RenderContext& context, Film& film, size_t width, uint32_t count,
+             uint32_t block_first)
       : context_(context),
         film_(film),
+        count_(count),
+        block_first_(block_first),
         samplers_(width, Sampler(0, 0, 0)),
         rays_(width),
         hits_(width),
@@ -31,8 +35,8 @@ class TileTracer {
     const RenderSettings& s = *context_.settings;
     for (size_t i = 0; i < n; ++i) {
       const int col = col0 + static_cast<int>(i);
-      samplers_[i] = Sampler(s.seed, film_.frame_pixel(col, row), static_cast<uint32_t>(k),
-                             static_cast<uint32_t>(s.samples));
+      samplers_[i] = Sampler(s.seed, film_.frame_pixel(col, row), static_cast<uint32_t>(k), count_,
+                             block_first_);
       rays_[i] = film_.camera_ray(film_.frame_x(col), film_.frame_y(row), samplers_[i]);
     }
     context_.accel->intersect_coherent(rays_.data(), n, kVisibleCamera, hits_.data(), found_.get());
@@ -49,6 +53,7 @@ class TileTracer {
  private:
   const RenderContext& context_;
   Film& film_;
+  uint32_t count_, block_first_;
   std::vector<Sampler> samplers_;
   std::vector<Ray> rays_;
   std::vector<Hit> hits_;
@@ -60,9 +65,11 @@ class TileTracer {
 int render_tile(const RenderContext& context, const PixelIntegrator* integrator, Film& film,
                 const FilmRect& rect, int first, int end, const RenderControl& control) {
   const size_t n = static_cast<size_t>(rect.width);
-  TileTracer tracer(context, film, n);
   // Data passes need every sample of a pixel in one go (their first sample decides Depth).
   const int samples = context.settings->samples;
+  const bool block = integrator && control.stratify_each_call;
+  TileTracer tracer(context, film, n, static_cast<uint32_t>(block ? end - first : samples),
+                    static_cast<uint32_t>(block ? first : 0));
   const bool data = film.data_floats() > 0 && first == 0 && end >= samples;
   std::unique_ptr<DataPassRow> data_row;
   if (data) data_row = std::make_unique<DataPassRow>(context, film.options().data_passes, n);

@@ -62,6 +62,20 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                            .description = "Random seed; the same seed renders the same image",
                            .min = 0,
                            .max = 9007199254740992.0}),  // 2^53: exact as a double
+          param(&S::time_limit,
+                {.name = "time_limit",
+                 .label = "Time Limit",
+                 .description = "Stop a final render once this many seconds have passed since "
+                                "its preparation began (photon tracing included), every pixel "
+                                "with the same samples, fewer than Samples if need be; 0 "
+                                "renders all samples. The image then depends on the machine's "
+                                "speed",
+                 .min = 0,
+                 .max = 86400 * 7,
+                 .soft_max = 3600,
+                 .subtype = "TIME_ABSOLUTE",
+                 .unit = "TIME",
+                 .ui = {.column = 1}}),
       }};
   return schema;
 }

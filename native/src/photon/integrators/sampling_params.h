@@ -19,6 +19,9 @@ struct SamplingParams {
   int preview_samples = 16;
   int max_depth = 8;  // specular bounces after the camera ray
   uint64_t seed = 0;
+  // > 0: a final render stops adding samples once this many seconds have passed since its
+  // preparation began (Cycles' Time Limit, which leaves out scene synchronisation).
+  float time_limit = 0.0f;
 };
 
 // The film: how camera samples are spread around their pixel (pixel_filter.h) and how the pixel

@@ -8,6 +8,7 @@
 #include <tbb/task_scheduler_observer.h>
 #include <xmmintrin.h>
 
+#include "photon/integrators/pixel_integrator.h"
 #include "photon/integrators/registry.h"
 #include "photon/integrators/render_params.h"
 #include "photon/render/camera_clip_check.h"
@@ -198,6 +199,7 @@ void RenderSession::run() {
 
   set_status("Preparing");
   t0 = Clock::now();
+  const Clock::time_point budget_start = t0;  // Time Limit counts from here
   PrepareControl control = prepare_control();
   // Kept in order after the scene's warnings; added to the session's once prepared.
   control.warn = [&warnings](const std::string& w) { warnings.push_back(w); };
@@ -231,7 +233,7 @@ void RenderSession::run() {
   if (prepared_files_.prepare_only) return;
   set_status("Rendering");
   t0 = Clock::now();
-  const int passes = render_film(context, *integrator, arena);
+  const int passes = render_film(context, *integrator, arena, budget_start);
   std::lock_guard<std::mutex> lock(mutex_);
   stats_.render_seconds = seconds_since(t0);
   stats_.camera_samples = static_cast<uint64_t>(region_width()) * region_height() * passes;
@@ -239,7 +241,7 @@ void RenderSession::run() {
 }
 
 int RenderSession::render_film(const RenderContext& context, Integrator& integrator,
-                               tbb::task_arena& arena) {
+                               tbb::task_arena& arena, Clock::time_point start) {
   Film film(film_frame(scene_->camera, settings_.full_width, settings_.full_height, settings_.x0,
                        settings_.y0, settings_.x1, settings_.y1),
             film_options(settings_));
@@ -292,12 +294,73 @@ int RenderSession::render_film(const RenderContext& context, Integrator& integra
       last_publish = Clock::now();
     }
   };
+  const double limit = settings_.time_limit;
   int done = 0;
-  arena.execute([&] { done = integrator.render(context, film, control); });
+  if (limit <= 0.0) {
+    arena.execute([&] { done = integrator.render(context, film, control); });
+  } else if (integrator_info(settings_.integrator).capabilities.iterative) {
+    // Iterative integrators stop between iterations, within their own limit too.
+    control.time_limit = std::max(limit - seconds_since(start), 1e-3);
+    arena.execute([&] { done = integrator.render(context, film, control); });
+  } else {
+    done = render_passes_in_time(context, integrator, film, control, arena, start, limit);
+  }
   // The last complete iteration is always handed over.
   if (pending_passes > 0) publish_whole(deliver(whole, pending_passes));
   std::lock_guard<std::mutex> lock(mutex_);
   stats_.non_finite_samples += film.non_finite();
+  return done;
+}
+
+int RenderSession::render_passes_in_time(const RenderContext& context, Integrator& integrator,
+                                         Film& film, RenderControl control, tbb::task_arena& arena,
+                                         Clock::time_point start, double limit) {
+  // Rounds of passes over the whole film, each stratified among its own samples (the pixels'
+  // sample count is not known ahead; consecutive rounds together are as well stratified as
+  // one). The first round is one pass; each next one what the time left allows at the last round's
+  // speed (at most twice the passes before, so tiles keep arriving), and none once not one pass
+  // fits.
+  const int total = control.end_pass;
+  const auto progress = control.progress;
+  control.stratify_each_call = true;
+  int done = 0, round = 1;
+  while (done < total) {
+    control.first_pass = done;
+    control.end_pass = std::min(total, done + round);
+    control.progress = [&, first = done](float fraction) {
+      if (!progress) return;
+      const double samples = (first + fraction * (control.end_pass - first)) / total;
+      progress(static_cast<float>(std::max(samples, seconds_since(start) / limit)));
+    };
+    const Clock::time_point round_start = Clock::now();
+    int reached = done;
+    arena.execute([&] { reached = integrator.render(context, film, control); });
+    if (reached < control.end_pass) break;  // cancelled: the passes before stay
+    const double per_pass = seconds_since(round_start) / (reached - done);
+    done = reached;
+    const double left = limit - seconds_since(start);
+    const double fit = per_pass > 0.0 ? left / per_pass : static_cast<double>(total);
+    if (fit < 1.0) break;
+    round = static_cast<int>(std::min<double>({fit, 2.0 * done, static_cast<double>(total)}));
+    round = std::max(round, 1);
+  }
+  // The data passes take every sample of a pixel in one go, which only a single round of all
+  // passes gave them: they are rendered now for the passes reached (camera rays and first hits
+  // only, a small part of a sample's cost).
+  if (film.data_floats() > 0 && total > 1 && done > 0 && !control.stopped()) {
+    control.report_status("Data passes");
+    RenderSettings reached = *context.settings;
+    reached.samples = done;
+    RenderContext data_context = context;
+    data_context.settings = &reached;
+    bool finished = false;
+    arena.execute([&] { finished = render_data_passes(data_context, film, control); });
+    if (finished && control.update)
+      control.update(FilmRect{0, 0, film.width(), film.height()}, done, true);
+  }
+  if (done < total)
+    add_warning("Time Limit reached after " + std::to_string(done) + " of " +
+                std::to_string(total) + " samples per pixel");
   return done;
 }
 

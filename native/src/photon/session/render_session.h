@@ -4,6 +4,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -103,8 +104,15 @@ class RenderSession : public Job {
   void on_finished() override;
   // Renders the integrator's passes into a film of the region and hands over what finishes:
   // tiles as they complete, the whole region after each iteration (replacing the one before).
-  // Returns the passes every pixel holds.
-  int render_film(const RenderContext& context, Integrator& integrator, tbb::task_arena& arena);
+  // Returns the passes every pixel holds. With Time Limit, the budget counts from `start`.
+  int render_film(const RenderContext& context, Integrator& integrator, tbb::task_arena& arena,
+                  std::chrono::steady_clock::time_point start);
+  // Time Limit for pixel integrators: renders the passes in rounds over the whole film and
+  // stops before a round that would pass `limit` seconds since `start`; returns the passes
+  // rendered (at least one unless cancelled).
+  int render_passes_in_time(const RenderContext& context, Integrator& integrator, Film& film,
+                            RenderControl control, tbb::task_arena& arena,
+                            std::chrono::steady_clock::time_point start, double limit);
   void deliver_tile(Tile tile);
   // Hands over an image of the whole region, dropping one not yet taken.
   void publish_whole(Tile tile);
