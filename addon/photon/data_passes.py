@@ -70,8 +70,8 @@ def _view_layer_aovs(view_layer):
 
 def shader_aovs(native, scene, view_layer):
     """{name: 'COLOR' | 'VALUE'} of the view layer's shader AOVs Photon writes, in its order.
-    Left out, as Cycles leaves them out: those Blender marks invalid, and those named like a
-    pass the render writes anyway (Blender checks that only when the list is edited in its UI,
+    Left out, as Cycles leaves them out: those Blender marks invalid, unnamed ones, and those
+    named like a pass the render writes anyway (Blender checks that only when the list is edited in its UI,
     so a script can add an AOV called Mist beside the Mist pass)."""
     return dict(settings(native, scene, view_layer).aovs)
 
@@ -127,7 +127,7 @@ def settings(native, scene, view_layer, origin=None):
     taken = {"Combined", *properties.enabled_passes(view_layer)}
     taken.update(name for name, _channels, _ids in native.data_pass_names(out))
     out.aovs = [(aov.name, aov.type) for aov in _view_layer_aovs(view_layer)
-                if getattr(aov, "is_valid", True) and aov.name not in taken]
+                if aov.name and getattr(aov, "is_valid", True) and aov.name not in taken]
     return out
 
 
@@ -140,7 +140,8 @@ def unsupported(view_layer, skipped_aov_names=()):
     if cycles is not None:
         labels += [label for prop, label in _UNSUPPORTED_CYCLES_TOGGLES
                    if getattr(cycles, prop, False)]
-    labels += [f"AOV '{name}' (another pass has its name)" for name in skipped_aov_names]
+    labels += [f"AOV '{name}' (its name is empty or another pass's)"
+               for name in skipped_aov_names]
     labels += [f"Light Group '{group.name}'" for group in getattr(view_layer, "lightgroups", ())]
     return labels
 
