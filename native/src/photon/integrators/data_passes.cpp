@@ -253,7 +253,7 @@ class AovValues {
 
 void DataPassRow::add_aov_values(size_t i, const std::vector<std::pair<int, int>>& writes,
                                  const Vec3* values) {
-  float* px = &aov_sums_[i * aov_floats_];
+  float* px = aov_sums_.data() + i * aov_floats_;
   for (const auto& [k, j] : writes) {
     float* p = px + aov_offsets_[j];
     if (settings_.aovs[j].color) {
@@ -313,7 +313,7 @@ void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& cam
       kPassMist | kPassDiffuseColor | kPassGlossyColor | kPassTransmissionColor | kPassEmission;
   const uint32_t single = mask & (sample == 0 ? kSingle : kSingle & ~kFirstSample);
   const Camera& camera = context_.scene->camera;
-  float* px = &sums_[i * floats_];
+  float* px = sums_.data() + i * floats_;
   if (mask & (kPassDenoisingNormal | kPassDenoisingAlbedo | kPassDenoisingDepth))
     add_denoising_features(px, sample, pixel_index, camera_ray, first);
   const bool along_path = (mask & kAlongPath) || crypto;
@@ -409,7 +409,7 @@ void DataPassRow::finish(int samples, float* out) const {
   const float inv = 1.0f / std::max(samples, 1);
   const int crypto_floats = 4 * cryptomatte_layers(settings_.cryptomatte_depth);
   for (size_t i = 0; i < width_; ++i) {
-    const float* src = &sums_[i * floats_];
+    const float* src = sums_.data() + i * floats_;
     float* dst = out + i * pixel_floats_;
     std::copy(src, src + floats_, dst);
     if (mask & kPassDepth && !first_hit_[i])
@@ -429,7 +429,7 @@ void DataPassRow::finish(int samples, float* out) const {
     for (size_t k = 0; k < crypto_rows_.size(); ++k)
       crypto_rows_[k].write(i, samples, dst + floats_ + k * crypto_floats);
     // Shader AOVs are not light: averaged without the exposure (as Cycles' AOV passes).
-    const float* aov = &aov_sums_[i * aov_floats_];
+    const float* aov = aov_sums_.data() + i * aov_floats_;
     float* aov_dst = dst + floats_ + crypto_rows_.size() * crypto_floats;
     for (int c = 0; c < aov_floats_; ++c) aov_dst[c] = aov[c] * inv;
   }
