@@ -123,8 +123,8 @@ def settings(native, scene, view_layer, origin=None):
         out.mist_falloff = _MIST_FALLOFF.get(mist.falloff, 2.0)
     if origin is not None:
         out.origin = [float(v) for v in origin]
-    from . import properties
-    taken = {"Combined", *properties.enabled_passes(view_layer)}
+    # Every light pass name counts, enabled or not (properties.py would import back into sync).
+    taken = {"Combined", *getattr(native, "PASS_NAMES", ())}
     taken.update(name for name, _channels, _ids in native.data_pass_names(out))
     out.aovs = [(aov.name, aov.type) for aov in _view_layer_aovs(view_layer)
                 if aov.name and getattr(aov, "is_valid", True) and aov.name not in taken]

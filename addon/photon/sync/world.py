@@ -127,8 +127,9 @@ def export_world(native_scene, world, reporter, textures, max_emission=None, aov
         if _is_constant(world) and not linked_aovs else None
     if color is not None:
         native_scene.set_world(color)
-        ctx = MaterialContext(world.name, reporter, textures, kind="World")
-        _set_aovs(native_scene, sync_aovs.read_outputs(outputs, ctx))
+        if outputs:  # only with a world (a scene may have none)
+            ctx = MaterialContext(world.name, reporter, textures, kind="World")
+            _set_aovs(native_scene, sync_aovs.read_outputs(outputs, ctx))
         return color, False
     compiler = _WorldCompiler(world, reporter, textures)
     reg = compiler.radiance(nodes.output_node(world.node_tree, 'OUTPUT_WORLD')
