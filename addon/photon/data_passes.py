@@ -94,11 +94,11 @@ def cryptomatte_bits(native, view_layer):
 def register(engine, native, scene, view_layer):
     """Registers the enabled data and Cryptomatte passes (the compositor's Render Layers node
     shows them)."""
-    aovs = shader_aovs(native, scene, view_layer)
-    for name, channels, chan_id in native.data_pass_names(settings(native, scene, view_layer)):
-        kind = aovs.get(name) if name not in _PASS_TYPES else None
-        pass_type = ("VALUE" if kind == 'VALUE' else "COLOR") if kind else \
-            _PASS_TYPES.get(name, "COLOR")
+    out = settings(native, scene, view_layer)
+    value_aovs = {name for name, kind in out.aovs if kind == 'VALUE'}
+    for name, channels, chan_id in native.data_pass_names(out):
+        # AOVs never share a pass's name (settings leaves such AOVs out).
+        pass_type = _PASS_TYPES.get(name, "VALUE" if name in value_aovs else "COLOR")
         engine.register_pass(scene, view_layer, name, channels, chan_id, pass_type)
 
 
