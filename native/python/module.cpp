@@ -422,7 +422,8 @@ PYBIND11_MODULE(_photon, m) {
              float spot_size, float spot_blend, float sun_angle, const std::string& shape,
              float size_x, float size_y, uint32_t visibility, const std::string& spectrum,
              float temperature, const std::string& illuminant, bool spot_cosine_falloff,
-             float spread) {
+             float spread, const std::optional<std::string>& ies, float ies_strength,
+             const std::string& ies_source) {
             Light l;
             l.name = name;
             if (type == "POINT")
@@ -470,6 +471,10 @@ PYBIND11_MODULE(_photon, m) {
               l.illuminant = StandardIlluminant::kF11;
             else
               throw std::invalid_argument("unknown illuminant " + illuminant);
+            l.has_ies = ies.has_value();
+            if (ies) l.ies_profile = *ies;
+            l.ies_strength = ies_strength;
+            l.ies_source = ies_source;
             scene.lights.push_back(std::move(l));
             return scene.lights.size() - 1;
           },
@@ -480,7 +485,11 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("visibility") = static_cast<uint32_t>(kVisibleGlossy | kVisibleTransmission),
           py::arg("spectrum") = "RGB", py::arg("temperature") = 6500.0f,
           py::arg("illuminant") = "D65", py::arg("spot_cosine_falloff") = true,
-          py::arg("spread") = kPi)
+          py::arg("spread") = kPi, py::arg("ies") = py::none(), py::arg("ies_strength") = 1.0f,
+          py::arg("ies_source") = "",
+          "Adds a lamp. `ies`: the IES LM-63 text of an IES Texture node on its Emission "
+          "strength (empty: a file that could not be read), scaled by `ies_strength`; "
+          "`ies_source` names it in warnings.")
       .def(
           "set_camera",
           [](Scene& scene, const std::string& projection, const FloatArray& matrix,

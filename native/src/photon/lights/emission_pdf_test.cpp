@@ -15,6 +15,7 @@
 #include "photon/integrators/vcm/vcm_common.h"
 #include "photon/lights/emissive_lights.h"
 #include "photon/lights/environment.h"
+#include "photon/lights/ies_profile.h"
 #include "photon/lights/lights.h"
 #include "photon/lights/world_light.h"
 #include "photon/render/accel.h"
@@ -293,6 +294,84 @@ TEST(EmissionPdf, LampsWithARadiusAreSpheres) {
     // Inside the sphere nothing is lit.
     EXPECT_FALSE(illuminate(e, kFrame, pos, 0.5f, Vec2(0.3f, 0.6f), &s));
   }
+}
+
+// Mean power of photons (emitted without bidirectional densities) over a grid of samples.
+Vec3 photon_power(const Emitter& e, const PhotonFrame& frame) {
+  double sum = 0.0;
+  for (int j = 0; j < kGrid; ++j)
+    for (int i = 0; i < kGrid; ++i) {
+      const Vec2 u_pos((i + 0.5f) / kGrid, (j + 0.5f) / kGrid);
+      const Vec2 u_dir(((j * 7 + i * 3) % kGrid + 0.5f) / kGrid,
+                       ((i * 5 + j * 11) % kGrid + 0.5f) / kGrid);
+      EmittedPhoton s;
+      if (e.sample_le(frame, 0.5f, u_pos, u_dir, false, &s)) sum += s.power.x;
+    }
+  return Vec3(static_cast<float>(sum / (static_cast<double>(kGrid) * kGrid)));
+}
+
+// A profile brighter towards the lamp's local +X than -X, dark above its horizon.
+const char* kSkewedProfile = R"(IESNA:LM-63-2002
+TILT=NONE
+1 1000 1 5 5 1 2 0 0 0
+1 1 100
+0 30 60 90 120
+0 90 180 270 360
+800 700 500 200 50
+800 400 200 60 10
+800 500 300 100 20
+800 900 800 400 90
+800 700 500 200 50
+)";
+
+// An IES profile changes how much a lamp sends each way: photons and emitted rays still carry
+// its power (now the profile's integral times the strength), light samples follow the
+// intensity along their direction, and a sphere lamp's hits match its samples.
+TEST(EmissionPdf, LampsWithAnIesProfileFollowIt) {
+  const Vec3 pos(0.0f, 0.0f, 2.0f);
+  std::string error;
+  const std::optional<IesProfile> profile = IesProfile::parse(kSkewedProfile, &error);
+  ASSERT_TRUE(profile) << error;
+  // The lamp turned 90 degrees about world Y: its local -Z points along world +X.
+  const float rot[12] = {0, 0, -1, pos.x, 0, 1, 0, pos.y, 1, 0, 0, pos.z};
+  for (LightType type : {LightType::kPoint, LightType::kSpot})
+    for (float radius : {0.0f, 0.3f}) {
+      Light l = make_lamp(type, pos, 80.0f);
+      l.light_to_world = Transform::from_rows(rot);
+      l.radius = radius;
+      l.spot_size = 2.0f;
+      l.spot_blend = 0.2f;
+      l.has_ies = true;
+      l.ies_profile = kSkewedProfile;
+      l.ies_strength = 0.5f;
+      const LightSet set({l}, nullptr);
+      const Emitter& e = set.lamp(0);
+      const Vec3 power = e.power(kFrame.radius);
+      if (type == LightType::kPoint)
+        EXPECT_NEAR(power.x, 80.0f / (4.0f * kPi) * 0.5f * profile->integral(), 1e-3f * power.x);
+      EXPECT_NEAR(emitted_power(e, kFrame).x, power.x, 1e-2f * power.x) << radius;
+      EXPECT_NEAR(photon_power(e, kFrame).x, power.x, 1e-2f * power.x) << radius;
+      // A receiver along the lamp's axis and one off it: the intensity of the profile's
+      // direction (at a distance where the radius hardly matters).
+      const IesEmission ies(std::make_shared<IesProfile>(*profile), 0.5f, l.light_to_world);
+      for (const Vec3& p : {Vec3(30.0f, 0.0f, 2.0f), Vec3(25.0f, 9.0f, -8.0f)}) {
+        const Vec3 d = normalize(p - pos);
+        double expected = 80.0f / (4.0f * kPi) * ies.factor(d) / length_squared(p - pos);
+        if (type == LightType::kSpot) {
+          Light bare = l;  // the spot's own falloff
+          bare.has_ies = false;
+          bare.radius = 0.0f;
+          const LightSet plain({bare}, nullptr);
+          LightSample s;
+          ASSERT_TRUE(illuminate(plain.lamp(0), kFrame, p, 0.5f, Vec2(0.5f, 0.5f), &s));
+          expected *=
+              s.radiance.x / s.direct_pdf / (80.0f / (4.0f * kPi) / length_squared(p - pos));
+        }
+        const double got = sampled_irradiance(e, kFrame, p, -d).x;
+        EXPECT_NEAR(got, expected, 5e-3 * expected) << radius << " at " << p.y;
+      }
+      if (radius > 0.0f) expect_hit_matches_sample(e, kFrame, Vec3(2.5f, 0.4f, 1.0f), 8);
+    }
 }
 
 TEST(EmissionPdf, SunBeamCarriesIrradianceOverTheSceneDisc) {

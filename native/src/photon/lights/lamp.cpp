@@ -13,7 +13,36 @@ namespace {
 bool finite_light(const Light& l) {
   return l.light_to_world.is_finite() && is_finite(l.color) && std::isfinite(l.power) &&
          std::isfinite(l.radius) && std::isfinite(l.size_x) && std::isfinite(l.size_y) &&
-         std::isfinite(l.spot_size) && std::isfinite(l.spot_blend) && std::isfinite(l.sun_angle);
+         std::isfinite(l.spot_size) && std::isfinite(l.spot_blend) && std::isfinite(l.sun_angle) &&
+         std::isfinite(l.ies_strength);
+}
+
+// The profile of a lamp's IES text, read once per cache. A text that cannot be read renders as
+// Cycles renders it, a profile of 100 in every direction, with the reason in `warn`.
+template <typename Warn>
+std::shared_ptr<const IesProfile> read_ies(const Light& l, IesCache* cache, const Warn& warn) {
+  IesCache local;
+  IesCache& c = cache ? *cache : local;
+  auto it = c.find(l.ies_profile);
+  if (it == c.end()) {
+    IesRead read;
+    std::optional<IesProfile> p;
+    if (l.ies_profile.empty()) {
+      read.error = "empty";
+    } else {
+      p = IesProfile::parse(l.ies_profile, &read.error);
+    }
+    read.profile = std::make_shared<const IesProfile>(
+        p ? std::move(*p) : IesProfile::constant(IesProfile::kUnreadableValue));
+    it = c.emplace(l.ies_profile, std::move(read)).first;
+  }
+  if (!it->second.error.empty()) {
+    const std::string source = l.ies_source.empty() ? "" : " (" + l.ies_source + ")";
+    const std::string why = it->second.error == "empty" ? "" : ": " + it->second.error;
+    warn("Light '" + l.name + "': its IES profile" + source + " could not be read" + why +
+         "; rendered as Cycles renders such a lamp, 100 times the strength in every direction");
+  }
+  return it->second.profile;
 }
 
 spectral::Illuminant standard_illuminant(StandardIlluminant i) {
@@ -58,7 +87,8 @@ LightBounds Lamp::bounds() const {
   return b;
 }
 
-std::unique_ptr<Lamp> make_lamp(const Light& l, std::vector<std::string>* warnings) {
+std::unique_ptr<Lamp> make_lamp(const Light& l, std::vector<std::string>* warnings,
+                                IesCache* ies_cache) {
   auto warn = [&](const std::string& msg) {
     if (warnings) warnings->push_back(msg);
   };
@@ -85,6 +115,21 @@ std::unique_ptr<Lamp> make_lamp(const Light& l, std::vector<std::string>* warnin
   // In double: colour x power can overflow a float before it is clamped.
   const Vec3 color = max(light_color, Vec3(0.0f));
   double power = std::max(l.power, 0.0f);
+  if (l.has_ies) {
+    IesEmission ies(read_ies(l, ies_cache, warn), l.ies_strength, l.light_to_world);
+    if (l.type == LightType::kPoint || l.type == LightType::kSpot) {
+      // Its mean over the sphere scales the flux for the range check below.
+      power *= ies.integral() * kInv4Pi;
+      d.ies.emplace(std::move(ies));
+    } else {
+      // Cycles reads an area light's or a sun's profile along its axis only.
+      power *= ies.factor(normalize(-l.light_to_world.column(2)));
+    }
+    if (!(power > 0.0)) {
+      warn("Light '" + l.name + "': its IES profile sends no light; it adds no light");
+      return nullptr;
+    }
+  }
   const double brightest = static_cast<double>(max_component(color)) * power;
   if (!(brightest > 0.0)) return nullptr;  // zero power: contributes nothing, costs nothing
   if (brightest > emitter_range().hi) {
@@ -97,6 +142,10 @@ std::unique_ptr<Lamp> make_lamp(const Light& l, std::vector<std::string>* warnin
     warn("Light '" + l.name + "': " + (l.type == LightType::kSun ? "strength" : "power") + text);
   }
   d.flux_color = color * static_cast<float>(power);
+  if (d.ies) {
+    // The profile's mean is in the lamp's directions, not in its flux.
+    d.flux_color = d.flux_color * static_cast<float>(4.0 * kPi / d.ies->integral());
+  }
   if (!d.spectrum.shape && luminance(color) > 0.0f) {
     d.spectrum.uplift.emplace(spectral::RgbToSpectrumTable::rec709(), color);
     d.spectrum.inv_luminance = 1.0f / luminance(color);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "photon/lights/emitter.h"
+#include "photon/lights/ies_profile.h"
 #include "photon/scene/scene.h"
 #include "photon/spectral/rgb_uplift.h"
 
@@ -55,10 +56,16 @@ struct LampDescription {
   const Light* light = nullptr;
   Vec3 flux_color{0.0f};
   LampSpectrum spectrum;
+  // Point and spot lamps with an IES profile (ies_profile.h): flux_color is then the flux the
+  // lamp would have with a profile of 1 in every direction. Area lamps and suns take their
+  // profile's one value (along their axis, as Cycles reads it) into flux_color instead.
+  std::optional<IesEmission> ies;
 };
 
 // The lamp of `light`, or null when it is skipped (non-finite settings, zero power or size),
-// with a warning in `warnings` when the user should know why.
-std::unique_ptr<Lamp> make_lamp(const Light& light, std::vector<std::string>* warnings);
+// with a warning in `warnings` when the user should know why. IES profiles are read once per
+// `ies_cache` (optional).
+std::unique_ptr<Lamp> make_lamp(const Light& light, std::vector<std::string>* warnings,
+                                IesCache* ies_cache = nullptr);
 
 }  // namespace photon

@@ -3,8 +3,10 @@
 namespace photon {
 
 LightSet::LightSet(const std::vector<Light>& lights, std::vector<std::string>* warnings) {
+  IesCache ies_profiles;
   for (const Light& l : lights)
-    if (std::unique_ptr<Lamp> lamp = make_lamp(l, warnings)) lamps_.push_back(std::move(lamp));
+    if (std::unique_ptr<Lamp> lamp = make_lamp(l, warnings, &ies_profiles))
+      lamps_.push_back(std::move(lamp));
 }
 
 bool LightSet::intersect(const Ray& ray, float tmax, uint32_t mask, float* t_hit, Vec3* radiance,

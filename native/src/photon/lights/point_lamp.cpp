@@ -37,10 +37,46 @@ PointLamp::PointLamp(LampDescription d) : Lamp(d.light->visibility, std::move(d.
   cos_half_spot_ = std::cos(half);
   spot_smooth_ = (1.0f - cos_half_spot_) * std::clamp(l.spot_blend, 0.0f, 1.0f);
   spot_cosine_ = l.spot_cosine_falloff;
+  ies_ = std::move(d.ies);
+  flux_ = intensity_ * (4.0f * kPi);
+  if (ies_ && !spot_) {
+    flux_ = intensity_ * ies_->integral();
+  } else if (ies_) {
+    // Phi = I * integral of attenuation over the cone, by the midpoint rule in (cos, phi).
+    constexpr int kSteps = 512, kTurns = 128;
+    const Frame f(axis_);
+    double sum = 0.0;
+    const float dc = (1.0f - cos_half_spot_) / kSteps;
+    for (int i = 0; i < kSteps; ++i) {
+      const float c = cos_half_spot_ + (i + 0.5f) * dc;
+      const float s = std::sqrt(std::max(0.0f, 1 - c * c));
+      for (int j = 0; j < kTurns; ++j) {
+        const float phi = (j + 0.5f) * (2.0f * kPi / kTurns);
+        sum += attenuation(f.to_world(Vec3(s * std::cos(phi), s * std::sin(phi), c)));
+      }
+    }
+    flux_ = intensity_ * static_cast<float>(sum * dc * (2.0 * kPi / kTurns));
+  } else if (spot_) {
+    // Phi = I * 2 pi * integral of attenuation(cos theta) d(cos theta) over the cone.
+    constexpr int kSteps = 512;
+    double sum = 0.0;
+    const float dc = (1.0f - cos_half_spot_) / kSteps;
+    for (int i = 0; i < kSteps; ++i) {
+      const float c = cos_half_spot_ + (i + 0.5f) * dc;
+      const Frame f(axis_);
+      sum += attenuation(f.to_world(Vec3(std::sqrt(std::max(0.0f, 1 - c * c)), 0, c)));
+    }
+    flux_ = intensity_ * static_cast<float>(2.0 * kPi * sum * dc);
+  }
 }
 
 float PointLamp::attenuation(const Vec3& dir_from_light) const {
-  if (!spot_) return 1.0f;
+  if (!spot_ && !ies_) return 1.0f;
+  const float profile = ies_ ? ies_->factor(dir_from_light) : 1.0f;
+  return spot_ ? spot_attenuation(dir_from_light) * profile : profile;
+}
+
+float PointLamp::spot_attenuation(const Vec3& dir_from_light) const {
   const float c = dot(axis_, dir_from_light);
   if (c <= cos_half_spot_) return 0.0f;
   const float t = c - cos_half_spot_;
@@ -54,17 +90,7 @@ uint8_t PointLamp::flags() const {
 }
 
 Vec3 PointLamp::power(float) const {
-  if (!spot_) return intensity_ * (4.0f * kPi);
-  // Phi = I * 2 pi * integral of attenuation(cos theta) d(cos theta) over the cone.
-  constexpr int kSteps = 512;
-  double sum = 0.0;
-  const float dc = (1.0f - cos_half_spot_) / kSteps;
-  for (int i = 0; i < kSteps; ++i) {
-    const float c = cos_half_spot_ + (i + 0.5f) * dc;
-    const Frame f(axis_);
-    sum += attenuation(f.to_world(Vec3(std::sqrt(std::max(0.0f, 1 - c * c)), 0, c)));
-  }
-  return intensity_ * static_cast<float>(2.0 * kPi * sum * dc);
+  return flux_;
 }
 
 LightBounds PointLamp::extent() const {
@@ -85,7 +111,7 @@ LightBounds PointLamp::extent() const {
 }
 
 float PointLamp::direction_pdf(const Vec3& d) const {
-  if (!spot_) return kInv4Pi;
+  if (!spot_) return ies_ ? ies_->pdf(d) : kInv4Pi;
   return dot(d, axis_) >= cos_half_spot_ ? uniform_cone_pdf(cos_half_spot_) : 0.0f;
 }
 
@@ -104,6 +130,9 @@ bool PointLamp::sample_li(const Vec3& p, const LightSampleU& u, const PhotonFram
     if (spot_) {
       out->radiance *= attenuation(-out->wi);
       out->emission_pdf = uniform_cone_pdf(cos_half_spot_);
+    } else if (ies_) {
+      out->radiance *= attenuation(-out->wi);
+      out->emission_pdf = direction_pdf(-out->wi);
     }
     out->direct_pdf = dist2;
     out->cos_light = 1.0f;
@@ -127,7 +156,7 @@ bool PointLamp::sample_li(const Vec3& p, const LightSampleU& u, const PhotonFram
   out->distance = dist;
   if (radius_ > 0.0f) cos_light = std::max(0.0f, dot(-out->wi, normalize(p - position_)));
   float att = cos_light;
-  if (spot_) att *= attenuation(-out->wi);
+  if (spot_ || ies_) att *= attenuation(-out->wi);
   if (att <= 0.0f) return false;
   out->weight = intensity_ * (att / dist2);
   out->pdf = radius_ > 0.0f ? dist2 / (cos_light * area_) : 0.0f;
@@ -162,7 +191,7 @@ bool PointLamp::eval_li(const Vec3& p, const Vec3& wi, LightHit* out) const {
   if (!(length_squared(d) <= radius_ * radius_)) return false;
   const float cos_light = -denom;
   Vec3 le = radiance_;
-  if (spot_) le *= attenuation(-wi);
+  if (spot_ || ies_) le *= attenuation(-wi);
   out->radiance = le;
   out->distance = t;
   out->pdf = t * t / (cos_light * area_);
@@ -196,7 +225,7 @@ bool PointLamp::intersect(const Ray& ray, float tmax, bool bidirectional, LightH
   if (t <= ray.tmin) t = -b + s;
   if (t <= ray.tmin || t >= tmax) return false;
   Vec3 le = radiance_;
-  if (spot_) le *= attenuation(-ray.direction);
+  if (spot_ || ies_) le *= attenuation(-ray.direction);
   out->radiance = le;
   out->distance = t;
   return true;
@@ -206,13 +235,28 @@ bool PointLamp::sample_le(const PhotonFrame&, float, Vec2 u_pos, Vec2 u_dir, boo
                           EmittedPhoton* out) const {
   if (bidirectional) {
     if (sphere()) return emit_from_sphere(u_pos, u_dir, out);
-    const Vec3 d = spot_ ? Frame(axis_).to_world(sample_uniform_cone(u_dir, cos_half_spot_))
-                         : sample_uniform_sphere(u_dir);
+    const Vec3 d = sample_direction(u_dir);
     set_emitted_ray(position_, d, &out->ray);
-    out->radiance = spot_ ? intensity_ * attenuation(d) : intensity_;
+    out->radiance = spot_ || ies_ ? intensity_ * attenuation(d) : intensity_;
     out->pdf_pos = out->direct_pdf = out->cos_light = 1.0f;
-    out->pdf_dir = spot_ ? uniform_cone_pdf(cos_half_spot_) : kInv4Pi;
-    return !spot_ || !is_black(out->radiance);
+    out->pdf_dir = spot_ ? uniform_cone_pdf(cos_half_spot_) : direction_pdf(d);
+    return (!spot_ && !ies_) || !is_black(out->radiance);
+  }
+  if (ies_ && !spot_) {
+    // Directions from the profile's table; a radius emits from the disc facing them.
+    float pdf = 0.0f;
+    const Vec3 d = ies_->sample(u_dir, &pdf);
+    const float att = attenuation(d);
+    if (!(att > 0.0f) || !(pdf > 0.0f)) return false;
+    Vec3 origin = position_;
+    if (radius_ > 0.0f) {
+      const Vec2 q = sample_concentric_disk(u_pos);
+      const Frame f(d);
+      origin += (f.t * q.x + f.b * q.y) * radius_;
+    }
+    set_emitted_ray(origin, d, &out->ray);
+    out->power = intensity_ * (att / pdf);
+    return true;
   }
   if (!spot_) {
     if (radius_ > 0.0f) {
@@ -237,9 +281,17 @@ bool PointLamp::sample_le(const PhotonFrame&, float, Vec2 u_pos, Vec2 u_dir, boo
   return true;
 }
 
+Vec3 PointLamp::sample_direction(Vec2 u) const {
+  if (spot_) return Frame(axis_).to_world(sample_uniform_cone(u, cos_half_spot_));
+  if (ies_) {
+    float pdf;
+    return ies_->sample(u, &pdf);
+  }
+  return sample_uniform_sphere(u);
+}
+
 bool PointLamp::emit_from_sphere(Vec2 u_pos, Vec2 u_dir, EmittedPhoton* out) const {
-  const Vec3 d = spot_ ? Frame(axis_).to_world(sample_uniform_cone(u_dir, cos_half_spot_))
-                       : sample_uniform_sphere(u_dir);
+  const Vec3 d = sample_direction(u_dir);
   // The hemisphere facing d: a uniform point of it, d itself at the pole.
   const Vec3 n = Frame(d).to_world(sample_uniform_cone(u_pos, 0.0f));
   set_emitted_ray(position_ + n * radius_, d, &out->ray);
@@ -265,7 +317,7 @@ bool PointLamp::sample_le_towards(const std::vector<BoundingSphere>& targets, co
     const float cos_n = dot(d, n);
     if (cos_n <= 0.0f) return false;
     set_emitted_ray(position_ + n * radius_, d, &out->ray);
-    out->power = radiance_ * (cos_n / pdf);
+    out->power = radiance_ * (cos_n * (ies_ ? attenuation(d) : 1.0f) / pdf);
     return true;
   }
   // Directions inside both the lamp's cone and a target's; a spot with a radius emits from a

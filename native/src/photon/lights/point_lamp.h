@@ -41,14 +41,18 @@ class PointLamp final : public Lamp {
  private:
   LightBounds extent() const override;
   // Cycles 3.x spot_attenuation: the cosine to the axis, faded to zero over the blend region
-  // (1 for a point lamp).
+  // (1 for a point lamp), times the IES profile's factor.
   float attenuation(const Vec3& dir_from_light) const;
+  float spot_attenuation(const Vec3& dir_from_light) const;
+  // The direction of an emitted ray: uniform, uniform in the spot's cone, or the profile's
+  // (of density direction_pdf).
+  Vec3 sample_direction(Vec2 u) const;
   // A lamp with a radius, which bidirectional estimators treat as a sphere; the direction
   // density of its emitted rays, and its radiance along a direction of travel d.
   bool sphere() const { return radius_ > 0.0f && area_ > 0.0f; }
   float direction_pdf(const Vec3& d) const;
   Vec3 sphere_radiance(const Vec3& d) const {
-    return spot_ ? radiance_ * attenuation(d) : radiance_;
+    return spot_ || ies_ ? radiance_ * attenuation(d) : radiance_;
   }
   bool sample_sphere_li(const Vec3& p, Vec2 u, LightSample* out) const;
   bool emit_from_sphere(Vec2 u_pos, Vec2 u_dir, EmittedPhoton* out) const;
@@ -63,6 +67,8 @@ class PointLamp final : public Lamp {
   float cos_half_spot_;
   float spot_smooth_;
   bool spot_cosine_;  // Light::spot_cosine_falloff
+  std::optional<IesEmission> ies_;
+  Vec3 flux_;
 };
 
 std::unique_ptr<Lamp> make_point_lamp(LampDescription d);

@@ -116,6 +116,13 @@ struct Light {
   LightSpectrum spectrum = LightSpectrum::kRgb;
   float temperature = 6500.0f;  // kelvin, kBlackbody
   StandardIlluminant illuminant = StandardIlluminant::kD65;
+  // An IES Texture node on its Emission strength: the IES LM-63 text of its profile (empty: a
+  // file that could not be read), times ies_strength (the node's Strength). `ies_source` names
+  // it in messages (a file path, a text's name).
+  bool has_ies = false;
+  std::string ies_profile;
+  std::string ies_source;
+  float ies_strength = 1.0f;
 };
 
 enum class Projection : uint8_t { kPerspective, kOrthographic };
