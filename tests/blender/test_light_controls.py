@@ -2,8 +2,8 @@
 emitter (a 5 kW portal made the Cornell box 97x brighter), a narrow area-light spread and light
 node trees ignored. A portal now emits nothing, as in Cycles; the Emission node's constant
 Color and Strength scale the light as in Cycles; an area light's spread reaches the native
-light; what Photon does not render (an IES Texture, Light Falloff, an unconnected Light Output,
-a World volume) is said in a warning.
+light; an IES Texture on the Strength gives a profile; what Photon does not render (Light
+Falloff, an unconnected Light Output, a World volume) is said in a warning.
 About 10 s."""
 
 import math
@@ -51,8 +51,13 @@ def test_light_controls_reach_the_native_light_or_a_warning(blender):
     assert args["constants"]["color"] == [0.5, 0.25, 0.25]
     assert args["constants"]["power"] == 500.0 and warnings["constants"] == []
     # Node-driven emission: the nodes are named, the sockets' own values are used.
-    assert args["ies"] == PLAIN
-    assert len(warnings["ies"]) == 1 and "IES Texture" in warnings["ies"][0]
+    # An IES Texture on the Strength gives the lamp a profile (an unset one is read, and said,
+    # by the native library: test_ies.py).
+    assert args["ies"] == dict(PLAIN, ies="", ies_strength=1.0, ies_source="no text chosen")
+    assert warnings["ies"] == []
+    # Light Falloff: Quadratic without Smooth is its Strength (Cycles' lamps already fall off
+    # quadratically); Linear is not rendered, and said.
+    assert args["quadratic"] == dict(PLAIN, power=300.0) and warnings["quadratic"] == []
     assert args["falloff"] == PLAIN
     assert len(warnings["falloff"]) == 1 and "Light Falloff" in warnings["falloff"][0]
     # A Blackbody node sets the spectrum, with no warning.

@@ -5,7 +5,7 @@ import math
 import bpy
 import numpy as np
 
-from . import nodes
+from . import light_ies, nodes
 
 
 def visibility_bits(native, obj):
@@ -80,15 +80,34 @@ def _node_label(node):
     return f"{node.bl_label} '{node.name}'" if node.name != node.bl_label else node.bl_label
 
 
+def _quadratic_falloff(socket):
+    """The strength of a Light Falloff node's Quadratic output feeding `socket` when it is a
+    plain value: Cycles' lamps already fall off with the square of the distance, so without
+    Smooth that output is its Strength. None for anything else."""
+    found = nodes.source(socket)
+    node = found.node
+    if node is None or node.type != 'LIGHT_FALLOFF' or found.output_name != "Quadratic":
+        return None
+    strength, smooth = nodes.find_input(node, "Strength"), nodes.find_input(node, "Smooth")
+    if strength is None or strength.is_linked or smooth is None or smooth.is_linked:
+        return None
+    if float(smooth.default_value) != 0.0:
+        return None
+    return float(strength.default_value)
+
+
 def node_emission(light, name, reporter):
-    """(colour factor, strength factor) of the light's own node tree (Use Nodes), which Cycles
-    multiplies into the light's colour and power: the constant Color and Strength of the Emission
-    node at its Light Output (a Blackbody node feeding the Color sets the spectrum instead, see
-    light_spectrum). Photon does not evaluate nodes feeding them (an IES Texture, Light Falloff,
-    a texture): it warns, naming them, and renders the sockets' own values."""
+    """(colour factor, strength factor, IES arguments or None) of the light's own node tree (Use
+    Nodes), which Cycles multiplies into the light's colour and power: the constant Color and
+    Strength of the Emission node at its Light Output (a Blackbody node feeding the Color sets
+    the spectrum instead, see light_spectrum; an IES Texture feeding the Strength gives a
+    profile, see light_ies; a Light Falloff's Quadratic output without Smooth is its Strength).
+    Photon does not evaluate other nodes feeding them (Light Falloff's Linear and Constant
+    outputs or a Smooth, a texture): it warns, naming them, and renders the sockets' own
+    values."""
     tree = light.node_tree if getattr(light, "use_nodes", False) else None
     if tree is None:
-        return [1.0, 1.0, 1.0], 1.0
+        return [1.0, 1.0, 1.0], 1.0, None
     output = nodes.output_node(tree, 'OUTPUT_LIGHT')
     surface = output.inputs.get("Surface") if output else None
     emission = nodes.source(surface).node if surface is not None else None
@@ -96,8 +115,8 @@ def node_emission(light, name, reporter):
         what = "nothing" if emission is None else _node_label(emission)
         reporter.warning(f"Light '{name}': its node tree has {what} at its Light Output, which "
                          f"Photon does not evaluate; the light is rendered as without nodes")
-        return [1.0, 1.0, 1.0], 1.0
-    color, strength = [1.0, 1.0, 1.0], 1.0
+        return [1.0, 1.0, 1.0], 1.0, None
+    color, strength, ies = [1.0, 1.0, 1.0], 1.0, None
     ignored = []
     color_socket = nodes.find_input(emission, "Color")
     if color_socket is not None:
@@ -109,14 +128,19 @@ def node_emission(light, name, reporter):
     strength_socket = nodes.find_input(emission, "Strength")
     if strength_socket is not None:
         if strength_socket.is_linked:
-            ignored += _upstream_nodes(tree, strength_socket)
+            ies = light_ies.strength_profile(strength_socket, name, reporter)
+            quadratic = _quadratic_falloff(strength_socket)
+            if quadratic is not None:
+                strength = quadratic
+            elif ies is None:
+                ignored += _upstream_nodes(tree, strength_socket)
         else:
             strength = float(strength_socket.default_value)
     if ignored:
         labels = ", ".join(dict.fromkeys(_node_label(n) for n in ignored))
         reporter.warning(f"Light '{name}': {labels} in its node tree not rendered by Photon "
                          f"yet; the Emission node's own Color and Strength values are used")
-    return color, strength
+    return color, strength, ies
 
 
 FLOAT32_MAX = float(np.finfo(np.float32).max)
@@ -137,7 +161,7 @@ def light_arguments(native, obj, matrix, reporter):
                          f"guide the world's light through portals yet (the window is lit by "
                          f"the world alone, with more noise than Cycles' portal-guided render)")
         return None
-    node_color, node_strength = node_emission(light, obj.name, reporter)
+    node_color, node_strength, ies = node_emission(light, obj.name, reporter)
     power = float(light.energy) * node_strength * 2.0 ** float(getattr(light, "exposure", 0.0))
     color = [float(c) * f for c, f in zip(light.color, node_color)]
     if getattr(light, "use_temperature", False):
@@ -158,6 +182,8 @@ def light_arguments(native, obj, matrix, reporter):
         "visibility": visibility_bits(native, obj),
     }
     kwargs["spectrum"], kwargs["temperature"], kwargs["illuminant"] = light_spectrum(light)
+    if ies is not None:
+        kwargs.update(ies)
     if light.type in {'POINT', 'SPOT'}:
         kwargs["radius"] = float(light.shadow_soft_size)
     if light.type == 'SPOT':

@@ -55,7 +55,11 @@ def main():
     emission.inputs["Strength"].default_value = 5.0
     emission.inputs["Color"].default_value = (0.5, 0.5, 1.0, 1.0)
     lights["ies"] = feed(light("ies", "SPOT"), "ShaderNodeTexIES", 0, "Strength")
-    lights["falloff"] = feed(light("falloff", "POINT"), "ShaderNodeLightFalloff", "Quadratic",
+    quadratic = lights["quadratic"] = feed(light("quadratic", "POINT"), "ShaderNodeLightFalloff",
+                                           "Quadratic", "Strength")
+    next(n for n in quadratic.node_tree.nodes if n.type == 'LIGHT_FALLOFF').inputs[
+        "Strength"].default_value = 3.0
+    lights["falloff"] = feed(light("falloff", "POINT"), "ShaderNodeLightFalloff", "Linear",
                              "Strength")
     lights["blackbody"] = feed(light("blackbody", "POINT"), "ShaderNodeBlackbody", 0, "Color")
     unconnected = lights["unconnected"] = light("unconnected", "POINT")
@@ -79,6 +83,9 @@ def main():
             "power": round(args["power"] / factor, 6), "spectrum": args["spectrum"]}
         if args is not None and "spread" in args:
             result["arguments"][name]["spread"] = round(args["spread"], 6)
+        for key in ("ies", "ies_strength", "ies_source"):
+            if args is not None and key in args:
+                result["arguments"][name][key] = args[key]
         result["warnings"][name] = reporter.warnings
     return result
 
