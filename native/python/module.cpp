@@ -423,7 +423,8 @@ PYBIND11_MODULE(_photon, m) {
              float size_x, float size_y, uint32_t visibility, const std::string& spectrum,
              float temperature, const std::string& illuminant, bool spot_cosine_falloff,
              float spread, const std::optional<std::string>& ies, float ies_strength,
-             const std::string& ies_source) {
+             const std::string& ies_source, const std::string& ies_edges,
+             bool ies_area_by_direction) {
             Light l;
             l.name = name;
             if (type == "POINT")
@@ -475,6 +476,15 @@ PYBIND11_MODULE(_photon, m) {
             if (ies) l.ies_profile = *ies;
             l.ies_strength = ies_strength;
             l.ies_source = ies_source;
+            if (ies_edges == "CLAMP")
+              l.ies_edges = IesEdges::kClamp;
+            else if (ies_edges == "ZERO")
+              l.ies_edges = IesEdges::kZero;
+            else if (ies_edges == "HOLD")
+              l.ies_edges = IesEdges::kHold;
+            else
+              throw std::invalid_argument("unknown ies_edges " + ies_edges);
+            l.ies_area_by_direction = ies_area_by_direction;
             scene.lights.push_back(std::move(l));
             return scene.lights.size() - 1;
           },
@@ -486,10 +496,14 @@ PYBIND11_MODULE(_photon, m) {
           py::arg("spectrum") = "RGB", py::arg("temperature") = 6500.0f,
           py::arg("illuminant") = "D65", py::arg("spot_cosine_falloff") = true,
           py::arg("spread") = kPi, py::arg("ies") = py::none(), py::arg("ies_strength") = 1.0f,
-          py::arg("ies_source") = "",
+          py::arg("ies_source") = "", py::arg("ies_edges") = "HOLD",
+          py::arg("ies_area_by_direction") = true,
           "Adds a lamp. `ies`: the IES LM-63 text of an IES Texture node on its Emission "
           "strength (empty: a file that could not be read), scaled by `ies_strength`; "
-          "`ies_source` names it in warnings.")
+          "`ies_source` names it in warnings; `ies_edges` ('CLAMP': Cycles 3.x-4.0, 'ZERO': "
+          "4.1-5.0, 'HOLD': 5.1+) how the profile's interpolation treats its edges, "
+          "`ies_area_by_direction` (Cycles 4.0+) whether an area light reads it per direction "
+          "rather than along its axis.")
       .def(
           "set_camera",
           [](Scene& scene, const std::string& projection, const FloatArray& matrix,

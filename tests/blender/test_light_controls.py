@@ -53,7 +53,10 @@ def test_light_controls_reach_the_native_light_or_a_warning(blender):
     # Node-driven emission: the nodes are named, the sockets' own values are used.
     # An IES Texture on the Strength gives the lamp a profile (an unset one is read, and said,
     # by the native library: test_ies.py).
-    assert args["ies"] == dict(PLAIN, ies="", ies_strength=1.0, ies_source="no text chosen")
+    version = tuple(result["version"])
+    edges = "CLAMP" if version < (4, 1, 0) else "ZERO" if version < (5, 1, 0) else "HOLD"
+    assert args["ies"] == dict(PLAIN, ies="", ies_strength=1.0, ies_source="no text chosen",
+                               ies_edges=edges, ies_area_by_direction=version >= (4, 0, 0))
     assert warnings["ies"] == []
     # Light Falloff: Quadratic without Smooth is its Strength (Cycles' lamps already fall off
     # quadratically); Linear is not rendered, and said.

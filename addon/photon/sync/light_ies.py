@@ -94,4 +94,13 @@ def strength_profile(strength_socket, name, reporter):
             reporter.warning(f"Light '{name}': the Strength of its {_label(node)} is linked, "
                              f"which Photon does not evaluate; its own value is used")
         value = float(strength.default_value)
-    return {"ies": text, "ies_strength": value * factor, "ies_source": source}
+    return {"ies": text, "ies_strength": value * factor, "ies_source": source,
+            "ies_edges": cycles_ies_edges(), "ies_area_by_direction": bpy.app.version >= (4, 0, 0)}
+
+
+def cycles_ies_edges():
+    """How this Blender's Cycles interpolates past a profile table's edges (IesEdges): it
+    changed in 4.1 (zero outside) and again in 5.1 (the edge row repeated)."""
+    if bpy.app.version < (4, 1, 0):
+        return "CLAMP"
+    return "ZERO" if bpy.app.version < (5, 1, 0) else "HOLD"

@@ -15,32 +15,16 @@ import bpy  # noqa: E402
 from harness import run  # noqa: E402
 from principled_extras import clear, render_both  # noqa: E402
 
-# Brighter towards one side than the other, dark above 120 degrees from the lamp's -Z axis.
-SKEWED = """IESNA:LM-63-2002
-[TEST] Photon test profile
-TILT=NONE
-1 1000 1 5 5 1 2 0 0 0
-1 1 100
-0 30 60 90 120
-0 90 180 270 360
-800 700 500 200 50
-800 400 200 60 10
-800 500 300 100 20
-800 900 800 400 90
-800 700 500 200 50
-"""
+# Profiles made for the tests (test_scenes/ies): skewed.ies is brighter to one side than the
+# other and dark above 120 degrees from the lamp's -Z axis; quadrant.ies is a type C quadrant,
+# mirrored to the whole circle by the reader.
+PROFILES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..",
+                        "test_scenes", "ies")
 
-# Type C, one quadrant, mirrored to the whole circle by the reader.
-QUADRANT = """IESNA91
-TILT=NONE
-1 -1 1 4 3 1 2 0 0 0
-1 1 60
-0 30 60 90
-0, 45, 90
-900 800 300 0
-700 500 200 0
-300 250 100 0
-"""
+
+def profile(name):
+    with open(os.path.join(PROFILES, name)) as f:
+        return f.read()
 
 
 def lamp(name, kind, location, energy, rotation=(0.0, 0.0, 0.0)):
@@ -111,17 +95,15 @@ def main(out_dir, photon_samples, cycles_samples):
     scene.camera = camera
 
     point = lamp("ies_point", 'POINT', (-2.0, 1.5, 1.2), 3.0, (0.6, 0.0, 0.5))
-    feed_ies(point, 'INTERNAL', profile=SKEWED)
-    spot_file = os.path.join(out_dir, "quadrant.ies")
-    with open(spot_file, "w") as f:
-        f.write(QUADRANT)
+    feed_ies(point, 'INTERNAL', profile=profile("skewed.ies"))
+    spot_file = os.path.join(PROFILES, "quadrant.ies")
     spot = lamp("ies_spot", 'SPOT', (2.0, 1.5, 1.5), 8.0, (0.3, 0.4, 0.0))
     spot.spot_size = math.radians(120.0)
     spot.spot_blend = 0.3
     feed_ies(spot, 'EXTERNAL', path=spot_file, multiply=0.5)
     area = lamp("ies_area", 'AREA', (1.5, -2.0, 1.0), 2.0)
     area.size = 0.5
-    feed_ies(area, 'INTERNAL', profile=SKEWED)
+    feed_ies(area, 'INTERNAL', profile=profile("skewed.ies"))
     missing = lamp("ies_missing", 'POINT', (-2.0, -2.0, 1.0), 0.02)
     feed_ies(missing, 'EXTERNAL', path=os.path.join(out_dir, "missing.ies"))
 

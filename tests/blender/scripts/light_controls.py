@@ -83,7 +83,7 @@ def main():
             "power": round(args["power"] / factor, 6), "spectrum": args["spectrum"]}
         if args is not None and "spread" in args:
             result["arguments"][name]["spread"] = round(args["spread"], 6)
-        for key in ("ies", "ies_strength", "ies_source"):
+        for key in ("ies", "ies_strength", "ies_source", "ies_edges", "ies_area_by_direction"):
             if args is not None and key in args:
                 result["arguments"][name][key] = args[key]
         result["warnings"][name] = reporter.warnings

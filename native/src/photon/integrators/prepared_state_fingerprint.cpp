@@ -117,6 +117,10 @@ void add_light(Fingerprint* f, const Light& l) {
   f->add(l.spot_cosine_falloff);
   f->add(l.shape), f->add(l.size_x), f->add(l.size_y), f->add(l.spread), f->add(l.visibility);
   f->add(l.spectrum), f->add(l.temperature), f->add(l.illuminant);
+  if (l.has_ies) {  // only then, so lamps without a profile keep their fingerprints
+    f->add(l.ies_profile), f->add(l.ies_strength), f->add(l.ies_edges);
+    f->add(l.ies_area_by_direction);
+  }
 }
 
 void add_camera(Fingerprint* f, const Camera& c) {

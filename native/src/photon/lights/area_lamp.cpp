@@ -28,6 +28,25 @@ AreaLamp::AreaLamp(LampDescription d)
   const float lu = length(half_u_), lv = length(half_v_);
   area_ = l.shape == AreaShape::kRectangle ? 4.0f * lu * lv : kPi * lu * lv;
   radiance_ = d.flux_color * (0.25f / area_);
+  ies_ = std::move(d.ies);
+  flux_ = radiance_ * (kPi * area_);
+  if (ies_) {
+    // Phi = L A * integral over the hemisphere of cos a(cos) profile, by the midpoint rule in
+    // (cos^2, phi): cos d(omega) = d(cos^2) / 2 d(phi).
+    constexpr int kSteps = 256, kTurns = 128;
+    const Frame f(axis_);
+    double sum = 0.0;
+    for (int i = 0; i < kSteps; ++i) {
+      const float c = std::sqrt((i + 0.5f) / kSteps);
+      const float s = std::sqrt(std::max(0.0f, 1.0f - c * c));
+      const float a = spread_.active() ? spread_.attenuation(c) : 1.0f;
+      for (int j = 0; j < kTurns; ++j) {
+        const float phi = (j + 0.5f) * (2.0f * kPi / kTurns);
+        sum += a * profile(f.to_world(Vec3(s * std::cos(phi), s * std::sin(phi), c)));
+      }
+    }
+    flux_ = radiance_ * static_cast<float>(area_ * kPi * sum / (double(kSteps) * kTurns));
+  }
 }
 
 Vec3 AreaLamp::point(Vec2 u) const {
@@ -72,7 +91,7 @@ bool AreaLamp::direct_window(const Vec3& p, Window* w) const {
 }
 
 Vec3 AreaLamp::power(float) const {
-  return radiance_ * (kPi * area_);
+  return flux_;
 }
 
 LightBounds AreaLamp::extent() const {
@@ -110,14 +129,14 @@ bool AreaLamp::sample_li(const Vec3& p, const LightSampleU& u, const PhotonFrame
   if (spread_.active()) return sample_spread_li(cos_light, dist2, window.area, bidirectional, out);
   if (bidirectional) {
     if (!(cos_light > 1e-7f)) return false;
-    out->radiance = radiance_;
+    out->radiance = radiance_ * profile(-out->wi);
     out->cos_light = cos_light;
     out->direct_pdf = dist2 / (cos_light * area_);
     out->emission_pdf = cos_light * kInvPi / area_;
     return std::isfinite(out->direct_pdf);
   }
   if (cos_light <= 0.0f) return false;
-  out->weight = radiance_ * (cos_light * area_ / dist2);
+  out->weight = radiance_ * profile(-out->wi) * (cos_light * area_ / dist2);
   out->pdf = dist2 / (cos_light * area_);
   return true;
 }
@@ -127,14 +146,15 @@ bool AreaLamp::sample_spread_li(float cos_light, float dist2, float window_area,
   if (!(cos_light > 1e-7f)) return false;
   const float a = spread_.attenuation(cos_light);
   if (!(a > 0.0f)) return false;
+  const Vec3 radiance = radiance_ * profile(-out->wi);
   if (bidirectional) {
-    out->radiance = radiance_ * a;
+    out->radiance = radiance * a;
     out->cos_light = cos_light;
     out->direct_pdf = dist2 / (cos_light * area_);
     out->emission_pdf = spread_.pdf(cos_light) / area_;
     return std::isfinite(out->direct_pdf);
   }
-  out->weight = radiance_ * (a * cos_light * window_area / dist2);
+  out->weight = radiance * (a * cos_light * window_area / dist2);
   out->pdf = dist2 / (cos_light * window_area);
   return std::isfinite(out->pdf);
 }
@@ -150,12 +170,12 @@ bool AreaLamp::eval_li(const Vec3& p, const Vec3& wi, LightHit* out) const {
     const float a = spread_.attenuation(cos_light);
     Window window;
     if (!(a > 0.0f) || !direct_window(p, &window)) return false;
-    out->radiance = radiance_ * a;
+    out->radiance = radiance_ * profile(-wi) * a;
     out->distance = t;
     out->pdf = t * t / (cos_light * window.area);
     return true;
   }
-  out->radiance = radiance_;
+  out->radiance = radiance_ * profile(-wi);
   out->distance = t;
   out->pdf = t * t / (cos_light * area_);
   return true;
@@ -167,12 +187,13 @@ bool AreaLamp::intersect(const Ray& ray, float tmax, bool bidirectional, LightHi
   const float t = dot(position_ - ray.origin, axis_) / denom;
   if (bidirectional ? !(t > ray.tmin) || !(t < tmax) : t <= ray.tmin || t >= tmax) return false;
   if (!inside(ray.origin + ray.direction * t - position_)) return false;
-  out->radiance = radiance_;
+  const Vec3 radiance = radiance_ * profile(-ray.direction);
+  out->radiance = radiance;
   out->distance = t;
   if (spread_.active()) {
     const float a = spread_.attenuation(-denom);
     if (!(a > 0.0f)) return false;  // hidden by the soft box's slats: the ray passes
-    out->radiance = radiance_ * a;
+    out->radiance = radiance * a;
   }
   if (bidirectional) {
     out->direct_pdf = 1.0f / area_;
@@ -190,18 +211,19 @@ bool AreaLamp::sample_le(const PhotonFrame&, float, Vec2 u_pos, Vec2 u_dir, bool
   const Vec3 local =
       spread_.active() ? spread_.sample_direction(u_dir) : sample_cosine_hemisphere(u_dir);
   set_emitted_ray(q, Frame(axis_).to_world(local), &out->ray);
+  const Vec3 radiance = radiance_ * profile(out->ray.direction);
   if (!bidirectional) {
-    out->power = radiance_ * (kPi * area_);
-    return true;
+    out->power = radiance * (kPi * area_);
+    return !ies_ || !is_black(out->power);
   }
   out->pdf_pos = out->direct_pdf = 1.0f / area_;
   out->cos_light = local.z;
   if (spread_.active()) {
-    out->radiance = radiance_ * spread_.attenuation(local.z);
+    out->radiance = radiance * spread_.attenuation(local.z);
     out->pdf_dir = spread_.pdf(local.z);
     return local.z > 0.0f && out->pdf_dir > 0.0f;
   }
-  out->radiance = radiance_;
+  out->radiance = radiance;
   out->pdf_dir = local.z * kInvPi;
   return local.z > 0.0f;
 }
@@ -219,13 +241,14 @@ bool AreaLamp::sample_le_towards(const std::vector<BoundingSphere>& targets, con
   const float cos_l = dot(d, axis_);
   if (cos_l <= 0.0f) return false;
   set_emitted_ray(q, d, &out->ray);
+  const Vec3 radiance = radiance_ * profile(d);
   if (spread_.active()) {
     const float a = spread_.attenuation(cos_l);
     if (!(a > 0.0f)) return false;
-    out->power = radiance_ * (a * cos_l * area_ / pdf);
+    out->power = radiance * (a * cos_l * area_ / pdf);
     return true;
   }
-  out->power = radiance_ * (cos_l * area_ / pdf);
+  out->power = radiance * (cos_l * area_ / pdf);
   return true;
 }
 

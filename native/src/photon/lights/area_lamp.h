@@ -8,6 +8,8 @@
 // the power: photons leave with directions distributed as cos a / pi, caustic photons aim only
 // within the spread's cone, and direct lighting samples only the part of the lamp that can
 // reach the receiver (as Cycles 3.x does for rectangles), so narrow spreads stay smooth.
+// An IES profile read per direction (Cycles 4.0+) scales the radiance along each direction it
+// leaves in; directions are sampled as without it, weighted by it.
 #pragma once
 
 #include "photon/base/spherical_caps.h"
@@ -56,6 +58,8 @@ class AreaLamp final : public Lamp {
                         LightSample* out) const;
   // The directions it emits into: its hemisphere, or its spread's cone.
   Cap emission_cap() const;
+  // The IES profile's factor along a direction leaving the lamp (1 without one).
+  float profile(const Vec3& dir) const { return ies_ ? ies_->factor(dir) : 1.0f; }
 
   AreaShape shape_;
   Vec3 position_;
@@ -65,6 +69,8 @@ class AreaLamp final : public Lamp {
   float area_;
   float radius_;  // Blender's lamp radius, widening the cone of caustic aiming
   AreaSpread spread_;
+  std::optional<IesEmission> ies_;
+  Vec3 flux_;
 };
 
 // The area lamp of `d`, or null (with a warning) when its size is zero.

@@ -6,8 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -310,19 +312,13 @@ Vec3 photon_power(const Emitter& e, const PhotonFrame& frame) {
   return Vec3(static_cast<float>(sum / (static_cast<double>(kGrid) * kGrid)));
 }
 
-// A profile brighter towards the lamp's local +X than -X, dark above its horizon.
-const char* kSkewedProfile = R"(IESNA:LM-63-2002
-TILT=NONE
-1 1000 1 5 5 1 2 0 0 0
-1 1 100
-0 30 60 90 120
-0 90 180 270 360
-800 700 500 200 50
-800 400 200 60 10
-800 500 300 100 20
-800 900 800 400 90
-800 700 500 200 50
-)";
+// A profile brighter towards the lamp's local +X than -X, dark above 120 degrees from its -Z.
+std::string skewed_profile() {
+  std::ifstream f(std::string(PHOTON_IES_PROFILES) + "/skewed.ies");
+  std::stringstream text;
+  text << f.rdbuf();
+  return text.str();
+}
 
 // An IES profile changes how much a lamp sends each way: photons and emitted rays still carry
 // its power (now the profile's integral times the strength), light samples follow the
@@ -330,7 +326,8 @@ TILT=NONE
 TEST(EmissionPdf, LampsWithAnIesProfileFollowIt) {
   const Vec3 pos(0.0f, 0.0f, 2.0f);
   std::string error;
-  const std::optional<IesProfile> profile = IesProfile::parse(kSkewedProfile, &error);
+  const std::string text = skewed_profile();
+  const std::optional<IesProfile> profile = IesProfile::parse(text, &error);
   ASSERT_TRUE(profile) << error;
   // The lamp turned 90 degrees about world Y: its local -Z points along world +X.
   const float rot[12] = {0, 0, -1, pos.x, 0, 1, 0, pos.y, 1, 0, 0, pos.z};
@@ -342,7 +339,7 @@ TEST(EmissionPdf, LampsWithAnIesProfileFollowIt) {
       l.spot_size = 2.0f;
       l.spot_blend = 0.2f;
       l.has_ies = true;
-      l.ies_profile = kSkewedProfile;
+      l.ies_profile = text;
       l.ies_strength = 0.5f;
       const LightSet set({l}, nullptr);
       const Emitter& e = set.lamp(0);
@@ -372,6 +369,36 @@ TEST(EmissionPdf, LampsWithAnIesProfileFollowIt) {
       }
       if (radius > 0.0f) expect_hit_matches_sample(e, kFrame, Vec3(2.5f, 0.4f, 1.0f), 8);
     }
+}
+
+// Area lamps reading a profile per direction (Cycles 4.0+): emitted rays and photons carry the
+// lamp's power, and light samples give the irradiance of the radiance camera rays meet.
+TEST(EmissionPdf, AreaLampsWithAnIesProfileFollowIt) {
+  const std::string text = skewed_profile();
+  for (float spread : {kPi, 1.2f}) {
+    Light l = make_lamp(LightType::kArea, Vec3(0.2f, 0.1f, 2.0f), 50.0f);
+    l.size_x = 1.5f;
+    l.size_y = 0.5f;
+    l.spread = spread;
+    l.has_ies = true;
+    l.ies_profile = text;
+    l.ies_strength = 0.3f;
+    const LightSet set({l}, nullptr);
+    const Emitter& e = set.lamp(0);
+    const Vec3 power = e.power(kFrame.radius);
+    EXPECT_NEAR(emitted_power(e, kFrame).x, power.x, 5e-3f * power.x) << spread;
+    EXPECT_NEAR(photon_power(e, kFrame).x, power.x, 5e-3f * power.x) << spread;
+    const Vec3 p(0.9f, -0.6f, 0.0f), n = normalize(Vec3(0.2f, 0.1f, 1.0f));
+    const double expected =
+        lamp_quadrature(p, n, Vec3(0.2f, 0.1f, 2.0f), 1.5f, 0.5f, false, [&](const Vec3& w) {
+          Ray ray{p, w, 0.0f, INFINITY};
+          LightHit h;
+          return bidirectional_hit(e, kFrame, ray, &h) ? static_cast<double>(h.radiance.x) : 0.0;
+        });
+    ASSERT_GT(expected, 0.0);
+    EXPECT_NEAR(sampled_irradiance(e, kFrame, p, n).x, expected, 1e-2 * expected) << spread;
+    expect_hit_matches_sample(e, kFrame, p, 8);
+  }
 }
 
 TEST(EmissionPdf, SunBeamCarriesIrradianceOverTheSceneDisc) {

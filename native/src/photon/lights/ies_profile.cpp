@@ -141,7 +141,8 @@ bool increasing(const std::vector<float>& a) {
 
 }  // namespace
 
-std::optional<IesProfile> IesProfile::parse(std::string_view text, std::string* error) {
+std::optional<IesProfile> IesProfile::parse(std::string_view text, std::string* error,
+                                            IesEdges edges) {
   auto fail = [&](const char* why) {
     if (error) *error = why;
     return std::nullopt;
@@ -193,18 +194,19 @@ std::optional<IesProfile> IesProfile::parse(std::string_view text, std::string* 
   to_type_c(static_cast<int>(type), h, v, t);
 
   IesProfile p;
+  p.edges_ = edges;
   constexpr float kRad = kPi / 180.0f;
   for (float a : h) p.h_.push_back(a * kRad);
   for (float a : v) p.v_.push_back(a * kRad);
   if (!increasing(p.h_) || !increasing(p.v_)) return fail("its angles overlap once mirrored");
   p.values_.reserve(p.h_.size() * p.v_.size());
   for (const auto& row : t) p.values_.insert(p.values_.end(), row.begin(), row.end());
-  // A table that covers the whole circle (or reaches a pole) interpolates across it; the
-  // tolerance is wider than a float's step at 2 pi, which 360 degrees may round to either side
-  // of.
-  p.wrap_h_ = p.h_.front() < 1e-5f && p.h_.back() > 2.0f * kPi - 1e-5f;
-  p.wrap_v_low_ = p.v_.front() < 1e-5f;
-  p.wrap_v_high_ = p.v_.back() > kPi - 1e-5f;
+  // Cycles 4.1+ interpolates across the circle or a pole only when the table reaches it by
+  // these float tests, which 360 and 180 degrees, converted as above, do not pass (they round
+  // to 2 pi and pi exactly): kept as Cycles has them, so the images agree.
+  p.wrap_h_ = p.h_.front() < 1e-7f && p.h_.back() > 2.0f * kPi - 1e-7f;
+  p.wrap_v_low_ = p.v_.front() < 1e-7f;
+  p.wrap_v_high_ = p.v_.back() > kPi - 1e-7f;
   p.tabulate();
   return p;
 }
@@ -219,25 +221,29 @@ IesProfile IesProfile::constant(float value) {
 float IesProfile::vertical(int v, float v_frac, int h) const {
   const int n = static_cast<int>(v_.size());
   const float b = at(h, v), c = at(h, v + 1);
-  float a = b, d = c;
-  if (v > 0) {
-    a = at(h, v - 1);
-  } else if (wrap_v_low_) {
-    a = at(h, 1);  // across the pole, assuming symmetry as Cycles does
-  }
-  if (v + 2 < n) {
-    d = at(h, v + 2);
-  } else if (wrap_v_high_) {
-    d = at(h, n - 2);
+  float a, d;
+  if (edges_ == IesEdges::kClamp) {
+    a = at(h, v == 0 ? 1 : v - 1);  // across the pole, assuming symmetry as Cycles does
+    d = at(h, std::min(v + 2, n - 1));
+  } else {
+    const bool zero = edges_ == IesEdges::kZero;
+    a = v > 0 ? at(h, v - 1) : wrap_v_low_ ? at(h, 1) : zero ? 0.0f : b;
+    d = v + 2 < n ? at(h, v + 2) : wrap_v_high_ ? at(h, n - 2) : zero ? 0.0f : c;
   }
   return catmull_rom(a, b, c, d, v_frac);
 }
 
 float IesProfile::eval_angles(float h, float v) const {
   if (constant_ >= 0.0f) return constant_;
-  // atan2 of a direction at the pole (an area light's axis) can give h = 2 pi, which is 0.
-  if (wrap_h_ && h >= h_.back()) h = h_.front();
-  if (!(v >= v_.front()) || !(v < v_.back()) || !(h >= h_.front()) || !(h < h_.back())) return 0.0f;
+  if (edges_ == IesEdges::kClamp) {
+    // Cycles 3.x-4.0 checks only the vertical end; an angle at or past a horizontal end (h = 2
+    // pi at the pole, where 3.x reads an area light) is read at that end.
+    if (!(v < v_.back())) return 0.0f;
+    v = std::max(v, v_.front());
+    h = std::clamp(h, h_.front(), h_.back());
+  } else if (!(v >= v_.front()) || !(v < v_.back()) || !(h >= h_.front()) || !(h < h_.back())) {
+    return 0.0f;
+  }
   // The cell [i, i + 1] with angle[i + 1] >= the angle, as Cycles' search finds it.
   const int hi = static_cast<int>(std::lower_bound(h_.begin() + 1, h_.end(), h) - h_.begin()) - 1;
   const int vi = static_cast<int>(std::lower_bound(v_.begin() + 1, v_.end(), v) - v_.begin()) - 1;
@@ -245,17 +251,11 @@ float IesProfile::eval_angles(float h, float v) const {
   const float vf = (v - v_[vi]) / (v_[vi + 1] - v_[vi]);
   const int hn = static_cast<int>(h_.size());
   const float b = vertical(vi, vf, hi), c = vertical(vi, vf, hi + 1);
-  float a = b, d = b;
-  if (hi > 0) {
-    a = vertical(vi, vf, hi - 1);
-  } else if (wrap_h_) {
-    a = vertical(vi, vf, hn - 2);  // 360 equals 0: the entry before it
-  }
-  if (hi + 2 < hn) {
-    d = vertical(vi, vf, hi + 2);
-  } else if (wrap_h_) {
-    d = vertical(vi, vf, 1);
-  }
+  // Past the ends: 360 equals 0, so the entries beyond are the second and the one before last.
+  const bool wrap = wrap_h_ || edges_ == IesEdges::kClamp;
+  const float outside = edges_ == IesEdges::kZero ? 0.0f : b;
+  const float a = hi > 0 ? vertical(vi, vf, hi - 1) : wrap ? vertical(vi, vf, hn - 2) : outside;
+  const float d = hi + 2 < hn ? vertical(vi, vf, hi + 2) : wrap ? vertical(vi, vf, 1) : outside;
   return std::max(catmull_rom(a, b, c, d, hf), 0.0f);
 }
 

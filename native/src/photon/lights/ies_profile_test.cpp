@@ -38,6 +38,13 @@ IesProfile parse_ok(const std::string& text) {
   return p ? std::move(*p) : IesProfile::constant(0.0f);
 }
 
+IesProfile parse_ok(IesEdges edges, const std::string& text) {
+  std::string error;
+  std::optional<IesProfile> p = IesProfile::parse(text, &error, edges);
+  EXPECT_TRUE(p.has_value()) << error;
+  return p ? std::move(*p) : IesProfile::constant(0.0f);
+}
+
 Vec3 local_direction(float h_degrees, float v_degrees) {
   const float v = v_degrees * kDeg, a = h_degrees * kDeg - kPi;
   return {std::sin(v) * std::sin(a), std::sin(v) * std::cos(a), -std::cos(v)};
@@ -66,16 +73,22 @@ TEST(IesProfile, DirectionsInTheLampFrameFollowCycles) {
   EXPECT_NEAR(p.eval(Vec3(0.0f, s, -c)), 150.0f * kCd, 1e-3f);
   EXPECT_NEAR(p.eval(Vec3(s, 0.0f, -c)), 300.0f * kCd, 1e-3f);
   EXPECT_NEAR(p.eval(Vec3(-s, 0.0f, -c)), 400.0f * kCd, 1e-3f);
-  // At the pole every sign of zero reads the same column (atan2(+0, -0) + pi is 2 pi).
+  // At the pole, where Cycles 3.x reads an area light's profile, every sign of zero reads a
+  // value (atan2(+0, -0) + pi is 2 pi, the end of the table).
+  std::string error;
+  const auto cycles3 = IesProfile::parse(kAsymmetric, &error, IesEdges::kClamp);
+  ASSERT_TRUE(cycles3);
   for (const Vec3& pole : {Vec3(0.0f, -0.0f, -1.0f), Vec3(-0.0f, -0.0f, -1.0f),
                            Vec3(0.0f, 0.0f, -1.0f), Vec3(-0.0f, 0.0f, -1.0f)})
-    EXPECT_GT(p.eval(pole), 100.0f * kCd);
+    EXPECT_GT(cycles3->eval(pole), 100.0f * kCd);
   for (float h : {10.0f, 100.0f, 200.0f, 300.0f})
     EXPECT_NEAR(p.eval(local_direction(h, 40.0f)), p.eval_angles(h * kDeg, 40.0f * kDeg), 1e-3f);
 }
 
+// (Read as Cycles 3.x reads it, which wraps around the circle: later releases leave a seam at
+// 0 degrees, EdgesAsEachCyclesReleaseReadsThem.)
 TEST(IesProfile, MirrorsQuadrantsAndHalvesToTheWholeCircle) {
-  const IesProfile quadrant = parse_ok(R"(IESNA:LM-63-1995
+  const IesProfile quadrant = parse_ok(IesEdges::kClamp, R"(IESNA:LM-63-1995
 TILT=NONE
 1 -1 1 3 3 1 2 0 0 0
 1 1 50
@@ -102,6 +115,45 @@ TILT=NONE
 )");
   EXPECT_NEAR(round.eval_angles(0.3f, 30.0f * kDeg), 2.0f * 400.0f * kCd, 1e-3f);
   EXPECT_NEAR(round.eval_angles(4.0f, 30.0f * kDeg), 2.0f * 400.0f * kCd, 1e-3f);
+}
+
+// The three ways Cycles releases treat a table's edges, in the last interval of a downlight
+// that ends at 90 degrees (no wrap there): the stencil's fourth point is the last row (3.x-4.0
+// and 5.1+) or zero (4.1-5.0), which makes the latter brighter there.
+TEST(IesProfile, EdgesAsEachCyclesReleaseReadsThem) {
+  const std::string downlight = R"(IESNA91
+TILT=NONE
+1 1000 1 4 1 1 2 0 0 0
+1 1 60
+0 30 60 90
+0
+900 700 300 100
+)";
+  std::string error;
+  const auto clamp = IesProfile::parse(downlight, &error, IesEdges::kClamp);
+  const auto zero = IesProfile::parse(downlight, &error, IesEdges::kZero);
+  const auto hold = IesProfile::parse(downlight, &error, IesEdges::kHold);
+  ASSERT_TRUE(clamp && zero && hold);
+  const float v = 80.0f * kDeg;
+  // Catmull-Rom of (700, 300, 100, d) at 2/3 of [60, 90], d = 100 or 0.
+  const auto cr = [](float a, float b, float c, float d, float x) {
+    return 0.5f * (2 * b + (c - a) * x + (2 * a - 5 * b + 4 * c - d) * x * x +
+                   (3 * b - a - 3 * c + d) * x * x * x);
+  };
+  // At h = 0 the horizontal stencil reads its own column only.
+  EXPECT_NEAR(clamp->eval_angles(0.0f, v), cr(700, 300, 100, 100, 2.0f / 3) * kCd, 1e-3f);
+  EXPECT_NEAR(hold->eval_angles(0.0f, v), clamp->eval_angles(0.0f, v), 1e-5f);
+  EXPECT_NEAR(zero->eval_angles(0.0f, v), cr(700, 300, 100, 0, 2.0f / 3) * kCd, 1e-3f);
+  EXPECT_GT(zero->eval_angles(0.0f, v), hold->eval_angles(0.0f, v));
+  // Away from the vertical edges all three agree at h = 0.
+  const float mid = 40.0f * kDeg;
+  EXPECT_NEAR(zero->eval_angles(0.0f, mid), hold->eval_angles(0.0f, mid), 1e-5f);
+  // Around the circle the table is one column repeated at 0 and 360 degrees, which 4.1-5.0 do
+  // not wrap across (360 degrees rounds to 2 pi, their test wants more): zero beyond both ends
+  // makes a bump of up to 1/8 at 180 degrees, b (1 + x/2 - x^2/2). 3.x and 5.1+ stay flat.
+  EXPECT_NEAR(zero->eval_angles(kPi, mid), 1.125f * zero->eval_angles(0.0f, mid), 1e-3f);
+  EXPECT_NEAR(hold->eval_angles(kPi, mid), hold->eval_angles(0.0f, mid), 1e-5f);
+  EXPECT_NEAR(clamp->eval_angles(kPi, mid), clamp->eval_angles(0.0f, mid), 1e-5f);
 }
 
 TEST(IesProfile, IntegralAndSamplingMatchTheProfile) {
@@ -212,6 +264,7 @@ TEST(IesProfile, LampsSayWhatTheyDoWithABadProfile) {
   // An area light reads its profile along its axis (v = 0): 5 cd there (and emits pi / 4 of
   // its watts, Cycles 3.x's radiance P / 4A).
   l.type = LightType::kArea;
+  l.ies_area_by_direction = false;
   l.ies_profile = "IESNA91\nTILT=NONE\n1 1000 1 2 1 1 2 0 0 0\n1 1 60\n0 90\n0\n5 2\n";
   l.ies_strength = 2.0f;
   warnings.clear();

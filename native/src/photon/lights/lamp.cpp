@@ -23,18 +23,19 @@ template <typename Warn>
 std::shared_ptr<const IesProfile> read_ies(const Light& l, IesCache* cache, const Warn& warn) {
   IesCache local;
   IesCache& c = cache ? *cache : local;
-  auto it = c.find(l.ies_profile);
+  const std::string key = std::to_string(static_cast<int>(l.ies_edges)) + l.ies_profile;
+  auto it = c.find(key);
   if (it == c.end()) {
     IesRead read;
     std::optional<IesProfile> p;
     if (l.ies_profile.empty()) {
       read.error = "empty";
     } else {
-      p = IesProfile::parse(l.ies_profile, &read.error);
+      p = IesProfile::parse(l.ies_profile, &read.error, l.ies_edges);
     }
     read.profile = std::make_shared<const IesProfile>(
         p ? std::move(*p) : IesProfile::constant(IesProfile::kUnreadableValue));
-    it = c.emplace(l.ies_profile, std::move(read)).first;
+    it = c.emplace(key, std::move(read)).first;
   }
   if (!it->second.error.empty()) {
     const std::string source = l.ies_source.empty() ? "" : " (" + l.ies_source + ")";
@@ -117,12 +118,14 @@ std::unique_ptr<Lamp> make_lamp(const Light& l, std::vector<std::string>* warnin
   double power = std::max(l.power, 0.0f);
   if (l.has_ies) {
     IesEmission ies(read_ies(l, ies_cache, warn), l.ies_strength, l.light_to_world);
-    if (l.type == LightType::kPoint || l.type == LightType::kSpot) {
+    if (l.type == LightType::kPoint || l.type == LightType::kSpot ||
+        (l.type == LightType::kArea && l.ies_area_by_direction)) {
       // Its mean over the sphere scales the flux for the range check below.
       power *= ies.integral() * kInv4Pi;
       d.ies.emplace(std::move(ies));
     } else {
-      // Cycles reads an area light's or a sun's profile along its axis only.
+      // Cycles 3.x reads an area light's profile along its axis only; a sun's direction is
+      // its axis.
       power *= ies.factor(normalize(-l.light_to_world.column(2)));
     }
     if (!(power > 0.0)) {

@@ -56,9 +56,9 @@ struct LampDescription {
   const Light* light = nullptr;
   Vec3 flux_color{0.0f};
   LampSpectrum spectrum;
-  // Point and spot lamps with an IES profile (ies_profile.h): flux_color is then the flux the
-  // lamp would have with a profile of 1 in every direction. Area lamps and suns take their
-  // profile's one value (along their axis, as Cycles reads it) into flux_color instead.
+  // Lamps with an IES profile read per direction (ies_profile.h): flux_color is then the flux
+  // the lamp would have with a profile of 1 in every direction. Suns, and area lamps as Cycles
+  // 3.x reads them, take their profile's one value along their axis into flux_color instead.
   std::optional<IesEmission> ies;
 };
 

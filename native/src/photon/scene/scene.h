@@ -96,6 +96,12 @@ enum class StandardIlluminant : uint8_t { kD65, kA, kF2, kF7, kF11 };
 
 // Blender light conventions: the light looks down its local -Z axis; `power` is Blender's
 // `energy` (W for point, spot and area lights, W/m^2 irradiance for the sun).
+// How Cycles' IES lookup treats the table's edges in its cubic interpolation, which changed
+// between releases (lights/ies_profile.h): Cycles 3.x-4.0 repeat the last row and wrap around
+// the circle always; 4.1-5.0 take zero past an edge the table does not wrap across; 5.1+ repeat
+// the edge row there.
+enum class IesEdges : uint8_t { kClamp, kZero, kHold };
+
 struct Light {
   std::string name;
   LightType type = LightType::kPoint;
@@ -123,6 +129,10 @@ struct Light {
   std::string ies_profile;
   std::string ies_source;
   float ies_strength = 1.0f;
+  IesEdges ies_edges = IesEdges::kHold;
+  // Cycles 4.0+ reads an area light's profile along each direction it emits into; 3.x along its
+  // axis only.
+  bool ies_area_by_direction = true;
 };
 
 enum class Projection : uint8_t { kPerspective, kOrthographic };
