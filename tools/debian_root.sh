@@ -28,10 +28,11 @@ esac
 APT_OPTS=(-o Acquire::Check-Valid-Until=false -o Acquire::Retries=3)
 
 # Photon's package list, the same one tools/common.sh installs on the host (but debootstrap,
-# which only the host needs).
+# which only the host needs, and ccache, which the set-up command inside installs: leaving it
+# out of the key kept the roots made before it joined the list).
 packages() {
   (source "$REPO/tools/common.sh" >/dev/null 2>&1; printf '%s\n' "${PACKAGES[@]}") |
-    grep -vx debootstrap
+    grep -vx -e debootstrap -e ccache
 }
 
 # The versions that decide whether a cached root is still the one this suite would give today.

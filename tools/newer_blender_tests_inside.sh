@@ -5,19 +5,32 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 BUILD="${PHOTON_BUILD_DIR:?}"
 echo "== $(blender --version 2>/dev/null | head -1), $(python3 --version)"
 
+version="$(blender --version 2>/dev/null | head -1 | awk '{print $2}' | cut -d. -f1,2)"
+
+# The C++ unit tests run in sid's root (the newest GCC, Embree 4.4, OpenImageIO 3.1) and on the
+# host (Embree 3, OpenImageIO 2.4). Debian 13's libraries sit between the two and its Embree 4
+# takes the code path sid's does, so its root builds what Blender needs and leaves the unit
+# tests out: building and running them there took 5.5 of the suite's 24 minutes.
+unit_tests=1
+if [ "$version" = "4.3" ]; then
+  unit_tests=0
+  export PHOTON_CMAKE_ARGS="-DPHOTON_BUILD_TESTS=OFF -DPHOTON_BUILD_BENCHMARKS=OFF"
+fi
+
 t=$SECONDS
 ./tools/setup_and_demo.sh
 echo "== set-up and demo: $((SECONDS - t)) s"
 
 status=0
-t=$SECONDS
-"$BUILD/photon_tests" --gtest_brief=1 || status=1
-echo "== unit tests: $((SECONDS - t)) s"
+if [ "$unit_tests" = 1 ]; then
+  t=$SECONDS
+  "$BUILD/photon_tests" --gtest_brief=1 || status=1
+  echo "== unit tests: $((SECONDS - t)) s"
+fi
 
 # The Blender tests that pass in the newer Blenders (tests/blender/newer_blenders.txt; a line's
 # "skip=5.2" leaves the file out in that Blender, its comment says why). The others compare with
 # references rendered in 3.4 or assert 3.4's behaviour: docs/blender_versions.md.
-version="$(blender --version 2>/dev/null | head -1 | awk '{print $2}' | cut -d. -f1,2)"
 tests="$(awk -v v="$version" '/^#/ || !NF { next } {
   keep = 1
   for (i = 2; i <= NF && $i != "#"; i++)

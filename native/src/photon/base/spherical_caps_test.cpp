@@ -8,6 +8,7 @@
 #include "photon/base/sampling.h"
 
 namespace photon {
+namespace spherical_caps_test {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
@@ -91,4 +92,5 @@ TEST(SphericalCaps, OverlapSamplesAreUniformInBothCaps) {
 }
 
 }  // namespace
+}  // namespace spherical_caps_test
 }  // namespace photon

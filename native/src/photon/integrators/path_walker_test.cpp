@@ -17,6 +17,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace path_walker_test {
 namespace {
 
 struct Fixture {
@@ -276,4 +277,5 @@ TEST(PathWalker, CachePlacementVisitsTheCameraWalksGatherPoints) {
 }
 
 }  // namespace
+}  // namespace path_walker_test
 }  // namespace photon

@@ -30,6 +30,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace emissive_sphere_test {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
@@ -233,4 +234,5 @@ TEST(EmissiveSphere, PhotonMappedPlaneMatchesTheSphereIrradiance) {
 }
 
 }  // namespace
+}  // namespace emissive_sphere_test
 }  // namespace photon

@@ -10,6 +10,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace lights_test {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
@@ -463,4 +464,5 @@ TEST(LightSet, IntersectSeesAnAreaLightFromTheFrontOnly) {
 }
 
 }  // namespace
+}  // namespace lights_test
 }  // namespace photon

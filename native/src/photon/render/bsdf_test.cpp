@@ -18,6 +18,7 @@
 #include "photon/testing/test_util.h"
 
 namespace photon {
+namespace bsdf_test {
 namespace {
 
 using namespace bsdf_chi2;
@@ -696,4 +697,5 @@ TEST(BsdfBadInput, FullBsdfKeepsTheHeaviestLobes) {
 }
 
 }  // namespace
+}  // namespace bsdf_test
 }  // namespace photon

@@ -15,6 +15,7 @@
 #include "photon/spectral/rgb_uplift.h"
 
 namespace photon {
+namespace spectral_bsdf_test {
 namespace {
 
 using bsdf_chi2::Uniform;
@@ -201,4 +202,5 @@ TEST(SpectralBsdf, SmoothDispersiveReflectionKeepsEveryWavelengthWithItsFresnel)
 }
 
 }  // namespace
+}  // namespace spectral_bsdf_test
 }  // namespace photon

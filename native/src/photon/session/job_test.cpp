@@ -18,6 +18,7 @@
 #include "photon/testing/timing_slack.h"
 
 namespace photon {
+namespace job_test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -255,4 +256,5 @@ TEST(IntegratorCapabilities, StopEarlyEndsThePreparationInItsStage) {
 }
 
 }  // namespace
+}  // namespace job_test
 }  // namespace photon

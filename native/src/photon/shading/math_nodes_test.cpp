@@ -19,6 +19,7 @@
 #include "photon/testing/node_references.h"
 
 namespace photon {
+namespace math_nodes_test {
 namespace {
 
 // ---- The sockets of each node, in Blender 3.4's order (index "#i" in the manifest) ----
@@ -286,9 +287,11 @@ TEST(MathNodes, MissingInputsReadBlenderDefaults) {
 }
 
 }  // namespace
+}  // namespace math_nodes_test
 }  // namespace photon
 
 namespace photon {
+namespace math_nodes_test {
 namespace {
 
 TEST(MathNodes, WorldShaderHasNoObjectSpace) {
@@ -323,4 +326,5 @@ TEST(MathNodes, GuardsKeepResultsFinite) {
 }
 
 }  // namespace
+}  // namespace math_nodes_test
 }  // namespace photon

@@ -19,6 +19,7 @@
 #include "photon/testing/node_references.h"
 
 namespace photon {
+namespace noise_nodes_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -314,4 +315,5 @@ TEST(NoiseNodes, WhiteNoiseMatchesCyclesHashes) {
 }
 
 }  // namespace
+}  // namespace noise_nodes_test
 }  // namespace photon

@@ -14,6 +14,7 @@
 #include "photon/testing/node_references.h"
 
 namespace photon {
+namespace pattern_nodes_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -218,9 +219,11 @@ TEST(PatternNodes, MissingInputsTakeBlenderDefaultsAndBadEnumsFail) {
 }
 
 }  // namespace
+}  // namespace pattern_nodes_test
 }  // namespace photon
 
 namespace photon {
+namespace pattern_nodes_test {
 namespace {
 
 TEST(PatternSky, BadSettingsFailOrClampInsteadOfCrashing) {
@@ -261,4 +264,5 @@ TEST(PatternSky, BadSettingsFailOrClampInsteadOfCrashing) {
 }
 
 }  // namespace
+}  // namespace pattern_nodes_test
 }  // namespace photon

@@ -15,6 +15,7 @@
 #include "photon/testing/node_references.h"
 
 namespace photon {
+namespace voronoi_nodes_test {
 namespace {
 
 // ---- References. ----
@@ -329,4 +330,5 @@ TEST(VoronoiNodes, NonFiniteCoordinatesFinish) {
 }
 
 }  // namespace
+}  // namespace voronoi_nodes_test
 }  // namespace photon

@@ -16,6 +16,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace caustic_emission_test {
 namespace {
 
 struct Fixture {
@@ -241,4 +242,5 @@ TEST(CausticEmission, MapsDoNotDependOnThreadCount) {
 }
 
 }  // namespace
+}  // namespace caustic_emission_test
 }  // namespace photon

@@ -10,6 +10,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace irradiance_cache_render_test {
 namespace {
 
 RenderSettings cornell_settings(int size, int spp, uint64_t seed) {
@@ -110,4 +111,5 @@ TEST(IrradianceCacheRender, CancelDuringTheCacheBuildStopsPromptly) {
 }
 
 }  // namespace
+}  // namespace irradiance_cache_render_test
 }  // namespace photon

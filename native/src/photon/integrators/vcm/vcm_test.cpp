@@ -10,6 +10,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace vcm_test {
 namespace {
 
 RenderSettings vcm_settings(int size, int iterations, uint64_t paths, VcmMode mode) {
@@ -230,4 +231,5 @@ TEST(Vcm, ImageIsTheSameForAnyThreadCount) {
 }
 
 }  // namespace
+}  // namespace vcm_test
 }  // namespace photon
