@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace photon {
+namespace check_test {
 namespace {
 
 int evaluations = 0;
@@ -35,4 +36,5 @@ TEST(Check, DcheckRunsExactlyInBuildsWithoutNdebug) {
 }
 
 }  // namespace
+}  // namespace check_test
 }  // namespace photon

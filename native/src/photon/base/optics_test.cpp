@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 namespace photon {
+namespace optics_test {
 namespace {
 
 TEST(Fresnel, NormalIncidenceMatchesSchlickR0) {
@@ -52,4 +53,5 @@ TEST(Reflect, MirrorsAboutTheNormal) {
 }
 
 }  // namespace
+}  // namespace optics_test
 }  // namespace photon

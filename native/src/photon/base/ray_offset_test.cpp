@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace ray_offset_test {
 namespace {
 
 Material grey() {
@@ -160,4 +161,5 @@ TEST(RayOffset, TinyAreaLightOfATinySceneIsKept) {
 }
 
 }  // namespace
+}  // namespace ray_offset_test
 }  // namespace photon

@@ -13,6 +13,7 @@
 #include "photon/base/rng.h"
 
 namespace photon {
+namespace sampling_test {
 namespace {
 
 constexpr int kSampleCount = 200000;
@@ -506,4 +507,5 @@ TEST(Sampler, ConsecutiveBlocksVisitTheSamePointsAsOneBlock) {
 }
 
 }  // namespace
+}  // namespace sampling_test
 }  // namespace photon

@@ -7,6 +7,7 @@
 #include <vector>
 
 namespace photon {
+namespace cryptomatte_test {
 namespace {
 
 float id_from_bits(uint32_t u) {
@@ -83,4 +84,5 @@ TEST(Cryptomatte, ClearForgetsTheRowAndBadWeightsAreIgnored) {
 }
 
 }  // namespace
+}  // namespace cryptomatte_test
 }  // namespace photon

@@ -5,6 +5,7 @@
 #include "photon/film/film.h"
 
 namespace photon {
+namespace film_gamut_test {
 namespace {
 
 Film one_pixel_film(bool into_gamut) {
@@ -79,4 +80,5 @@ TEST(FilmGamut, NoiseAboutBlackResolvesToBlack) {
 }
 
 }  // namespace
+}  // namespace film_gamut_test
 }  // namespace photon

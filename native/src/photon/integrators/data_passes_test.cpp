@@ -15,6 +15,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace data_passes_test {
 namespace {
 
 constexpr float kCameraHeight = 3.0f;
@@ -398,4 +399,5 @@ TEST(DataPasses, SppmAndVcmWriteTheTiledIntegratorsDataPasses) {
 }
 
 }  // namespace
+}  // namespace data_passes_test
 }  // namespace photon

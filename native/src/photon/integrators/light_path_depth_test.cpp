@@ -13,6 +13,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace light_path_depth_test {
 namespace {
 
 struct Fixture {
@@ -143,4 +144,5 @@ TEST(LightPathDepth, TransparentBouncesAreLeftOutOfRayDepth) {
 }
 
 }  // namespace
+}  // namespace light_path_depth_test
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace matte_test {
 namespace {
 
 constexpr int kSize = 8;
@@ -203,4 +204,5 @@ TEST(Matte, ShadowCatcherUnderAbsurdLampsStaysFinite) {
 }
 
 }  // namespace
+}  // namespace matte_test
 }  // namespace photon

@@ -12,6 +12,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace merge_radius_test {
 namespace {
 
 TEST(MergeRadius, RangeRunsFromATenthOfAPixelToAQuarterOfTheScene) {
@@ -133,4 +134,5 @@ TEST(MergeRadius, VcmRadiusIsAtMostAQuarterOfTheScene) {
 }
 
 }  // namespace
+}  // namespace merge_radius_test
 }  // namespace photon

@@ -21,6 +21,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace prepared_state_file_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -229,4 +230,5 @@ TEST(PreparedStateFingerprint, FollowsSceneAndSettingsButNotTheBorder) {
 }
 
 }  // namespace
+}  // namespace prepared_state_file_test
 }  // namespace photon

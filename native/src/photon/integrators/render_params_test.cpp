@@ -11,6 +11,7 @@
 #include "photon/session/render_session.h"
 
 namespace photon {
+namespace render_params_test {
 namespace {
 
 template <class S>
@@ -139,4 +140,5 @@ TEST(RenderParams, JsonListsEveryParameter) {
 }
 
 }  // namespace
+}  // namespace render_params_test
 }  // namespace photon

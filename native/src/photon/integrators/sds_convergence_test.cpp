@@ -19,6 +19,7 @@
 #include "photon/testing/sds_scenes.h"
 
 namespace photon {
+namespace sds_convergence_test {
 namespace {
 
 #ifndef PHOTON_SDS_REFS
@@ -93,4 +94,5 @@ INSTANTIATE_TEST_SUITE_P(
     case_name);
 
 }  // namespace
+}  // namespace sds_convergence_test
 }  // namespace photon

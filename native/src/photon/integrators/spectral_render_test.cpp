@@ -14,6 +14,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace spectral_render_test {
 namespace {
 
 RenderSettings settings_for(IntegratorType integrator, int size, int spp, bool spectral) {
@@ -226,4 +227,5 @@ TEST(SpectralRender, ImageDoesNotDependOnTheThreadCount) {
 }
 
 }  // namespace
+}  // namespace spectral_render_test
 }  // namespace photon

@@ -6,6 +6,7 @@
 #include <vector>
 
 namespace photon {
+namespace area_spread_test {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
@@ -93,4 +94,5 @@ TEST(AreaSpread, SampledDirectionsFollowTheDensity) {
 }
 
 }  // namespace
+}  // namespace area_spread_test
 }  // namespace photon

@@ -24,6 +24,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace emission_pdf_test {
 namespace {
 
 constexpr int kGrid = 256;  // strata per axis of the 2D sample grids
@@ -495,4 +496,5 @@ TEST(EmissionPdf, EmissiveTrianglesAloneAndAsAGroup) {
 }
 
 }  // namespace
+}  // namespace emission_pdf_test
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/base/sampling.h"
 
 namespace photon {
+namespace emitter_set_test {
 namespace {
 
 std::vector<Light> random_lamps(int n, uint32_t seed) {
@@ -68,4 +69,5 @@ TEST(EmitterSet, TreeLampIntersectionFindsWhatTheLinearSearchFinds) {
 }
 
 }  // namespace
+}  // namespace emitter_set_test
 }  // namespace photon

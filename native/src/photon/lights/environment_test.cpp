@@ -22,6 +22,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace environment_test {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
@@ -642,4 +643,5 @@ TEST(Environment, BadFunctionValuesAndMapWidthAreSanitizedWithAWarning) {
 }
 
 }  // namespace
+}  // namespace environment_test
 }  // namespace photon

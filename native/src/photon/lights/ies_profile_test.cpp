@@ -10,6 +10,7 @@
 #include "photon/lights/lamp.h"
 
 namespace photon {
+namespace ies_profile_test {
 namespace {
 
 constexpr float kCd = 0.0706650768394f;  // Cycles' candela-to-strength factor
@@ -275,4 +276,5 @@ TEST(IesProfile, LampsSayWhatTheyDoWithABadProfile) {
 }
 
 }  // namespace
+}  // namespace ies_profile_test
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/scene/material.h"
 
 namespace photon {
+namespace light_limits_test {
 namespace {
 
 Light lamp(LightType type, float power) {
@@ -100,4 +101,5 @@ TEST(LightLimits, MedianKthDistanceMatchesTheGridDensity) {
 }
 
 }  // namespace
+}  // namespace light_limits_test
 }  // namespace photon

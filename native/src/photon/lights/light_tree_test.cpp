@@ -16,6 +16,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace light_tree_test {
 namespace {
 
 // Points, spots and one-sided quads of random power scattered under a ceiling.
@@ -218,4 +219,5 @@ TEST(LightTreeDirectLighting, MatchesTheEveryLightEstimator) {
 }
 
 }  // namespace
+}  // namespace light_tree_test
 }  // namespace photon

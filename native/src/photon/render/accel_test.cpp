@@ -16,6 +16,7 @@
 #include "photon/testing/timing_slack.h"
 
 namespace photon {
+namespace accel_test {
 namespace {
 
 Ray make_ray(const Vec3& origin, const Vec3& direction, float tmax = INFINITY) {
@@ -415,4 +416,5 @@ TEST(Accel, CancelledBuildIsAbandonedPromptlyAndLeavesAnEmptyScene) {
 }
 
 }  // namespace
+}  // namespace accel_test
 }  // namespace photon

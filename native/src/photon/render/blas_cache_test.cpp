@@ -13,6 +13,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace blas_cache_test {
 namespace {
 
 // Rays from inside the Cornell box in every direction, the same for every call.
@@ -113,4 +114,5 @@ TEST(BlasCache, CancelledBuildCachesNothing) {
 }
 
 }  // namespace
+}  // namespace blas_cache_test
 }  // namespace photon

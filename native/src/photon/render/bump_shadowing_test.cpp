@@ -5,6 +5,7 @@
 #include "photon/render/bsdf.h"
 
 namespace photon {
+namespace bump_shadowing_test {
 namespace {
 
 Vec3 unit(float x, float y, float z) {
@@ -74,4 +75,5 @@ TEST(BumpShadowing, SampledWeightsCarryTheTerm) {
 }
 
 }  // namespace
+}  // namespace bump_shadowing_test
 }  // namespace photon

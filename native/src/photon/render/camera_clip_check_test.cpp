@@ -8,6 +8,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace camera_clip_check_test {
 namespace {
 
 // A floor 2 * scale wide and a camera `height` * scale above its centre, looking down.
@@ -35,4 +36,5 @@ TEST(CameraClipCheck, WarnsWhenBlendersSmallestClipStartHidesATinyScene) {
 }
 
 }  // namespace
+}  // namespace camera_clip_check_test
 }  // namespace photon

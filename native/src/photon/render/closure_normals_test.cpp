@@ -13,6 +13,7 @@
 #include "photon/testing/test_util.h"
 
 namespace photon {
+namespace closure_normals_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -104,4 +105,5 @@ TEST(ClosureNormals, UnlinkedClearcoatNormalIsTheInterpolatedNormal) {
 }
 
 }  // namespace
+}  // namespace closure_normals_test
 }  // namespace photon

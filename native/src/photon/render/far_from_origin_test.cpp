@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace far_from_origin_test {
 namespace {
 
 // 1 m quads at the given offsets.
@@ -52,4 +53,5 @@ TEST(FarFromOrigin, ScatteredSmallObjectsAndRebasedScenesDoNotWarn) {
 }
 
 }  // namespace
+}  // namespace far_from_origin_test
 }  // namespace photon

@@ -13,6 +13,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace first_pixel_perf_test {
 namespace {
 
 // Many small meshes (each its own bottom-level BVH, built concurrently) plus one dense one.
@@ -275,4 +276,5 @@ TEST(FirstPixelPerf, ParallelLoopGatherOfALargeMeshPicksEachCornersLoop) {
 }
 
 }  // namespace
+}  // namespace first_pixel_perf_test
 }  // namespace photon

@@ -17,6 +17,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace glass_test {
 namespace {
 
 using bsdf_chi2::Uniform;
@@ -238,4 +239,5 @@ TEST(PrincipledGlass, SmoothGlassReflectsWhiteAndRefractsTheBaseColour) {
 }
 
 }  // namespace
+}  // namespace glass_test
 }  // namespace photon

@@ -9,6 +9,7 @@
 #include "photon/testing/test_util.h"
 
 namespace photon {
+namespace material_eval_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -225,4 +226,5 @@ TEST(MaterialEval, EmptyMaterialIsBlackAndMayBeSpecularIsConservative) {
 }
 
 }  // namespace
+}  // namespace material_eval_test
 }  // namespace photon

@@ -18,6 +18,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace principled_extras_test {
 namespace {
 
 using namespace bsdf_chi2;
@@ -462,4 +463,5 @@ TEST(PrincipledExtrasFurnace, EnergyPreservingOrenNayarPutsTheLostLightBack) {
 }
 
 }  // namespace
+}  // namespace principled_extras_test
 }  // namespace photon

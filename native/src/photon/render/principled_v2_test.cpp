@@ -15,6 +15,7 @@
 #include "photon/render/microfacet_albedo_integrals.h"
 
 namespace photon {
+namespace principled_v2_test {
 namespace {
 
 using bsdf_chi2::Uniform;
@@ -373,4 +374,5 @@ TEST(PrincipledV2, SamplingMatchesPdf) {
 }
 
 }  // namespace
+}  // namespace principled_v2_test
 }  // namespace photon

@@ -5,6 +5,7 @@
 #include <cmath>
 
 namespace photon {
+namespace valid_reflection_test {
 namespace {
 
 Vec3 reflect_about(const Vec3& n, const Vec3& i) {
@@ -56,4 +57,5 @@ TEST(ValidReflection, WorksOutOfPlaneAndForAnyGeometricNormal) {
 }
 
 }  // namespace
+}  // namespace valid_reflection_test
 }  // namespace photon

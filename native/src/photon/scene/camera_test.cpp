@@ -9,6 +9,7 @@
 #include "photon/testing/test_util.h"
 
 namespace photon {
+namespace camera_test {
 namespace {
 
 // A rotated and translated camera: its columns are right, up, back (view axis = -back), eye.
@@ -199,4 +200,5 @@ TEST(Camera, LookAtCameraCentresTheTarget) {
 }
 
 }  // namespace
+}  // namespace camera_test
 }  // namespace photon

@@ -16,6 +16,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace material_table_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -168,4 +169,5 @@ TEST(MaterialTable, TexturesAboveTheRangeShadeLikeClampedConstants) {
 }
 
 }  // namespace
+}  // namespace material_table_test
 }  // namespace photon

@@ -5,6 +5,7 @@
 #include <cmath>
 
 namespace photon {
+namespace mesh_import_test {
 namespace {
 
 TEST(SnapNormals, NormalsOneUlpApartBecomeIdentical) {
@@ -27,4 +28,5 @@ TEST(SnapNormals, NormalsOneUlpApartBecomeIdentical) {
 }
 
 }  // namespace
+}  // namespace mesh_import_test
 }  // namespace photon

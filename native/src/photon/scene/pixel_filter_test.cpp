@@ -12,6 +12,7 @@
 #include <vector>
 
 namespace photon {
+namespace pixel_filter_test {
 namespace {
 
 // Integral of the filter over [a, b] (midpoint rule, fine enough for 1e-7 relative accuracy).
@@ -161,4 +162,5 @@ TEST(PixelFilter, WidthIsClamped) {
 }
 
 }  // namespace
+}  // namespace pixel_filter_test
 }  // namespace photon

@@ -39,6 +39,7 @@
 #endif
 
 namespace photon {
+namespace scene_fuzz_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -537,4 +538,5 @@ TEST(SceneFuzz, RandomScenesRenderAndBakeSafely) {
 }
 
 }  // namespace
+}  // namespace scene_fuzz_test
 }  // namespace photon

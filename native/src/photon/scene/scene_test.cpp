@@ -7,6 +7,7 @@
 #include <vector>
 
 namespace photon {
+namespace scene_test {
 namespace {
 
 // Tags every per-triangle attribute with the triangle's original index t, so we can tell
@@ -189,4 +190,5 @@ TEST(Scene, DefaultMaterialIsAGreyDiffuse) {
 }
 
 }  // namespace
+}  // namespace scene_test
 }  // namespace photon

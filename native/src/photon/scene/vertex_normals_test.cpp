@@ -9,6 +9,7 @@
 #include <random>
 
 namespace photon {
+namespace vertex_normals_test {
 namespace {
 
 struct PolygonMesh {
@@ -197,4 +198,5 @@ TEST(VertexNormals, RandomBrokenPolygonArraysNeverReachOutside) {
 }
 
 }  // namespace
+}  // namespace vertex_normals_test
 }  // namespace photon

@@ -15,6 +15,7 @@
 #include "photon/testing/timing_slack.h"
 
 namespace photon {
+namespace bake_cancel_test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -104,4 +105,5 @@ TEST(BakeCancel, EveryStageStopsWithinHalfASecond) {
 }
 
 }  // namespace
+}  // namespace bake_cancel_test
 }  // namespace photon

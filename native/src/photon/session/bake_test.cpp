@@ -12,6 +12,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace bake_test {
 namespace {
 
 RenderSettings bake_settings(int samples = 8) {
@@ -280,9 +281,11 @@ TEST(Bake, TexturedAlbedoIsBaked) {
 }
 
 }  // namespace
+}  // namespace bake_test
 }  // namespace photon
 
 namespace photon {
+namespace bake_test {
 namespace {
 
 // Upsampling keeps texel centres aligned: a linear ramp stays the same ramp in between, the
@@ -307,4 +310,5 @@ TEST(Lightmap, UpsampleIsBilinearBetweenTexelCentres) {
 }
 
 }  // namespace
+}  // namespace bake_test
 }  // namespace photon

@@ -18,6 +18,7 @@
 #include "photon/testing/timing_slack.h"
 
 namespace photon {
+namespace cancel_latency_test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -182,4 +183,5 @@ TEST(CancelLatency, RadianceCacheBuild) {
 }
 
 }  // namespace
+}  // namespace cancel_latency_test
 }  // namespace photon

@@ -9,6 +9,7 @@
 #include <vector>
 
 namespace photon {
+namespace image_io_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -58,4 +59,5 @@ TEST(ImageIo, FailuresLeaveNothingBehindAndSayWhy) {
 }
 
 }  // namespace
+}  // namespace image_io_test
 }  // namespace photon

@@ -15,6 +15,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace iterative_border_test {
 namespace {
 
 constexpr int kWidth = 36, kHeight = 30;
@@ -87,4 +88,5 @@ TEST(IterativeBorder, VcmBandEqualsTheFullRenderInEveryMode) {
 }
 
 }  // namespace
+}  // namespace iterative_border_test
 }  // namespace photon

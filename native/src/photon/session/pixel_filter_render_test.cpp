@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace pixel_filter_render_test {
 namespace {
 
 std::vector<float> render_image(const std::shared_ptr<const Scene>& scene,
@@ -66,4 +67,5 @@ TEST(PixelFilterRender, ExposureScalesColourOnly) {
 }
 
 }  // namespace
+}  // namespace pixel_filter_render_test
 }  // namespace photon

@@ -13,6 +13,7 @@
 #include "photon/testing/timing_slack.h"
 
 namespace photon {
+namespace progressive_session_test {
 namespace {
 
 using Clock = std::chrono::steady_clock;
@@ -255,4 +256,5 @@ TEST(ProgressiveSession, StopsAtTargetSamples) {
 }
 
 }  // namespace
+}  // namespace progressive_session_test
 }  // namespace photon

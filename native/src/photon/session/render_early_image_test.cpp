@@ -13,6 +13,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace render_early_image_test {
 namespace {
 
 RenderSettings settings_for(int size, int spp, IntegratorType integrator) {
@@ -127,4 +128,5 @@ TEST(RenderSessionCancel, KeepsTheFinishedRowsOfATile) {
 }
 
 }  // namespace
+}  // namespace render_early_image_test
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace render_session_test {
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
@@ -350,4 +351,5 @@ TEST(RenderSession, DepthOfFieldConvergesToTheExactPixelValue) {
 }
 
 }  // namespace
+}  // namespace render_session_test
 }  // namespace photon

@@ -13,6 +13,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace time_limit_test {
 namespace {
 
 struct Output {
@@ -100,4 +101,5 @@ TEST(TimeLimit, AnAmpleBudgetRendersEverySample) {
 }
 
 }  // namespace
+}  // namespace time_limit_test
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace viewport_scene_test {
 namespace {
 
 RenderSettings settings(IntegratorType type) {
@@ -176,4 +177,5 @@ TEST(ViewportScene, EditedMaterialsRenderAsSceneBuiltWithThem) {
 }
 
 }  // namespace
+}  // namespace viewport_scene_test
 }  // namespace photon

@@ -19,6 +19,7 @@
 #include "photon/testing/node_references.h"
 
 namespace photon {
+namespace attribute_nodes_cycles_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -170,4 +171,5 @@ TEST(AttributeNodes, MatchCyclesReferences) {
 }
 
 }  // namespace
+}  // namespace attribute_nodes_cycles_test
 }  // namespace photon

@@ -16,6 +16,7 @@
 #include "photon/shading/program_eval.h"
 
 namespace photon {
+namespace attribute_nodes_test {
 namespace {
 
 // Two triangles of a unit square sharing the edge (1, 3): (0, 1, 3) and (1, 2, 3).
@@ -281,4 +282,5 @@ TEST(AttributeNodeTest, SurfaceGlobalsCarryTheMeshPoint) {
 }
 
 }  // namespace
+}  // namespace attribute_nodes_test
 }  // namespace photon

@@ -18,6 +18,7 @@
 #include "photon/testing/node_references.h"
 
 namespace photon {
+namespace color_nodes_test {
 namespace {
 
 // ---- From a manifest case (Blender socket names) to a NodeDesc (socket identifiers) ----
@@ -298,4 +299,5 @@ TEST(ColorNodes, MissingInputsReadBlenderDefaults) {
 }
 
 }  // namespace
+}  // namespace color_nodes_test
 }  // namespace photon

@@ -14,6 +14,7 @@
 #include "photon/shading/textures.h"
 
 namespace photon {
+namespace textures_alpha_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -106,4 +107,5 @@ TEST_F(TextureAlphaTest, FloatSrgbImagesAreInterpolatedAsStoredThenLinearised) {
 }
 
 }  // namespace
+}  // namespace textures_alpha_test
 }  // namespace photon

@@ -16,6 +16,7 @@
 #include "photon/testing/timing_slack.h"
 
 namespace photon {
+namespace textures_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -237,4 +238,5 @@ TEST_F(TextureCache, OneFileConvertedConcurrentlyAsColourAndAsDataConvertsRightB
 }
 
 }  // namespace
+}  // namespace textures_test
 }  // namespace photon

@@ -7,6 +7,7 @@
 #include "photon/spectral/illuminants.h"
 
 namespace photon::spectral {
+namespace colorimetry_test {
 namespace {
 
 Vec3 chromaticity(const Vec3& xyz) {
@@ -107,4 +108,5 @@ TEST(SpectralCie, TabulatedSpectrumInterpolatesAndClips) {
 }
 
 }  // namespace
+}  // namespace colorimetry_test
 }  // namespace photon::spectral

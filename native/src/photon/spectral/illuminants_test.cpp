@@ -10,6 +10,7 @@
 #include "photon/spectral/dispersion.h"
 
 namespace photon::spectral {
+namespace illuminants_test {
 namespace {
 
 TEST(SpectralBlackbody, PlanckValuesAndPeakNormalisation) {
@@ -122,4 +123,5 @@ TEST(SpectralDispersion, PrismSpreadsBlueMoreThanRed) {
 }
 
 }  // namespace
+}  // namespace illuminants_test
 }  // namespace photon::spectral

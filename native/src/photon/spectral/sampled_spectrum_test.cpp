@@ -11,6 +11,7 @@
 #include "photon/spectral/illuminants.h"
 
 namespace photon::spectral {
+namespace sampled_spectrum_test {
 namespace {
 
 constexpr float kRange = kLambdaMax - kLambdaMin;
@@ -179,4 +180,5 @@ TEST(SpectralSampling, SpectrumArithmetic) {
 }
 
 }  // namespace
+}  // namespace sampled_spectrum_test
 }  // namespace photon::spectral

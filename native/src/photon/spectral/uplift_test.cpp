@@ -13,6 +13,7 @@
 #include "photon/spectral/uplift_fit.h"
 
 namespace photon::spectral {
+namespace uplift_test {
 namespace {
 
 const RgbToSpectrumTable& table() {
@@ -173,4 +174,5 @@ TEST(SpectralUplift, TableFitDoesNotDependOnThreadCount) {
 }
 
 }  // namespace
+}  // namespace uplift_test
 }  // namespace photon::spectral

@@ -14,6 +14,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace dispersion_test {
 namespace {
 
 struct Traced {
@@ -232,4 +233,5 @@ TEST(Dispersion, GlassBallCausticKeepsItsPowerAndSplitsItsColours) {
 }
 
 }  // namespace
+}  // namespace dispersion_test
 }  // namespace photon

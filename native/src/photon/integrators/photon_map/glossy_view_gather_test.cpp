@@ -12,6 +12,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace glossy_view_gather_test {
 namespace {
 
 // A 0.2 m diffuse patch at z = 0 under a 4 m diffuse ceiling at z = 1, lit by a point light
@@ -74,4 +75,5 @@ TEST(GlossyViewGather, PatchThroughARoughMirrorMatchesThePatchThroughAPerfectMir
 }
 
 }  // namespace
+}  // namespace glossy_view_gather_test
 }  // namespace photon

@@ -6,6 +6,7 @@
 #include <random>
 
 namespace photon {
+namespace irradiance_cache_test {
 namespace {
 
 IrradianceRecord record(Vec3 p, Vec3 n, Vec3 value, float radius) {
@@ -120,4 +121,5 @@ TEST(IrradianceCache, DropsInvalidRecordsAndHandlesEmpty) {
 }
 
 }  // namespace
+}  // namespace irradiance_cache_test
 }  // namespace photon

@@ -10,6 +10,7 @@
 #include "photon/integrators/photon_map/radiance_cache.h"
 
 namespace photon {
+namespace light_leak_test {
 namespace {
 
 Vec3 random_unit(uint64_t h) {
@@ -189,4 +190,5 @@ TEST(LightLeak, RadianceRecordOfAParallelSurfaceAcrossAGapIsNotUsed) {
 }
 
 }  // namespace
+}  // namespace light_leak_test
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace near_gather_test {
 namespace {
 
 // A 0.4 m diffuse ball resting on a 6 m diffuse floor under a uniform sky; an orthographic
@@ -58,4 +59,5 @@ TEST(NearGather, FloorBesideABallDoesNotDependOnThePhotonCount) {
 }
 
 }  // namespace
+}  // namespace near_gather_test
 }  // namespace photon

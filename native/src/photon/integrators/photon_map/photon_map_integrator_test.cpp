@@ -8,6 +8,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace photon_map_integrator_test {
 namespace {
 
 RenderSettings settings_for(int size, int spp) {
@@ -127,4 +128,5 @@ TEST(PhotonMapIntegrator, EmptySceneAndNoLightsRenderBlackWithoutPhotons) {
 }
 
 }  // namespace
+}  // namespace photon_map_integrator_test
 }  // namespace photon

@@ -7,6 +7,7 @@
 #include "photon/base/rng.h"
 
 namespace photon {
+namespace photon_map_test {
 namespace {
 
 std::vector<Photon> random_photons(size_t n, uint64_t seed) {
@@ -133,4 +134,5 @@ TEST(PhotonMap, RadianceEstimateOfUniformPhotonsIsIrradianceOverPi) {
 }
 
 }  // namespace
+}  // namespace photon_map_test
 }  // namespace photon

@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace photon_memory_test {
 namespace {
 
 TEST(PhotonMemory, ParsesMemAvailable) {
@@ -143,4 +144,5 @@ TEST(RenderSession, HugeThreadCountsAreClampedWithAWarningAndRenderTheSameImage)
 }
 
 }  // namespace
+}  // namespace photon_memory_test
 }  // namespace photon

@@ -9,6 +9,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace photon_tracer_test {
 namespace {
 
 // Everything a trace needs, built from a scene.
@@ -204,4 +205,5 @@ TEST(PhotonTracer, NoLightsOrNoGeometryTraceNothing) {
 }
 
 }  // namespace
+}  // namespace photon_tracer_test
 }  // namespace photon

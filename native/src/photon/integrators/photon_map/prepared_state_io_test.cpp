@@ -22,6 +22,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace prepared_state_io_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -283,4 +284,5 @@ TEST(PreparedState, UnwritablePathWarnsAndRenders) {
 }
 
 }  // namespace
+}  // namespace prepared_state_io_test
 }  // namespace photon

@@ -13,6 +13,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace radiosity_adaptive_test {
 namespace {
 
 // A 20 m floor of two triangles (instance 0) and a finely tessellated unit sphere above it
@@ -208,4 +209,5 @@ TEST(RadiosityAdaptive, BitIdenticalWithOneAndTwoThreads) {
 }
 
 }  // namespace
+}  // namespace radiosity_adaptive_test
 }  // namespace photon

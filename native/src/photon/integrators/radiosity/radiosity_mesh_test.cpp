@@ -9,6 +9,7 @@
 #include "photon/testing/test_util.h"
 
 namespace photon {
+namespace radiosity_mesh_test {
 namespace {
 
 Scene single(Mesh mesh) {
@@ -132,4 +133,5 @@ TEST(RadiosityField, ContinuousAcrossTheSharedEdge) {
 }
 
 }  // namespace
+}  // namespace radiosity_mesh_test
 }  // namespace photon

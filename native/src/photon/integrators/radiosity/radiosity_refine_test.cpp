@@ -12,6 +12,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace radiosity_refine_test {
 namespace {
 
 constexpr float kHalf = 2.0f;  // the occluder covers |x|, |y| < 2, so does its shadow
@@ -234,4 +235,5 @@ TEST(RadiosityRefine, BitIdenticalWithOneAndTwoThreads) {
 }
 
 }  // namespace
+}  // namespace radiosity_refine_test
 }  // namespace photon

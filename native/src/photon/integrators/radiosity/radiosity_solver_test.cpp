@@ -12,6 +12,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace radiosity_solver_test {
 namespace {
 
 std::vector<RadiosityPower> solve(RadiosityFixture& f, const RadiosityMesh& mesh,
@@ -164,9 +165,11 @@ TEST(RadiosityIntegrator, RendersTheClosedBoxValue) {
 }
 
 }  // namespace
+}  // namespace radiosity_solver_test
 }  // namespace photon
 
 namespace photon {
+namespace radiosity_solver_test {
 namespace {
 
 // Light reaches diffuse patches through the glass and mirror balls (caustics), and the power
@@ -190,4 +193,5 @@ TEST(RadiositySolver, RaysFollowMirrorsAndGlass) {
 }
 
 }  // namespace
+}  // namespace radiosity_solver_test
 }  // namespace photon

@@ -12,6 +12,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace sppm_test {
 namespace {
 
 RenderSettings sppm_settings(int size, int iterations, uint64_t photons) {
@@ -311,4 +312,5 @@ TEST(PhotonKdTree, FindsExactlyThePhotonsWithinTheRadiusInOneOrder) {
 }
 
 }  // namespace
+}  // namespace sppm_test
 }  // namespace photon

@@ -7,6 +7,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace vcm_light_paths_test {
 namespace {
 
 struct LightPathFixture {
@@ -85,4 +86,5 @@ TEST(VcmLightPaths, TheUisMaximumIsScaledDownToTheBudget) {
 }
 
 }  // namespace
+}  // namespace vcm_light_paths_test
 }  // namespace photon

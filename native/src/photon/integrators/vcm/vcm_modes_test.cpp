@@ -11,6 +11,7 @@
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
+namespace vcm_modes_test {
 namespace {
 
 constexpr int kSize = 32, kTile = 8, kTiles = (kSize / kTile) * (kSize / kTile);
@@ -93,4 +94,5 @@ TEST(VcmModes, AgreeTileByTileWithinTheirMeasuredNoiseOnTheCornellBox) {
 }
 
 }  // namespace
+}  // namespace vcm_modes_test
 }  // namespace photon
