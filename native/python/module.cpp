@@ -505,6 +505,28 @@ PYBIND11_MODULE(_photon, m) {
           "`ies_area_by_direction` (Cycles 4.0+) whether an area light reads it per direction "
           "rather than along its axis.")
       .def(
+          "add_portal",
+          [](Scene& scene, const std::string& name, const FloatArray& matrix,
+             const std::string& shape, float size_x, float size_y) {
+            const Transform xf = transform_from(matrix);
+            Portal p;
+            p.name = name;
+            p.center = xf.point(Vec3(0.0f));
+            p.shape = (shape == "DISK" || shape == "ELLIPSE") ? AreaShape::kEllipse
+                                                              : AreaShape::kRectangle;
+            const float height = (shape == "SQUARE" || shape == "DISK") ? size_x : size_y;
+            p.half_x = xf.vector(Vec3(0.5f * size_x, 0.0f, 0.0f));
+            p.half_y = xf.vector(Vec3(0.0f, 0.5f * height, 0.0f));
+            p.direction = xf.vector(Vec3(0.0f, 0.0f, -1.0f));
+            scene.portals.push_back(std::move(p));
+            return scene.portals.size() - 1;
+          },
+          py::arg("name"), py::arg("matrix"), py::arg("shape") = "SQUARE", py::arg("size_x") = 1.0f,
+          py::arg("size_y") = 1.0f,
+          "Adds a portal: an area light marked as one (Cycles' Light > Portal), which emits "
+          "nothing and guides the world's light and photons through a window. Its light "
+          "passes along the light's -Z.")
+      .def(
           "set_camera",
           [](Scene& scene, const std::string& projection, const FloatArray& matrix,
              const std::vector<float>& window, float clip_start, float clip_end,
@@ -573,6 +595,7 @@ PYBIND11_MODULE(_photon, m) {
       .def_property_readonly("mesh_count", [](const Scene& s) { return s.meshes.size(); })
       .def_property_readonly("instance_count", [](const Scene& s) { return s.instances.size(); })
       .def_property_readonly("light_count", [](const Scene& s) { return s.lights.size(); })
+      .def_property_readonly("portal_count", [](const Scene& s) { return s.portals.size(); })
       .def_property_readonly("material_count", [](const Scene& s) { return s.materials.size(); })
       .def_property_readonly("texture_count", [](const Scene& s) { return s.textures.size(); })
       .def_property_readonly("triangle_count",

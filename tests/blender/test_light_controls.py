@@ -1,6 +1,7 @@
 """Cycles' light controls that used to change the image silently: a portal rendered as a real
 emitter (a 5 kW portal made the Cornell box 97x brighter), a narrow area-light spread and light
-node trees ignored. A portal now emits nothing, as in Cycles; the Emission node's constant
+node trees ignored. A portal now emits nothing, as in Cycles (test_portals.py: how it guides
+the world's light); the Emission node's constant
 Color and Strength scale the light as in Cycles; an area light's spread reaches the native
 light; an IES Texture on the Strength gives a profile; what Photon does not render (Light
 Falloff, an unconnected Light Output, a World volume) is said in a warning.
@@ -34,9 +35,11 @@ def test_light_controls_reach_the_native_light_or_a_warning(blender):
     area = dict(PLAIN, spread=round(math.pi, 6))
     assert args["plain"] == area and warnings["plain"] == []
     assert args["default_nodes"] == area and warnings["default_nodes"] == []
-    # A portal emits nothing (Cycles' portals only guide the world's light).
-    assert args["portal"] is None
-    assert len(warnings["portal"]) == 1 and "is a portal" in warnings["portal"][0]
+    # A portal emits nothing (Cycles' portals only guide the world's light): it becomes a
+    # portal of the native scene, not a lamp.
+    assert args["portal"] == {"portal": True, "name": "portal", "shape": "SQUARE",
+                              "size_x": 0.25, "size_y": 0.25}
+    assert warnings["portal"] == []
     # The spread reaches the native light; below a degree (Blender 4.0+ allows 0) it is a
     # degree, with a warning.
     assert args["narrow"] == dict(PLAIN, spread=0.5236) and warnings["narrow"] == []
@@ -95,8 +98,7 @@ def test_a_portal_adds_no_light_and_a_world_volume_is_named(blender, tmp_path):
               "v = t.nodes.new('ShaderNodeVolumePrincipled'); "
               "t.links.new(v.outputs[0], t.nodes['World Output'].inputs['Volume'])")
     proc, with_portal = render_cornell(blender, tmp_path, "portal", portal)
-    assert "is a portal" in proc.stdout, proc.log
     # Before, the portal was a 5 kW emitter (the image 97x brighter) and the fog was dropped
-    # without a word.
+    # without a word. The Cornell box's world is black: the portal changes nothing.
     assert "its volume (fog) is not rendered by Photon yet" in proc.stdout, proc.log
     assert np.array_equal(with_portal, plain)

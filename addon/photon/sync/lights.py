@@ -156,11 +156,7 @@ def light_arguments(native, obj, matrix, reporter):
     making it float32."""
     light = obj.data
     if light.type == 'AREA' and getattr(getattr(light, "cycles", None), "is_portal", False):
-        # A portal emits nothing in Cycles: it only guides the world's sampling through a window.
-        reporter.warning(f"Light '{obj.name}' is a portal: it emits no light, and Photon does not "
-                         f"guide the world's light through portals yet (the window is lit by "
-                         f"the world alone, with more noise than Cycles' portal-guided render)")
-        return None
+        return portal_arguments(obj, matrix, reporter)
     node_color, node_strength, ies = node_emission(light, obj.name, reporter)
     power = float(light.energy) * node_strength * 2.0 ** float(getattr(light, "exposure", 0.0))
     color = [float(c) * f for c, f in zip(light.color, node_color)]
@@ -221,6 +217,25 @@ def light_arguments(native, obj, matrix, reporter):
     # would take as infinite and skip; at the largest float it is clamped with a warning there.
     kwargs["power"] = min(kwargs["power"], FLOAT32_MAX)
     return kwargs
+
+
+def portal_arguments(obj, matrix, reporter):
+    """Scene.add_portal keyword arguments of an area light marked as a portal (with "portal":
+    True), or None for one without area. A portal emits nothing and no ray sees it, as in
+    Cycles: it guides the world's light samples and photons through a window."""
+    light = obj.data
+    height = light.size if light.shape in {'SQUARE', 'DISK'} else light.size_y
+    if not (light.size > 0.0 and height > 0.0):
+        reporter.warning(f"Portal '{obj.name}' has zero size; skipped")
+        return None
+    return {
+        "portal": True,
+        "name": obj.name,
+        "matrix": np.array(matrix, dtype=np.float64),
+        "shape": light.shape,
+        "size_x": float(light.size),
+        "size_y": float(light.size_y),
+    }
 
 
 def unnormalized_power_factor(light):

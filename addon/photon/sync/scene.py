@@ -140,7 +140,7 @@ def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, me
             arguments = sync_lights.light_arguments(native, obj, inst.matrix_world, reporter)
             if arguments is not None:
                 lights.append(arguments)
-                stats.lights += 1
+                stats.lights += 0 if arguments.get("portal") else 1
             continue
         hair_here = obj_type == 'CURVES'
         if not hair_here and inst.show_particles and obj_type == 'MESH':
@@ -231,7 +231,10 @@ def _sync(native, native_scene, depsgraph, reporter, stats, object_instances, me
 
     for arguments in lights:
         arguments["matrix"] = sync_origin.rebased_matrix(arguments["matrix"], origin)
-        native_scene.add_light(**arguments)
+        if arguments.pop("portal", False):
+            native_scene.add_portal(**arguments)
+        else:
+            native_scene.add_light(**arguments)
 
     for key, entries in pending.items():
         for start, matrices in zip(range(0, len(entries), PLACE_CHUNK), stacked[key]):

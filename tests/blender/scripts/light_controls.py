@@ -78,6 +78,10 @@ def main():
         reporter = Reporter()
         args = sync_lights.light_arguments(_photon, obj, obj.matrix_world, reporter)
         factor = area_factor if data.type == 'AREA' else 1.0
+        if args is not None and args.get("portal"):
+            result["arguments"][name] = {k: v for k, v in args.items() if k != "matrix"}
+            result["warnings"][name] = reporter.warnings
+            continue
         result["arguments"][name] = None if args is None else {
             "color": [round(c, 6) for c in args["color"]],
             "power": round(args["power"] / factor, 6), "spectrum": args["spectrum"]}

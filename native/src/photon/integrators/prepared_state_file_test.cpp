@@ -210,6 +210,7 @@ TEST(PreparedStateFingerprint, FollowsSceneAndSettingsButNotTheBorder) {
       {"light power", [](Scene* sc) { sc->lights[0].power *= 2.0f; }},
       {"light spectrum", [](Scene* sc) { sc->lights[0].spectrum = LightSpectrum::kBlackbody; }},
       {"IES profile", [](Scene* sc) { sc->lights[0].has_ies = true; }},
+      {"portal", [](Scene* sc) { sc->portals.push_back(Portal{}); }},
       {"abbe number", [](Scene* sc) { sc->materials[0].closures[0].abbe = 30.0f; }},
       {"camera", [](Scene* sc) { sc->camera.camera_to_world.m[2][3] += 0.1f; }},
       {"world colour", [](Scene* sc) { sc->world.color = Vec3(0.1f); }},

@@ -178,6 +178,13 @@ bool prepared_state_fingerprint(const Scene& scene, const RenderSettings& settin
   f.add(scene.world.color), f.add(scene.world.radiance_reg), f.add(scene.world.reads_ray_type);
   f.add(scene.world.sample_map_width);
   add_program(&f, scene.world.program);
+  if (!scene.portals.empty()) {  // only then, so scenes without portals keep their fingerprints
+    f.add<uint64_t>(scene.portals.size());
+    for (const Portal& p : scene.portals) {
+      f.add(p.name), f.add(p.center), f.add(p.half_x), f.add(p.half_y), f.add(p.direction);
+      f.add(p.shape);
+    }
+  }
   *fingerprint = f.value();
   return true;
 }

@@ -120,8 +120,8 @@ typename P::Color bsdf_sample_term(const P& colours, const RenderContext& contex
 }
 
 // The world along a BSDF-sampled direction, if nothing occludes it. An environment map's light
-// sample covers the same directions: weighted against it by MIS; a uniform world has no light
-// sample, so the BSDF sample takes all of it.
+// sample (and a world's through portals) covers the same directions: weighted against it by
+// MIS; a uniform world without portals has no light sample, so the BSDF sample takes all of it.
 template <class P>
 typename P::Color world_bsdf_term(const P& colours, const RenderContext& context,
                                   const SurfaceInteraction& si, const Emitter& e,
@@ -129,7 +129,7 @@ typename P::Color world_bsdf_term(const P& colours, const RenderContext& context
   const Vec3 rgb = e.radiance_at_infinity(bs.wi);
   if (is_black(rgb) || !unoccluded(context, si, bs.wi, INFINITY)) return P::zero();
   const typename P::Color le = colours.emitted(e, rgb);
-  const float pdf_light = e.pdf_at_infinity(bs.wi);
+  const float pdf_light = e.pdf_li_at_infinity(si.p, bs.wi);
   return pdf_light > 0.0f ? le * bs.weight * power_heuristic(bs.pdf, pdf_light) : le * bs.weight;
 }
 

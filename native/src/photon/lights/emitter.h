@@ -170,6 +170,11 @@ class Emitter {
   virtual float pdf_at_infinity(const Vec3& /*direction*/, bool /*bidirectional*/ = false) const {
     return 0.0f;
   }
+  // sample_li()'s (without bidirectional) density of `direction` at the receiving point `p`:
+  // the world's portals make it depend on the point (portal_world.h).
+  virtual float pdf_li_at_infinity(const Vec3& /*p*/, const Vec3& direction) const {
+    return pdf_at_infinity(direction);
+  }
 
   // --- Emission (photons, light subpaths; Jensen 2001 sec. 5.1) ---
   // A ray leaving the emitter. `u_rest` is what is left of the number that picked this emitter

@@ -2,6 +2,7 @@
 
 #include "photon/lights/emissive_lights.h"
 #include "photon/lights/environment.h"
+#include "photon/lights/portal_world.h"
 #include "photon/lights/world_light.h"
 
 namespace photon {
@@ -11,7 +12,8 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive,
     : EmitterSet(lamps, emissive, World::uniform(world_color), every_light_max) {}
 
 EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const World& world,
-                       size_t every_light_max, const std::atomic<bool>* cancel)
+                       size_t every_light_max, const std::atomic<bool>* cancel,
+                       const std::vector<Portal>& portals)
     : emissive_(&emissive), lamps_(&lamps) {
   auto own = [&](std::unique_ptr<Emitter> e) {
     owned_.push_back(std::move(e));
@@ -25,9 +27,13 @@ EmitterSet::EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, co
   if (world.radiance) {
     world_ = own(
         std::make_unique<EnvironmentEmitter>(world.radiance, world.sample_map_width, 1, cancel));
-    every_light_.push_back(world_);
   } else if (!is_black(world.color)) {
     world_ = own(std::make_unique<WorldEmitter>(world.color));
+  }
+  if (world_) {
+    PortalSet portal_set(portals);
+    if (!portal_set.empty())
+      world_ = own(std::make_unique<PortalWorldEmitter>(*world_, std::move(portal_set)));
     every_light_.push_back(world_);
   }
 

@@ -31,10 +31,12 @@ class EmitterSet {
   EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const Vec3& world_color,
              size_t every_light_max = kEveryLightMax);
   // The world as the scene gives it: an environment function (World::radiance, importance
-  // sampled: environment.h) when set, else the constant colour.
+  // sampled: environment.h) when set, else the constant colour; seen through `portals` when
+  // there are any (portal_world.h; degenerate ones are left out).
   // `cancel` stops tabulating the environment early (the render is being abandoned).
   EmitterSet(const LightSet& lamps, const EmissiveMeshes& emissive, const World& world,
-             size_t every_light_max = kEveryLightMax, const std::atomic<bool>* cancel = nullptr);
+             size_t every_light_max = kEveryLightMax, const std::atomic<bool>* cancel = nullptr,
+             const std::vector<Portal>& portals = {});
   EmitterSet(const EmitterSet&) = delete;
   EmitterSet& operator=(const EmitterSet&) = delete;
 

@@ -135,6 +135,19 @@ struct Light {
   bool ies_area_by_direction = true;
 };
 
+// An area light marked as a portal (Cycles' Light > Portal, placed in a window): it emits
+// nothing and no ray sees it; the world's light is sampled through it and world photons enter
+// through it, so an interior lit through its windows converges sooner. `half_x` and `half_y`
+// are its half extents (at right angles), `direction` the way light passes through it (the
+// light's -Z: into the room).
+struct Portal {
+  std::string name;
+  Vec3 center{0.0f};
+  Vec3 half_x{0.5f, 0.0f, 0.0f}, half_y{0.0f, 0.5f, 0.0f};
+  Vec3 direction{0.0f, 0.0f, -1.0f};
+  AreaShape shape = AreaShape::kRectangle;
+};
+
 enum class Projection : uint8_t { kPerspective, kOrthographic };
 
 struct Camera {
@@ -186,6 +199,7 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<ImageTexture> textures;  // images read by materials' Input::texture
   std::vector<Light> lights;
+  std::vector<Portal> portals;
   Camera camera;
   World world;
 

@@ -7,6 +7,7 @@
 
 #include "photon/integrators/registry.h"
 #include "photon/lights/environment.h"
+#include "photon/lights/portals.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/world_shader.h"
 
@@ -95,9 +96,14 @@ SceneResources::SceneResources(const Scene& scene, const RenderSettings& setting
                                              textures_.cancelled() || accel_.cancelled()
                                                  ? World::uniform(scene.world.color)
                                                  : lit_world(scene.world, textures_),
-                                             EmitterSet::kEveryLightMax, cancel)),
+                                             EmitterSet::kEveryLightMax, cancel, scene.portals)),
       scene_(scene) {
   warn_out_of_range(scene, textures_, warnings);
+  size_t skipped_portals = 0;
+  PortalSet(scene.portals, &skipped_portals);
+  if (warnings && skipped_portals > 0)
+    warnings->push_back(std::to_string(skipped_portals) +
+                        " portal(s) without area or with non-finite placement left out");
   const int map_width = EnvironmentEmitter::clamped_width(scene.world.sample_map_width);
   if (warnings && scene.world.radiance && map_width != scene.world.sample_map_width)
     warnings->push_back("World: sample map width " + std::to_string(scene.world.sample_map_width) +
@@ -150,7 +156,7 @@ void SceneResources::refresh_emissive() {
   emitters_.reset();
   emissive_ = std::move(now);
   emitters_ = std::make_unique<EmitterSet>(lights_, emissive_, lit_world(scene_.world, textures_),
-                                           EmitterSet::kEveryLightMax);
+                                           EmitterSet::kEveryLightMax, nullptr, scene_.portals);
   context_.emitters = emitters_.get();
 }
 
