@@ -1,5 +1,7 @@
 #include "photon/render/bsdf.h"
 
+#include <array>
+
 #include "photon/render/bsdf_lobes.h"
 #include "photon/render/bsdf_mixture.h"
 
@@ -212,6 +214,53 @@ Vec3 Bsdf::diffuse_reflectance() const {
   for (int i = 0; i < count_; ++i)
     if (lobes_[i].flags() & kLobeDiffuse) r += lobes_[i].weight;
   return r;
+}
+
+Vec3 Bsdf::diffuse_reflectance(const Vec3& wo) const {
+  Vec3 wo_l, wo_w;
+  if (!to_local(wo, &wo_l, &wo_w)) return Vec3(0.0f);
+  Vec3 r(0.0f);
+  for (int i = 0; i < count_; ++i) {
+    if (!(lobes_[i].flags() & kLobeDiffuse)) continue;
+    const float cos_o = own_frame_[i] ? lobe_frames_[i].to_local(wo_w).z : wo_l.z;
+    if (!(cos_o > 1e-7f)) continue;
+    r +=
+        diffuse_lobe_albedo(lobes_[i], lobes_[i].weight, lobes_[i].tint, cos_o) * shadowing_mean(i);
+  }
+  return r;
+}
+
+float Bsdf::shadowing_mean(int i) const {
+  // As BsdfMixture::eval_lobes shadows the diffuse lobes whose normal bends from the smooth one.
+  const Vec3& ln = own_frame_[i] ? lobe_frames_[i].n : frame_.n;
+  const bool shadowed =
+      is_diffuse_type(lobes_[i]) &&
+      (own_frame_[i] ? has_smooth_ && length_squared(smooth_n_ - ln) > 0.0f : bumped_);
+  return shadowed ? bump_shadowing_mean(dot(smooth_n_, ln)) : 1.0f;
+}
+
+float bsdf_lobes::bump_shadowing_mean(float cos_smooth_bumped) {
+  // Midpoint quadrature over cosine-distributed wi about the bumped normal, per table entry.
+  constexpr int kEntries = 65, kGrid = 48;
+  static const std::array<float, kEntries> table = [] {
+    std::array<float, kEntries> t{};
+    for (int e = 0; e < kEntries; ++e) {
+      const float c = static_cast<float>(e) / (kEntries - 1);
+      const Vec3 smooth(std::sqrt(std::max(0.0f, 1.0f - c * c)), 0.0f, c);
+      double sum = 0.0;
+      for (int a = 0; a < kGrid; ++a)
+        for (int b = 0; b < kGrid; ++b) {
+          const Vec3 wi = sample_cosine_hemisphere(Vec2((a + 0.5f) / kGrid, (b + 0.5f) / kGrid));
+          sum += bump_shadowing(smooth, Vec3(0.0f, 0.0f, 1.0f), wi);
+        }
+      t[e] = static_cast<float>(sum / (kGrid * kGrid));
+    }
+    return t;
+  }();
+  const float x = std::clamp(cos_smooth_bumped, 0.0f, 1.0f) * (kEntries - 1);
+  const int lo = std::min(static_cast<int>(x), kEntries - 2);
+  const float f = x - lo;
+  return table[lo] + f * (table[lo + 1] - table[lo]);
 }
 
 Vec3 Bsdf::albedo(const Vec3& wo, uint8_t mask) const {

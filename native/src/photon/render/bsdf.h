@@ -156,9 +156,16 @@ class Bsdf {
   // can be sampled (wo below the surface, total internal reflection with nothing else, ...).
   bool sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample* out) const;
 
-  // Hemispherical reflectance of the lobes with kLobeDiffuse: the albedo that multiplies a
-  // photon-map irradiance estimate (E / pi).
+  // The colours of the lobes with kLobeDiffuse: their hemispherical reflectance as Lambert
+  // lobes (view-independent uses: radiosity, bakes, "is there a diffuse part").
   Vec3 diffuse_reflectance() const;
+  // Directional albedo at wo of the lobes with kLobeDiffuse: what turns a photon-map estimate
+  // of irradiance (E / pi) into the radiance they reflect towards wo for light arriving evenly
+  // over the hemisphere. Exact for Lambert; Burley and Oren-Nayar lobes reflect more or less
+  // than their colour depending on wo, and a bumped lobe's shadowing term takes its mean share
+  // (separately from the view: approximate for a bumped Burley lobe). Zero when wo cannot be
+  // shaded.
+  Vec3 diffuse_reflectance(const Vec3& wo) const;
   // An estimate of the directional albedo at wo of the lobes in `mask` (used for choosing
   // lobes and for Russian roulette; exact for Lambert, approximate elsewhere).
   Vec3 albedo(const Vec3& wo, uint8_t mask = kLobeAll) const;
@@ -179,6 +186,9 @@ class Bsdf {
   // Normalises wo and maps it to the shading frame; false when it cannot be shaded (NaN,
   // zero, at or below the shading or geometric horizon, or no lobes).
   bool to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const;
+  // The share of diffuse lobe i's reflection its bump shadowing leaves under even lighting
+  // (1 for a lobe that is not shadowed).
+  float shadowing_mean(int i) const;
   // n_wi / n_wo of a transmission through this surface from wo's side.
   float eta(const Lobe& lobe) const;
   // Lobe choice probabilities at wo over the lobes in `mask`; returns how many are non-zero.

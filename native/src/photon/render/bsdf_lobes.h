@@ -316,6 +316,62 @@ C oren_nayar(const Lobe& l, const C& albedo, const Vec3& wo, const Vec3& wi) {
   });
 }
 
+// The cosine-weighted mean over the hemisphere above the bumped normal of bump_shadowing(), as
+// a function of the cosine between the smooth and the bumped normal: the share of a bumped
+// diffuse lobe's reflection the shadowing term leaves under even lighting (0.98 at 5 degrees of
+// tilt, 0.82 at 31, 0.74 at 45). Tabulated once and interpolated (bsdf.cpp).
+float bump_shadowing_mean(float cos_smooth_bumped);
+
+// Directional albedo over the weight of the Burley diffuse lobe at cos_o, in closed form (the
+// photon map multiplies its irradiance estimates by it; the colour alone is Lambert's answer).
+// With F = (1 - cos)^5 and a = F_D90 - 1 = r (1 + wi.wo) - 1/2, f pi / weight = (1 + a F_i)
+// (1 + a F_o). Averaged over wi's azimuth, E[wi.wo] = cos_i cos_o and E[(wi.wo)^2] =
+// cos_i^2 cos_o^2 + sin_i^2 sin_o^2 / 2; the cosine moments of F_i are int_0^1 mu^k (1 - mu)^5
+// dmu = k! 5! / (k + 6)! (1/42, 1/168, 1/504 for k = 1, 2, 3). For r = 1: 1.036 seen along the
+// normal, 1.56 at grazing.
+inline float burley_albedo(float roughness, float cos_o) {
+  constexpr float m1 = 1.0f / 42.0f, m2 = 1.0f / 168.0f, m3 = 1.0f / 504.0f;
+  const float v = std::clamp(cos_o, 0.0f, 1.0f), r = roughness, fo = schlick_weight(v);
+  const float s2 = 1.0f - v * v;
+  // int_0^1 mu E[a] F_i dmu, int_0^1 mu E[a] dmu and int_0^1 mu E[a^2] F_i dmu, where E[a^2] =
+  // 1/4 - r E[1 + wi.wo] + r^2 E[(1 + wi.wo)^2].
+  const float a_f = -0.5f * m1 + r * (m1 + v * m2);
+  const float a_1 = -0.25f + r * (0.5f + v / 3.0f);
+  const float sq = (1.0f + 0.5f * s2) * m1 + 2.0f * v * m2 + (v * v - 0.5f * s2) * m3;
+  const float a2_f = 0.25f * m1 - r * (m1 + v * m2) + r * r * sq;
+  return 1.0f + 2.0f * a_f + 2.0f * fo * (a_1 + a2_f);
+}
+
+// Directional albedo over the weight of the Oren-Nayar lobe at cos_o: pi A + B G(cos_o) for
+// Fujii's single scattering, plus with `oren_nayar_multiscatter` the multiple scattering lobe's
+// E_ms (1 - E(cos_o)) pi (1 - E_avg) (names as in oren_nayar()).
+template <class C>
+C oren_nayar_albedo(const Lobe& l, const C& albedo, float cos_o) {
+  const float sigma = l.roughness;
+  const float a = 1.0f / (kPi + ((3.0f * kPi - 4.0f) / 6.0f) * sigma);
+  const float b = sigma * a;
+  const float e = kPi * a + b * oren_nayar_g(std::clamp(cos_o, 0.0f, 1.0f));
+  if (!l.oren_nayar_multiscatter || b <= 0.0f) return C(e);
+  const float e_avg = kPi * a + ((2.0f * kPi - 5.6f) / 3.0f) * b;
+  return map_channels(albedo, [&](float rho) {
+    rho = std::clamp(rho, 0.0f, 1.0f);
+    return e + (1.0f - e) * rho * rho * e_avg / (1.0f - rho * (1.0f - e_avg));
+  });
+}
+
+// The directional albedo at cos_o of a lobe with kLobeDiffuse, in the colour type C.
+template <class C>
+C diffuse_lobe_albedo(const Lobe& l, const C& weight, const C& tint, float cos_o) {
+  switch (l.type) {
+    case LobeType::kBurleyDiffuse:
+      return weight * burley_albedo(l.roughness, cos_o);
+    case LobeType::kOrenNayar:
+      return weight * oren_nayar_albedo(l, tint, cos_o);
+    default:
+      return weight;
+  }
+}
+
 // The lobes Cycles counts as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE).
 inline bool is_diffuse_type(const Lobe& l) {
   return l.type == LobeType::kLambert || l.type == LobeType::kBurleyDiffuse ||

@@ -55,6 +55,8 @@ class SpectralBsdf {
   bool sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, SpectralBsdfSample* out) const;
   // Hemispherical reflectance of the diffuse lobes at the wavelengths.
   SampledSpectrum diffuse_reflectance() const;
+  // Directional albedo at wo of the diffuse lobes at the wavelengths (Bsdf::diffuse_reflectance).
+  SampledSpectrum diffuse_reflectance(const Vec3& wo) const;
 
   // Its colour model for the lobe mixture (bsdf_mixture.h): the lobes' colours uplifted at the
   // wavelengths, and the dispersive lobes' indices per wavelength.

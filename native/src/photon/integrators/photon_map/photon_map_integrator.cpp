@@ -380,7 +380,7 @@ Vec3 PhotonMapIntegrator::gather_ray(const RenderContext& context, Ray ray, Samp
     VertexStep vertex(PathState& state, const Hit& hit, const SurfaceInteraction& y) {
       sp = shade(context, y, -state.ray.direction);
       if (state.after_glossy) sum += state.throughput * sp.emission;
-      const Vec3 rd = sp.bsdf.diffuse_reflectance();
+      const Vec3 rd = sp.bsdf.diffuse_reflectance(-state.ray.direction);
       if (!is_black(rd)) {
         // A record's estimate is blurred over about the secondary distance: at a nearer first hit
         // (a contact, a corner) that blur is larger than the gather's own spread, so the point
@@ -468,7 +468,7 @@ void PhotonMapIntegrator::shade_diffuse(const RenderContext& context, const Path
   const Bsdf& bsdf = v.shading->bsdf;
   if (s.light_passes && v.depth == 0) result->photon_map = photon_dots(x);
   if (v.spectral) return shade_diffuse_spectral(context, v, sampler, result);
-  const Vec3 weight = v.throughput * bsdf.diffuse_reflectance();
+  const Vec3 weight = v.throughput * bsdf.diffuse_reflectance(v.wo);
   if (is_black(weight)) return;
   std::vector<PhotonNeighbor>& scratch = scratch_neighbors();
   if (!state_.caustic.empty())
@@ -514,9 +514,9 @@ void PhotonMapIntegrator::shade_diffuse_spectral(const RenderContext& context, c
   const Bsdf& bsdf = v.shading->bsdf;
   const SpectralVertex& sv = *v.spectral;
   const SampledWavelengths& wl = *sv.wl;
-  const SampledSpectrum weight = sv.beta * sv.bsdf->diffuse_reflectance();
+  const SampledSpectrum weight = sv.beta * sv.bsdf->diffuse_reflectance(v.wo);
   if (is_black(weight)) return;
-  const Vec3 albedo = bsdf.diffuse_reflectance();
+  const Vec3 albedo = bsdf.diffuse_reflectance(v.wo);
   const auto add_reflected = [&](const Vec3& reflected, Vec3* pass, SpectralTally* tally) {
     if (v.depth == 0)
       *pass += reflected;
