@@ -8,6 +8,12 @@
 #include "photon/integrators/photon_map/photon_map.h"
 
 namespace photon {
+namespace {
+
+// Shells of cells searched around a lookup's own cell (a cell is about two record spacings).
+constexpr int64_t kSearchRings = 3;
+
+}  // namespace
 
 uint64_t RadianceCache::cell_key(int64_t x, int64_t y, int64_t z) const {
   // 21 bits per axis (cells are clamped into range), then mixed for the open-addressing table.
@@ -118,12 +124,15 @@ const RadianceRecord* RadianceCache::nearest(const Vec3& p, const Vec3& n, float
     }
   };
   scan(cx, cy, cz);
-  if (!found) {
-    for (int64_t dz = -1; dz <= 1; ++dz)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dx = -1; dx <= 1; ++dx)
-          if (dx || dy || dz) scan(cx + dx, cy + dy, cz + dz);
-  }
+  // Then shells of cells around it, until one holds a record: where the light is dim the photons,
+  // and so the records, are sparse.
+  for (int64_t ring = 1; !found && ring <= kSearchRings; ++ring)
+    for (int64_t dz = -ring; dz <= ring; ++dz)
+      for (int64_t dy = -ring; dy <= ring; ++dy) {
+        const bool face = std::abs(dz) == ring || std::abs(dy) == ring;
+        for (int64_t dx = -ring; dx <= ring; dx += face ? 1 : 2 * ring)
+          scan(cx + dx, cy + dy, cz + dz);
+      }
   return found;
 }
 

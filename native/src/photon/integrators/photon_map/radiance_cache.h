@@ -37,7 +37,8 @@ class RadianceCache {
   // exactly (the order is by cell, then by input position).
   const std::vector<RadianceRecord>& records() const { return records_; }
 
-  // Radiance of the nearest record to `p` in p's cell (or, if none fits, its 26 neighbours)
+  // Radiance of the nearest record to `p` in p's cell (or, if none fits, in the nearest shell of
+  // cells around it that holds one, up to three cells out)
   // with dot(normal, n) >= min_cos that can lie on p's surface (on_same_surface of
   // photon_map.h). Null if there is none.
   const RadianceRecord* nearest(const Vec3& p, const Vec3& n, float min_cos) const;
