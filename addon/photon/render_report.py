@@ -8,7 +8,8 @@ import resource
 
 
 def rendered_samples(settings, stats):
-    """Camera samples per pixel the render took: Samples, or fewer when Time Limit stopped it."""
+    """Camera samples per pixel the render took: Samples, fewer when Time Limit stopped it, or
+    their mean over the pixels with adaptive sampling."""
     pixels = max(settings.x1 - settings.x0, 0) * max(settings.y1 - settings.y0, 0)
     if pixels and stats.camera_samples and not stats.iterations.iterations:
         return stats.camera_samples // pixels
@@ -16,9 +17,12 @@ def rendered_samples(settings, stats):
 
 
 def _samples_label(settings, stats):
-    """'64 spp', or 'N SPPM iterations' / 'N VCM iterations' for the iterative ones."""
+    """'64 spp', '23 spp on average, adaptive' with adaptive sampling, or 'N SPPM iterations' /
+    'N VCM iterations' for the iterative ones."""
     if stats.iterations.iterations:
         return f"{stats.iterations.iterations} {settings.integrator.name} iterations"
+    if settings.adaptive_sampling:
+        return f"{rendered_samples(settings, stats)} spp on average, adaptive"
     return f"{rendered_samples(settings, stats)} spp"
 
 

@@ -110,6 +110,28 @@ def test_time_limit_stops_at_whole_samples_and_says_how_many(blender, tmp_path):
     assert np.isfinite(image).all() and image[..., :3].mean() > 0.05
 
 
+def test_adaptive_sampling_stops_converged_pixels_and_keeps_the_image(blender, tmp_path):
+    """Sampling > Noise Threshold: pixels stop once converged (the summary line gives the mean
+    count), and the image is the one every sample gives."""
+    import re
+
+    base = ("import bpy; p = bpy.context.scene.photon; p.photons = 20000; "
+            "p.caustic_photons = 10000; p.samples = 256; ")
+    adaptive = ("--python-expr", base + "p.adaptive_sampling = True; p.adaptive_threshold = 0.1")
+    proc = render_frames(blender, CORNELL, tmp_path / "adaptive_", "-f", "1", extra=adaptive)
+    said = re.search(r"\((\d+) spp on average, adaptive,", proc.stdout)
+    assert said, proc.log
+    # Threshold 0.1: Cycles' automatic minimum of 32 samples, first judged after 48.
+    assert 48 <= int(said.group(1)) < 256, said.group(0)
+    full = ("--python-expr", base)
+    proc = render_frames(blender, CORNELL, tmp_path / "full_", "-f", "1", extra=full)
+    assert "(256 spp," in proc.stdout, proc.log
+    a = read_image(tmp_path / "adaptive_0001.exr")[..., :3]
+    b = read_image(tmp_path / "full_0001.exr")[..., :3]
+    assert np.isfinite(a).all()
+    assert abs(a.mean() / b.mean() - 1.0) < 0.01, (a.mean(), b.mean())
+
+
 def test_png_output(blender, tmp_path):
     render_frames(blender, CORNELL, tmp_path / "cornell_", "-f", "1", fmt="PNG", extra=QUICK)
     image = read_image(tmp_path / "cornell_0001.png")

@@ -55,9 +55,11 @@ def _band_expr(manifest, band):
             "r.use_crop_to_border = False; r.border_min_x, r.border_max_x = 0.0, 1.0; "
             f"r.border_min_y, r.border_max_y = {lo!r}, {hi!r}"
             # Bands of one frame need the same samples, or the stitched frame's noise would
-            # change at their seams: a Time Limit would stop each band elsewhere.
+            # change at their seams: a Time Limit would stop each band elsewhere, and adaptive
+            # sampling judges a pixel with its neighbours, which a band's edge lacks.
             "; p = getattr(bpy.context.scene, 'photon', None)"
-            "; p is not None and setattr(p, 'time_limit', 0.0)")
+            "; p is not None and setattr(p, 'time_limit', 0.0)"
+            "; p is not None and setattr(p, 'adaptive_sampling', False)")
     if manifest["band_format"] != manifest["file_format"]:
         expr += (f"; r.image_settings.file_format = {manifest['band_format']!r}"
                  "; r.image_settings.color_depth = '8'")

@@ -99,6 +99,10 @@ void Film::clear() {
   std::fill(sums_.begin(), sums_.end(), 0.0f);
   std::fill(pass_sums_.begin(), pass_sums_.end(), Vec3(0.0f));
   std::fill(data_.begin(), data_.end(), 0.0f);
+  std::fill(pixel_samples_.begin(), pixel_samples_.end(), 0u);
+  std::fill(even_sums_.begin(), even_sums_.end(), Vec3(0.0f));
+  std::fill(converged_.begin(), converged_.end(), uint8_t{0});
+  std::fill(active_.begin(), active_.end(), uint8_t{1});
   non_finite_ = 0;
 }
 
@@ -128,11 +132,11 @@ Vec3 Film::resolved_colour(const Vec3& sum, float colour_scale, float blend) con
 
 void Film::resolve_rgba(const FilmRect& rect, int samples, float* rgba) const {
   check_inside(rect, width_, height_);
-  const float inv_spp = 1.0f / static_cast<float>(std::max(samples, 1));
-  const float colour_scale = inv_spp * options_.exposure;  // the exposure scales colour only
   for (int row = 0; row < rect.height; ++row)
     for (int col = 0; col < rect.width; ++col) {
       const size_t pixel = index(rect.x + col, rect.y + row);
+      const float inv_spp = inv_samples(pixel, samples);
+      const float colour_scale = inv_spp * options_.exposure;  // the exposure scales colour only
       const float* s = &sums_[4 * pixel];
       float* out = rgba + (static_cast<size_t>(row) * rect.width + col) * 4;
       const Vec3 c = resolved_colour(Vec3(s[0], s[1], s[2]), colour_scale,
@@ -149,12 +153,12 @@ std::vector<PassImage> Film::resolve_passes(const FilmRect& rect, int samples) c
   std::vector<PassImage> out;
   const size_t pixels = static_cast<size_t>(rect.width) * rect.height;
   if (!pass_sums_.empty()) {
-    const float colour_scale = 1.0f / static_cast<float>(std::max(samples, 1)) * options_.exposure;
     for (int k = 0; k < kPassCount; ++k) {
       PassImage pass{light_pass_names()[k], 3, "RGB", std::vector<float>(pixels * 3)};
       for (int row = 0; row < rect.height; ++row)
         for (int col = 0; col < rect.width; ++col) {
           const size_t pixel = index(rect.x + col, rect.y + row);
+          const float colour_scale = inv_samples(pixel, samples) * options_.exposure;
           const Vec3 c = resolved_colour(pass_sums_[pixel * kPassCount + k], colour_scale,
                                          pixel_gamut_blend(pixel, colour_scale));
           float* p = &pass.pixels[(static_cast<size_t>(row) * rect.width + col) * 3];

@@ -14,6 +14,7 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -106,6 +107,23 @@ class Film {
   // Zero sums (a restart).
   void clear();
 
+  // Adaptive sampling (Cycles' Noise Threshold): pixels whose estimate has converged stop taking
+  // samples. Once enabled the film counts each pixel's samples (pixels then resolve by their own
+  // count) and keeps a second sum of the even-numbered samples, whose difference from the whole
+  // estimates the pixel's error (film_adaptive.cpp).
+  void enable_adaptive_sampling();
+  bool adaptive() const { return !pixel_samples_.empty(); }
+  // Whether the pixel still takes samples (always, without adaptive sampling).
+  bool pixel_active(size_t pixel) const { return active_.empty() || active_[pixel] != 0; }
+  // add_sample for sample number `k` of an adaptive film's pixel.
+  bool add_adaptive_sample(size_t pixel, const RadianceSample& sample, int k);
+  // Decides which pixels go on after a round of samples, as Cycles does: a pixel whose relative
+  // error is below `threshold` is converged (and stays so), then every pixel next to one that is
+  // not keeps sampling. Returns how many pixels go on. Deterministic: it reads only the sums.
+  size_t update_convergence(float threshold);
+  // Samples the film's pixels took together (adaptive films only).
+  uint64_t total_samples() const;
+
   // The data passes: data_floats() resolved floats per pixel (pass_layout.h), written a row at a
   // time by whoever traces them.
   int data_floats() const { return data_floats_; }
@@ -134,6 +152,11 @@ class Film {
   std::vector<PassImage> resolve_passes(const FilmRect& rect, int samples) const;
 
  private:
+  // 1 / the samples a pixel's sums hold after `samples` passes.
+  float inv_samples(size_t pixel, int samples) const {
+    const uint32_t n = adaptive() ? pixel_samples_[pixel] : static_cast<uint32_t>(samples);
+    return 1.0f / static_cast<float>(std::max<uint32_t>(n, 1));
+  }
   // The pixel's gamut_blend (1 without into_gamut), and a sum resolved and moved by it.
   float pixel_gamut_blend(size_t pixel, float colour_scale) const;
   Vec3 resolved_colour(const Vec3& sum, float colour_scale, float blend) const;
@@ -146,6 +169,11 @@ class Film {
   std::vector<float> sums_;      // per pixel: light RGB, then coverage
   std::vector<Vec3> pass_sums_;  // per pixel: kPassCount light passes (with light_passes)
   std::vector<float> data_;      // per pixel: data_floats_ resolved data-pass floats
+  // Adaptive sampling, per pixel: samples taken, the light of the even-numbered ones, whether it
+  // has converged and whether it still takes samples.
+  std::vector<uint32_t> pixel_samples_;
+  std::vector<Vec3> even_sums_;
+  std::vector<uint8_t> converged_, active_;
   std::atomic<uint64_t> non_finite_{0};
 };
 

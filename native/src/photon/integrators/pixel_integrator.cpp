@@ -28,16 +28,15 @@ class TileTracer {
         hits_(width),
         found_(new bool[width]) {}
 
-  // Sample k of the film pixels [col0, col0 + n) of `row`: each pixel's sampler (its stream
-  // depends on the pixel's place in the whole frame only), its camera ray, traced with the
-  // row's others as one coherent Embree stream, and the first hit.
-  void trace(int col0, int row, int k, size_t n) {
+  // Sample k of the film pixels `cols[0..n)` of `row`: each pixel's sampler (its stream depends
+  // on the pixel's place in the whole frame only), its camera ray, traced with the row's others
+  // as one coherent Embree stream, and the first hit.
+  void trace(const int* cols, int row, int k, size_t n) {
     const RenderSettings& s = *context_.settings;
     for (size_t i = 0; i < n; ++i) {
-      const int col = col0 + static_cast<int>(i);
-      samplers_[i] = Sampler(s.seed, film_.frame_pixel(col, row), static_cast<uint32_t>(k), count_,
-                             block_first_);
-      rays_[i] = film_.camera_ray(film_.frame_x(col), film_.frame_y(row), samplers_[i]);
+      samplers_[i] = Sampler(s.seed, film_.frame_pixel(cols[i], row), static_cast<uint32_t>(k),
+                             count_, block_first_);
+      rays_[i] = film_.camera_ray(film_.frame_x(cols[i]), film_.frame_y(row), samplers_[i]);
     }
     context_.accel->intersect_coherent(rays_.data(), n, kVisibleCamera, hits_.data(), found_.get());
   }
@@ -70,25 +69,37 @@ int render_tile(const RenderContext& context, const PixelIntegrator* integrator,
   const bool block = integrator && control.stratify_each_call;
   TileTracer tracer(context, film, n, static_cast<uint32_t>(block ? end - first : samples),
                     static_cast<uint32_t>(block ? first : 0));
-  const bool data = film.data_floats() > 0 && first == 0 && end >= samples;
+  // An adaptive film's pixels leave the loop as they converge; its data passes are rendered
+  // apart, for the samples the render reached.
+  const bool adaptive = integrator && film.adaptive();
+  const bool data = film.data_floats() > 0 && first == 0 && end >= samples && !adaptive;
   std::unique_ptr<DataPassRow> data_row;
   if (data) data_row = std::make_unique<DataPassRow>(context, film.options().data_passes, n);
   std::vector<float> data_out(data ? n * film.data_floats() : 0);
   const int sample_end = integrator ? end : samples;
+  std::vector<int> cols(n);
   for (int r = 0; r < rect.height; ++r) {
     const int row = rect.y + r;
     if (data_row) data_row->clear();
-    for (int k = first; k < sample_end; ++k) {
+    size_t m = 0;
+    for (size_t i = 0; i < n; ++i) {
+      const int col = rect.x + static_cast<int>(i);
+      if (!adaptive || film.pixel_active(film.index(col, row))) cols[m++] = col;
+    }
+    for (int k = first; k < sample_end && m > 0; ++k) {
       if (control.stopped()) return r;
-      tracer.trace(rect.x, row, k, n);
-      for (size_t i = 0; i < n; ++i) {
-        const int col = rect.x + static_cast<int>(i);
+      tracer.trace(cols.data(), row, k, m);
+      for (size_t i = 0; i < m; ++i) {
+        const int col = cols[i];
         const CameraHit hit = tracer.first_hit(i);
         if (data_row) data_row->add(i, k, film.frame_pixel(col, row), tracer.ray(i), hit);
-        if (integrator)
-          film.add_sample(
-              film.index(col, row),
-              integrator->radiance_from_hit(context, tracer.ray(i), hit, tracer.sampler(i)));
+        if (!integrator) continue;
+        const RadianceSample sample =
+            integrator->radiance_from_hit(context, tracer.ray(i), hit, tracer.sampler(i));
+        if (adaptive)
+          film.add_adaptive_sample(film.index(col, row), sample, k);
+        else
+          film.add_sample(film.index(col, row), sample);
       }
     }
     if (data_row) {

@@ -61,7 +61,7 @@ TEST(RenderParams, NamesAreUniqueAndDefaultsInRange) {
       EXPECT_EQ(find_render_param(spec.name), &p);
     }
   // RenderSettings holds the parameters plus the frame (size, border, film, passes) only.
-  EXPECT_EQ(names.size(), 37u);
+  EXPECT_EQ(names.size(), 40u);
 }
 
 // Every numeric entry: a value just beyond each end of its hard range comes back at that end

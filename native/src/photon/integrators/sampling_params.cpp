@@ -1,6 +1,7 @@
 #include "photon/integrators/sampling_params.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "photon/integrators/registry.h"
@@ -76,8 +77,55 @@ const ParamSchema<SamplingParams>& sampling_schema() {
                  .subtype = "TIME_ABSOLUTE",
                  .unit = "TIME",
                  .ui = {.column = 1}}),
+          param(&S::adaptive_sampling,
+                {.name = "adaptive_sampling",
+                 .label = "Noise Threshold",
+                 .description = "Adaptive sampling, as Cycles': a final render's pixels stop "
+                                "taking samples once their noise is below the threshold, so "
+                                "easy pixels finish early (ray tracing, photon mapping and "
+                                "radiosity)",
+                 .ui = {.column = 2}}),
+          param(&S::adaptive_threshold,
+                {.name = "adaptive_threshold",
+                 .label = "Noise Threshold",
+                 .description = "Noise level at which a pixel stops sampling, Cycles' measure "
+                                "(lower: less noise, more samples); 0 chooses it from Samples",
+                 .min = 0.0,
+                 .max = 1.0,
+                 .soft_min = 0.001,
+                 .precision = 4,
+                 .ui = {.column = 2, .text = "Threshold", .active_if = "adaptive_sampling"}}),
+          param(&S::adaptive_min_samples,
+                {.name = "adaptive_min_samples",
+                 .label = "Min Samples",
+                 .description = "Samples every pixel takes before it may stop; 0 chooses them "
+                                "from the noise threshold, as Cycles does",
+                 .min = 0,
+                 .max = 1 << 20,
+                 .soft_max = 4096,
+                 .ui = {.column = 2, .active_if = "adaptive_sampling"}}),
       }};
   return schema;
+}
+
+AdaptiveSampling adaptive_sampling(const SamplingParams& p) {
+  AdaptiveSampling a;
+  if (!p.adaptive_sampling) return a;
+  float threshold = p.adaptive_threshold;
+  if (threshold <= 0.0f) threshold = std::max(0.001f, 1.0f / static_cast<float>(p.samples));
+  a.min_samples = p.adaptive_min_samples > 0
+                      ? std::max(4, p.adaptive_min_samples)
+                      : std::max(4, static_cast<int>(std::ceil(16.0f / std::pow(threshold, 0.3f))));
+  a.threshold = threshold * 5.0f;
+  return a;
+}
+
+int AdaptiveSampling::next_check(int done) const {
+  // Cycles filters after sample s (0-based) when s > min_samples and s + 1 is a multiple of the
+  // step.
+  int n = (done / kStep + 1) * kStep;
+  while (n - 1 <= min_samples) n += kStep;
+  return n;
 }
 
 const ParamSchema<FilmParams>& film_schema() {

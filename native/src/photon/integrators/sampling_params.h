@@ -22,7 +22,26 @@ struct SamplingParams {
   // > 0: a final render stops adding samples once this many seconds have passed since its
   // preparation began (Cycles' Time Limit, which leaves out scene synchronisation).
   float time_limit = 0.0f;
+  // Adaptive sampling as Cycles' Noise Threshold: a final render's pixel stops taking samples
+  // once its estimated relative error is below adaptive_threshold (0: Cycles' automatic
+  // max(0.001, 1 / samples)), after at least adaptive_min_samples (0: Cycles' automatic count).
+  bool adaptive_sampling = false;
+  float adaptive_threshold = 0.01f;
+  int adaptive_min_samples = 0;
 };
+
+// The noise threshold and minimum samples adaptive sampling uses for `p`, as Cycles derives
+// them from its settings (scene/integrator.cpp, get_adaptive_sampling): the threshold scaled by
+// Cycles' factor 5, the automatic minimum 16 / threshold^0.3 (0.1 -> 32, 0.01 -> 64), at least 4.
+struct AdaptiveSampling {
+  float threshold = 0.0f;
+  int min_samples = 0;
+  // Pixels are judged after every `step` samples once more than min_samples were taken.
+  static constexpr int kStep = 16;
+  // The first sample count above `done` after which pixels are judged.
+  int next_check(int done) const;
+};
+AdaptiveSampling adaptive_sampling(const SamplingParams& p);
 
 // The film: how camera samples are spread around their pixel (pixel_filter.h) and how the pixel
 // values are scaled, as Cycles' Film settings.

@@ -233,10 +233,9 @@ void RenderSession::run() {
   if (prepared_files_.prepare_only) return;
   set_status("Rendering");
   t0 = Clock::now();
-  const int passes = render_film(context, *integrator, arena, budget_start);
+  render_film(context, *integrator, arena, budget_start);
   std::lock_guard<std::mutex> lock(mutex_);
-  stats_.render_seconds = seconds_since(t0);
-  stats_.camera_samples = static_cast<uint64_t>(region_width()) * region_height() * passes;
+  stats_.render_seconds = seconds_since(t0);  // render_film counted the camera samples
   stats_.iterations = integrator->render_stats();
 }
 
@@ -295,42 +294,61 @@ int RenderSession::render_film(const RenderContext& context, Integrator& integra
     }
   };
   const double limit = settings_.time_limit;
+  const bool iterative = integrator_info(settings_.integrator).capabilities.iterative;
+  AdaptiveSampling adaptive = adaptive_sampling(settings_);
+  if (adaptive.threshold > 0.0f && iterative) {
+    add_warning(std::string("Noise Threshold is not used by ") +
+                integrator_info(settings_.integrator).label +
+                ": every pixel takes part in every iteration");
+    adaptive = AdaptiveSampling{};
+  }
+  if (adaptive.threshold > 0.0f) film.enable_adaptive_sampling();
   int done = 0;
-  if (limit <= 0.0) {
-    arena.execute([&] { done = integrator.render(context, film, control); });
-  } else if (integrator_info(settings_.integrator).capabilities.iterative) {
+  if (iterative) {
     // Iterative integrators stop between iterations, within their own limit too.
-    control.time_limit = std::max(limit - seconds_since(start), 1e-3);
+    if (limit > 0.0) control.time_limit = std::max(limit - seconds_since(start), 1e-3);
+    arena.execute([&] { done = integrator.render(context, film, control); });
+  } else if (limit <= 0.0 && adaptive.threshold <= 0.0f) {
     arena.execute([&] { done = integrator.render(context, film, control); });
   } else {
-    done = render_passes_in_time(context, integrator, film, control, arena, start, limit);
+    done =
+        render_passes_in_rounds(context, integrator, film, control, arena, start, limit, adaptive);
   }
   // The last complete iteration is always handed over.
   if (pending_passes > 0) publish_whole(deliver(whole, pending_passes));
   std::lock_guard<std::mutex> lock(mutex_);
   stats_.non_finite_samples += film.non_finite();
+  stats_.camera_samples =
+      film.adaptive() ? film.total_samples() : static_cast<uint64_t>(film.pixel_count()) * done;
   return done;
 }
 
-int RenderSession::render_passes_in_time(const RenderContext& context, Integrator& integrator,
-                                         Film& film, RenderControl control, tbb::task_arena& arena,
-                                         Clock::time_point start, double limit) {
+int RenderSession::render_passes_in_rounds(const RenderContext& context, Integrator& integrator,
+                                           Film& film, RenderControl control,
+                                           tbb::task_arena& arena, Clock::time_point start,
+                                           double limit, const AdaptiveSampling& adaptive) {
   // Rounds of passes over the whole film, each stratified among its own samples (the pixels'
   // sample count is not known ahead; consecutive rounds together are as well stratified as
-  // one). The first round is one pass; each next one what the time left allows at the last round's
-  // speed (at most twice the passes before, so tiles keep arriving), and none once not one pass
-  // fits.
+  // one). With a Time Limit the first round is one pass; each next one what the time left allows
+  // at the last round's speed (at most twice the passes before, so tiles keep arriving), and
+  // none once not one pass fits. With adaptive sampling rounds end where pixels are judged, and
+  // the render ends early once every pixel has converged.
   const int total = control.end_pass;
   const auto progress = control.progress;
+  const bool timed = limit > 0.0;
   control.stratify_each_call = true;
   int done = 0, round = 1;
+  bool converged = false;
   while (done < total) {
     control.first_pass = done;
-    control.end_pass = std::min(total, done + round);
+    control.end_pass = timed ? std::min(total, done + round) : total;
+    if (adaptive.threshold > 0.0f)
+      control.end_pass = std::min(control.end_pass, adaptive.next_check(done));
     control.progress = [&, first = done](float fraction) {
       if (!progress) return;
       const double samples = (first + fraction * (control.end_pass - first)) / total;
-      progress(static_cast<float>(std::max(samples, seconds_since(start) / limit)));
+      progress(
+          static_cast<float>(timed ? std::max(samples, seconds_since(start) / limit) : samples));
     };
     const Clock::time_point round_start = Clock::now();
     int reached = done;
@@ -338,6 +356,12 @@ int RenderSession::render_passes_in_time(const RenderContext& context, Integrato
     if (reached < control.end_pass) break;  // cancelled: the passes before stay
     const double per_pass = seconds_since(round_start) / (reached - done);
     done = reached;
+    if (adaptive.threshold > 0.0f && done < total && adaptive.next_check(done - 1) == done &&
+        film.update_convergence(adaptive.threshold) == 0) {
+      converged = true;
+      break;
+    }
+    if (!timed) continue;
     const double left = limit - seconds_since(start);
     const double fit = per_pass > 0.0 ? left / per_pass : static_cast<double>(total);
     if (fit < 1.0) break;
@@ -347,7 +371,7 @@ int RenderSession::render_passes_in_time(const RenderContext& context, Integrato
   // The data passes take every sample of a pixel in one go, which only a single round of all
   // passes gave them: they are rendered now for the passes reached (camera rays and first hits
   // only, a small part of a sample's cost).
-  if (film.data_floats() > 0 && total > 1 && done > 0 && !control.stopped()) {
+  if (film.data_floats() > 0 && (total > 1 || film.adaptive()) && done > 0 && !control.stopped()) {
     control.report_status("Data passes");
     RenderSettings reached = *context.settings;
     reached.samples = done;
@@ -358,7 +382,7 @@ int RenderSession::render_passes_in_time(const RenderContext& context, Integrato
     if (finished && control.update)
       control.update(FilmRect{0, 0, film.width(), film.height()}, done, true);
   }
-  if (done < total)
+  if (timed && done < total && !converged)
     add_warning("Time Limit reached after " + std::to_string(done) + " of " +
                 std::to_string(total) + " samples per pixel");
   return done;

@@ -107,12 +107,14 @@ class RenderSession : public Job {
   // Returns the passes every pixel holds. With Time Limit, the budget counts from `start`.
   int render_film(const RenderContext& context, Integrator& integrator, tbb::task_arena& arena,
                   std::chrono::steady_clock::time_point start);
-  // Time Limit for pixel integrators: renders the passes in rounds over the whole film and
-  // stops before a round that would pass `limit` seconds since `start`; returns the passes
+  // Time Limit and adaptive sampling for pixel integrators: renders the passes in rounds over
+  // the whole film, stops before a round that would pass `limit` seconds (> 0) since `start`,
+  // and judges the pixels' noise between rounds (`adaptive`, threshold > 0); returns the passes
   // rendered (at least one unless cancelled).
-  int render_passes_in_time(const RenderContext& context, Integrator& integrator, Film& film,
-                            RenderControl control, tbb::task_arena& arena,
-                            std::chrono::steady_clock::time_point start, double limit);
+  int render_passes_in_rounds(const RenderContext& context, Integrator& integrator, Film& film,
+                              RenderControl control, tbb::task_arena& arena,
+                              std::chrono::steady_clock::time_point start, double limit,
+                              const AdaptiveSampling& adaptive);
   void deliver_tile(Tile tile);
   // Hands over an image of the whole region, dropping one not yet taken.
   void publish_whole(Tile tile);
