@@ -217,26 +217,17 @@ Vec3 Bsdf::diffuse_reflectance() const {
 }
 
 Vec3 Bsdf::diffuse_reflectance(const Vec3& wo) const {
-  Vec3 wo_l, wo_w;
-  if (!to_local(wo, &wo_l, &wo_w)) return Vec3(0.0f);
-  Vec3 r(0.0f);
-  for (int i = 0; i < count_; ++i) {
-    if (!(lobes_[i].flags() & kLobeDiffuse)) continue;
-    const float cos_o = own_frame_[i] ? lobe_frames_[i].to_local(wo_w).z : wo_l.z;
-    if (!(cos_o > 1e-7f)) continue;
-    r +=
-        diffuse_lobe_albedo(lobes_[i], lobes_[i].weight, lobes_[i].tint, cos_o) * shadowing_mean(i);
-  }
-  return r;
+  return BsdfMixture::diffuse_reflectance(*this, RgbColours{lobes_}, wo);
+}
+
+bool Bsdf::bump_shadowed(int i) const {
+  return is_diffuse_type(lobes_[i]) &&
+         (own_frame_[i] ? has_smooth_ && length_squared(smooth_n_ - lobe_frames_[i].n) > 0.0f
+                        : bumped_);
 }
 
 float Bsdf::shadowing_mean(int i) const {
-  // As BsdfMixture::eval_lobes shadows the diffuse lobes whose normal bends from the smooth one.
-  const Vec3& ln = own_frame_[i] ? lobe_frames_[i].n : frame_.n;
-  const bool shadowed =
-      is_diffuse_type(lobes_[i]) &&
-      (own_frame_[i] ? has_smooth_ && length_squared(smooth_n_ - ln) > 0.0f : bumped_);
-  return shadowed ? bump_shadowing_mean(dot(smooth_n_, ln)) : 1.0f;
+  return bump_shadowed(i) ? bump_shadowing_mean(dot(smooth_n_, lobe_normal(i))) : 1.0f;
 }
 
 float bsdf_lobes::bump_shadowing_mean(float cos_smooth_bumped) {

@@ -186,6 +186,11 @@ class Bsdf {
   // Normalises wo and maps it to the shading frame; false when it cannot be shaded (NaN,
   // zero, at or below the shading or geometric horizon, or no lobes).
   bool to_local(const Vec3& wo, Vec3* wo_local, Vec3* wo_world) const;
+  // Lobe i's normal: its own frame's, or the BSDF's shading normal.
+  const Vec3& lobe_normal(int i) const { return own_frame_[i] ? lobe_frames_[i].n : frame_.n; }
+  // Whether lobe i is diffuse and its normal bends from the smooth one, so that it is multiplied
+  // by the bump shadowing term.
+  bool bump_shadowed(int i) const;
   // The share of diffuse lobe i's reflection its bump shadowing leaves under even lighting
   // (1 for a lobe that is not shadowed).
   float shadowing_mean(int i) const;

@@ -61,13 +61,29 @@ struct BsdfMixture {
         pl = e.pdf;
       }
       // Each diffuse lobe is shadowed by how far its own normal bends from the smooth one.
-      const Vec3& ln = b.own_frame_[i] ? b.lobe_frames_[i].n : b.frame_.n;
-      const bool shadowed =
-          is_diffuse_type(l) &&
-          (b.own_frame_[i] ? b.has_smooth_ && length_squared(b.smooth_n_ - ln) > 0.0f : b.bumped_);
-      *f += shadowed ? fl * bump_shadowing(reflect ? b.smooth_n_ : -b.smooth_n_, ln, wi_world) : fl;
+      *f += b.bump_shadowed(i) ? fl * bump_shadowing(reflect ? b.smooth_n_ : -b.smooth_n_,
+                                                     b.lobe_normal(i), wi_world)
+                               : fl;
       if (probs) *pdf += probs[i] * pl;
     }
+  }
+
+  // Directional albedo at wo of the diffuse lobes (Bsdf::diffuse_reflectance(wo)).
+  template <class C>
+  static typename C::Color diffuse_reflectance(const Bsdf& b, const C& c, const Vec3& wo) {
+    using Color = typename C::Color;
+    Color r(0.0f);
+    Vec3 wo_l, wo_w;
+    if (!b.to_local(wo, &wo_l, &wo_w)) return r;
+    for (int i = 0; i < b.count_; ++i) {
+      const Lobe& lobe = b.lobes_[i];
+      if (!(lobe.flags() & kLobeDiffuse)) continue;
+      const float cos_o = b.own_frame_[i] ? b.lobe_frames_[i].to_local(wo_w).z : wo_l.z;
+      if (!(cos_o > 1e-7f)) continue;
+      r += bsdf_lobes::diffuse_lobe_albedo(lobe, c.weight(i), c.tint(i), cos_o) *
+           b.shadowing_mean(i);
+    }
+    return r;
   }
 
   template <class C>

@@ -52,18 +52,8 @@ SampledSpectrum SpectralBsdf::diffuse_reflectance() const {
 }
 
 SampledSpectrum SpectralBsdf::diffuse_reflectance(const Vec3& wo) const {
-  SampledSpectrum r(0.0f);
-  Vec3 wo_l, wo_w;
-  if (!bsdf_ || !bsdf_->to_local(wo, &wo_l, &wo_w)) return r;
-  for (int i = 0; i < bsdf_->count_; ++i) {
-    const Lobe& lobe = bsdf_->lobes_[i];
-    if (!(lobe.flags() & kLobeDiffuse)) continue;
-    const float cos_o = bsdf_->own_frame_[i] ? bsdf_->lobe_frames_[i].to_local(wo_w).z : wo_l.z;
-    if (!(cos_o > 1e-7f)) continue;
-    r += bsdf_lobes::diffuse_lobe_albedo(lobe, weight_[i], tint_[i], cos_o) *
-         bsdf_->shadowing_mean(i);
-  }
-  return r;
+  if (!bsdf_) return SampledSpectrum(0.0f);
+  return BsdfMixture::diffuse_reflectance(*bsdf_, *this, wo);
 }
 
 }  // namespace photon
