@@ -11,44 +11,18 @@
 #include <vector>
 
 #include "photon/film/pass_layout.h"
-#include "photon/session/render_session.h"
+#include "photon/testing/session_output.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
 namespace adaptive_sampling_test {
 namespace {
 
-struct Output {
-  std::vector<float> image;
-  std::vector<float> depth;  // the Depth pass as the last tiles left it
-  std::vector<std::string> warnings;
-  uint64_t camera_samples = 0;
-};
-
 constexpr int kWidth = 32, kHeight = 24;
 
-Output render(const RenderSettings& s) {
-  RenderSession session(std::make_shared<Scene>(make_cornell_box()), s);
-  session.start();
-  Output out;
-  out.depth.assign(static_cast<size_t>(kWidth) * kHeight, -9.0f);
-  while (true) {
-    const bool done = session.finished();
-    for (const Tile& t : session.take_tiles(0.05)) {
-      const PassImage* depth = t.pass("Depth");
-      if (!depth) continue;
-      for (int row = 0; row < t.height; ++row)
-        for (int col = 0; col < t.width; ++col)
-          out.depth[static_cast<size_t>(t.y + row) * kWidth + t.x + col] =
-              depth->pixels[static_cast<size_t>(row) * t.width + col];
-    }
-    if (done) break;
-  }
-  session.wait();
-  out.image = session.image();
-  out.warnings = session.warnings();
-  out.camera_samples = session.stats().camera_samples;
-  return out;
+// With the Depth pass only, SessionOutput::data is the Depth of every pixel.
+SessionOutput render(const RenderSettings& s) {
+  return render_whole_session(std::make_shared<Scene>(make_cornell_box()), s);
 }
 
 RenderSettings settings(int samples, bool adaptive) {
@@ -74,8 +48,8 @@ double mean(const std::vector<float>& rgba) {
 
 TEST(AdaptiveSampling, ConvergedPixelsStopAndTheImageStaysTheSame) {
   const int samples = 512;
-  const Output adaptive = render(settings(samples, true));
-  const Output full = render(settings(samples, false));
+  const SessionOutput adaptive = render(settings(samples, true));
+  const SessionOutput full = render(settings(samples, false));
   const uint64_t pixels = kWidth * kHeight;
   EXPECT_EQ(full.camera_samples, pixels * samples);
   // Threshold 0.05: Cycles' automatic minimum is 40 samples, first judged after 48; far fewer
@@ -96,7 +70,7 @@ TEST(AdaptiveSampling, ConvergedPixelsStopAndTheImageStaysTheSame) {
   }
   EXPECT_LE(far, static_cast<int>(pixels / 50)) << far;
   // Depth is written for every pixel, from the samples reached.
-  EXPECT_EQ(std::count(adaptive.depth.begin(), adaptive.depth.end(), -9.0f), 0);
+  EXPECT_EQ(std::count(adaptive.data.begin(), adaptive.data.end(), -9.0f), 0);
   for (const std::string& w : adaptive.warnings) ADD_FAILURE() << w;
 }
 
@@ -107,10 +81,10 @@ TEST(AdaptiveSampling, SameImageForAnyThreadsAndTiles) {
   RenderSettings two = settings(256, true);
   two.threads = 2;
   two.tile_size = 32;
-  const Output a = render(one), b = render(two);
+  const SessionOutput a = render(one), b = render(two);
   EXPECT_EQ(a.camera_samples, b.camera_samples);
   EXPECT_EQ(a.image, b.image);
-  EXPECT_EQ(a.depth, b.depth);
+  EXPECT_EQ(a.data, b.data);
 }
 
 TEST(AdaptiveSampling, IterativeIntegratorsSayTheyDoNotUseIt) {
@@ -118,7 +92,7 @@ TEST(AdaptiveSampling, IterativeIntegratorsSayTheyDoNotUseIt) {
   s.integrator = IntegratorType::kSppm;
   s.sppm_iterations = 2;
   s.sppm_photons_per_iteration = 2000;
-  const Output out = render(s);
+  const SessionOutput out = render(s);
   const bool said = std::any_of(out.warnings.begin(), out.warnings.end(), [](const std::string& w) {
     return w.find("Noise Threshold is not used by") == 0;
   });

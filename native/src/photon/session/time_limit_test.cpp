@@ -9,48 +9,15 @@
 #include <vector>
 
 #include "photon/film/pass_layout.h"
-#include "photon/session/render_session.h"
+#include "photon/testing/session_output.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
 namespace time_limit_test {
 namespace {
 
-struct Output {
-  std::vector<float> image;
-  std::vector<float> data;  // every data pass of every pixel, as the last tiles left them
-  std::vector<std::string> warnings;
-  uint64_t camera_samples = 0;
-};
-
-Output render(const RenderSettings& s) {
-  RenderSession session(std::make_shared<Scene>(make_cornell_box()), s);
-  session.start();
-  Output out;
-  const int floats = data_pass_pixel_floats(s.data_passes);
-  out.data.assign(static_cast<size_t>(s.full_width) * s.full_height * floats, -9.0f);
-  while (true) {
-    const bool done = session.finished();
-    // Later tiles (a later round, or the whole film after the data passes) replace earlier ones.
-    for (const Tile& t : session.take_tiles(0.05))
-      for (const DataPassSlot& slot : data_pass_slots(s.data_passes)) {
-        const PassImage* pass = t.pass(slot.name);
-        if (!pass) continue;
-        for (int row = 0; row < t.height; ++row)
-          for (int col = 0; col < t.width; ++col)
-            std::copy_n(
-                &pass->pixels[(static_cast<size_t>(row) * t.width + col) * slot.channels],
-                slot.channels,
-                &out.data[(static_cast<size_t>(t.y + row) * s.full_width + t.x + col) * floats +
-                          slot.offset]);
-      }
-    if (done) break;
-  }
-  session.wait();
-  out.image = session.image();
-  out.warnings = session.warnings();
-  out.camera_samples = session.stats().camera_samples;
-  return out;
+SessionOutput render(const RenderSettings& s) {
+  return render_whole_session(std::make_shared<Scene>(make_cornell_box()), s);
 }
 
 RenderSettings settings(int samples, float time_limit) {
@@ -68,7 +35,7 @@ RenderSettings settings(int samples, float time_limit) {
 
 TEST(TimeLimit, StopsAtWholePassesWithTheImageOfThatManySamples) {
   const int asked = 1 << 20;
-  const Output limited = render(settings(asked, 0.3f));
+  const SessionOutput limited = render(settings(asked, 0.3f));
   const uint64_t pixels = 32 * 24;
   ASSERT_GT(limited.camera_samples, 0u);
   ASSERT_EQ(limited.camera_samples % pixels, 0u);  // every pixel the same samples
@@ -79,7 +46,7 @@ TEST(TimeLimit, StopsAtWholePassesWithTheImageOfThatManySamples) {
   ASSERT_NE(said, limited.warnings.end());
   EXPECT_NE(said->find("after " + std::to_string(reached) + " of"), std::string::npos) << *said;
 
-  const Output same = render(settings(reached, 0.0f));
+  const SessionOutput same = render(settings(reached, 0.0f));
   EXPECT_EQ(limited.data, same.data);
   // The rounds' samples are other R2 points' pairings than one call's, so the image is another
   // estimate of the same picture (both have hundreds of samples per pixel).
@@ -93,8 +60,8 @@ TEST(TimeLimit, StopsAtWholePassesWithTheImageOfThatManySamples) {
 
 // A budget the render does not need: all samples and no message.
 TEST(TimeLimit, AnAmpleBudgetRendersEverySample) {
-  const Output limited = render(settings(16, 600.0f));
-  const Output plain = render(settings(16, 0.0f));
+  const SessionOutput limited = render(settings(16, 600.0f));
+  const SessionOutput plain = render(settings(16, 0.0f));
   EXPECT_EQ(limited.camera_samples, 32u * 24u * 16u);
   EXPECT_EQ(limited.data, plain.data);
   for (const std::string& w : limited.warnings) EXPECT_EQ(w.find("Time Limit"), std::string::npos);
