@@ -1,5 +1,5 @@
-"""Principled sheen, anisotropic specular, transmission roughness and subsurface fallback, and
-the Diffuse BSDF's Oren-Nayar roughness, against Cycles: a sphere per feature under a sun and a
+"""Principled sheen, anisotropic specular, transmission roughness and subsurface fallback, the
+Diffuse BSDF's Oren-Nayar roughness and the Velvet BSDF, against Cycles: a sphere per feature under a sun and a
 grey world, rendered by both engines in one Blender run; the sphere's mean colour must agree
 within 2% (of its brightest channel)."""
 
@@ -15,7 +15,7 @@ from harness import read_image  # noqa: E402
 TOLERANCE = 0.02
 RES = 64
 ORTHO_SCALE = 2.2
-FEATURES = ["sheen", "anisotropic", "transmission_roughness", "subsurface", "oren_nayar"]
+FEATURES = ["sheen", "anisotropic", "transmission_roughness", "subsurface", "oren_nayar", "velvet"]
 
 
 def sphere_mask():

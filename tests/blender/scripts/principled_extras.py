@@ -1,5 +1,5 @@
 """One UV sphere per BSDF feature (Principled sheen, anisotropic specular, transmission roughness,
-subsurface fallback; Diffuse BSDF roughness), lit by a sun and a grey world, rendered by Cycles
+subsurface fallback; Diffuse BSDF roughness; Velvet BSDF), lit by a sun and a grey world, rendered by Cycles
 and by Photon to EXR in the folder given. Args: out_dir, photon_samples, cycles_samples,
 features (comma separated, or "all"). Returns {feature: {"cycles": path, "photon": path}} and
 Photon's warnings per feature."""
@@ -65,12 +65,23 @@ def setup_oren_nayar(mat):
     tree.links.new(diffuse.outputs["BSDF"], out.inputs["Surface"])
 
 
+def setup_velvet(mat):
+    tree = mat.node_tree
+    tree.nodes.remove(principled(mat))
+    velvet = tree.nodes.new("ShaderNodeBsdfVelvet")
+    velvet.inputs["Color"].default_value = (0.8, 0.5, 0.3, 1.0)
+    velvet.inputs["Sigma"].default_value = 0.6
+    out = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL')
+    tree.links.new(velvet.outputs["BSDF"], out.inputs["Surface"])
+
+
 FEATURES = {
     "sheen": setup_sheen,
     "anisotropic": setup_anisotropic,
     "transmission_roughness": setup_transmission_roughness,
     "subsurface": setup_subsurface,
     "oren_nayar": setup_oren_nayar,
+    "velvet": setup_velvet,
 }
 
 
@@ -159,6 +170,8 @@ def render_both(scene, out_dir, name, photon_samples, cycles_samples):
 V2_SKIPS = {
     "sheen": "Principled v2's Sheen is another model (microfiber), covered with v2's inputs",
     "transmission_roughness": "Principled v2 has no Transmission Roughness",
+    "velvet": "Blender 4 replaced the Velvet BSDF by the Sheen BSDF, which Photon does not read "
+              "yet",
 }
 
 

@@ -103,6 +103,7 @@ ClosureColors closure_colors(const Bsdf& bsdf, const Vec3& wo) {
         c.diffuse += lobe.weight;
         break;
       case LobeType::kGgxReflection:
+      case LobeType::kVelvet:  // a glossy closure in Cycles
         c.glossy += lobe.weight;
         break;
       case LobeType::kGgxRefraction:

@@ -34,6 +34,7 @@ uint8_t Lobe::flags() const {
     case LobeType::kOrenNayar:
       return kLobeReflection | kLobeDiffuse;
     case LobeType::kSheen:
+    case LobeType::kVelvet:
       // Not Lambertian: its weight is no hemispherical reflectance, so the photon map's
       // irradiance estimate must not stand in for it; it is sampled and ray traced.
       return kLobeReflection | kLobeGlossy;

@@ -40,6 +40,11 @@ enum class LobeType : uint8_t {
   // that microfacet, refraction weighted by (1 - R) `tint`; reflection is picked with
   // probability avg(R) / avg(R + T) of the lobe's RGB colours (Walter et al. 2007, eq. 21).
   kGgxDielectric,
+  // Cycles' Ashikhmin velvet (Ashikhmin, Premoze & Shirley 2000's fibre distribution
+  // D = exp(-cot^2 h / s^2) / (pi s^2 sin^4 h) with s = `roughness`, Cycles' Velvet Sigma, at
+  // least 0.01), f = D G / (4 cos_o cos_i) with G = min(1, 2 cos_h cos_o / |wo.h|,
+  // 2 cos_h cos_i / |wo.h|): no Fresnel, sampled uniformly over the hemisphere as Cycles does.
+  kVelvet,
 };
 
 enum class FresnelMode : uint8_t {

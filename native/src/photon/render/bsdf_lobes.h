@@ -373,6 +373,21 @@ C diffuse_lobe_albedo(const Lobe& l, const C& weight, const C& tint, float cos_o
 }
 
 // The lobes Cycles counts as diffuse closures (CLOSURE_IS_BSDF_DIFFUSE).
+// Cycles' Ashikhmin velvet f (kVelvet) with Sigma `sigma`, local frame, both directions above.
+inline float velvet(float sigma, const Vec3& wo, const Vec3& wi) {
+  if (!(wo.z > 0.0f && wi.z > 0.0f)) return 0.0f;
+  const float s = std::max(std::min(sigma, 1.0f), 0.01f);
+  const float inv_s2 = 1.0f / (s * s);
+  const Vec3 h = normalize(wo + wi);
+  const float cos_h = h.z, cos_oh = std::fabs(dot(wo, h));
+  if (!(std::fabs(cos_h) < 1.0f - 1e-5f && cos_oh > 1e-5f)) return 0.0f;
+  const float ratio = std::max(cos_h / cos_oh, 1e-5f);
+  const float g = std::min(1.0f, std::min(2.0f * ratio * wo.z, 2.0f * ratio * wi.z));
+  const float sin2 = 1.0f - cos_h * cos_h;
+  const float d = std::exp(-(cos_h * cos_h / sin2) * inv_s2) * inv_s2 * kInvPi / (sin2 * sin2);
+  return 0.25f * d * g / (wo.z * wi.z);
+}
+
 inline bool is_diffuse_type(const Lobe& l) {
   return l.type == LobeType::kLambert || l.type == LobeType::kBurleyDiffuse ||
          l.type == LobeType::kTranslucent;
@@ -423,6 +438,11 @@ LobeEval<C> eval_lobe(const Lobe& l, const C& weight, const C& f0, const C& tint
       r.pdf = cosine_hemisphere_pdf(wi.z);
       break;
     }
+    case LobeType::kVelvet:
+      if (!shading_reflect) break;
+      r.f = weight * velvet(l.roughness, wo, wi);
+      r.pdf = wi.z > 0.0f ? 0.5f * kInvPi : 0.0f;
+      break;
     case LobeType::kGgxReflection:
       if (shading_reflect) r = ggx_reflection(l, weight, f0, tint, wo, wi, eta);
       break;
@@ -459,6 +479,13 @@ inline bool sample_lobe(const Lobe& l, const Vec3& wo, float eta, float u_choice
       *wi = -sample_cosine_hemisphere(u);
       *reflection = false;
       return true;
+    case LobeType::kVelvet: {
+      // Uniform over the hemisphere (pdf 1 / 2 pi), as Cycles samples its velvet.
+      const float r = std::sqrt(std::max(0.0f, 1.0f - u.x * u.x));
+      const float phi = 2.0f * kPi * u.y;
+      *wi = Vec3(r * std::cos(phi), r * std::sin(phi), u.x);
+      return true;
+    }
     case LobeType::kGgxReflection: {
       const Vec3 h = lobe_sample_visible_normal(l, wo, u);
       *wi = reflect(wo, h);

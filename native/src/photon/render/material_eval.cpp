@@ -395,6 +395,12 @@ void add_closure(const Closure& c, float w, const InputReader& reader, const Lob
     case ClosureType::kTranslucent:
       l.type = LobeType::kTranslucent;
       break;
+    case ClosureType::kVelvet:
+      // Cycles saturates Sigma (and its velvet takes at least 0.01).
+      l.type = LobeType::kVelvet;
+      l.roughness = std::clamp(in.scalar(Param::kSigma), 0.0f, 1.0f);
+      l.alpha = 0.0f;
+      break;
     default:
       return;
   }

@@ -1,5 +1,6 @@
 // The Principled BSDF's sheen, anisotropic specular, transmission roughness, clearcoat normal
-// and subsurface fallback, and the Diffuse BSDF's Oren-Nayar roughness: their lobes sample what
+// and subsurface fallback, the Diffuse BSDF's Oren-Nayar roughness and the Velvet BSDF: their
+// lobes sample what
 // they evaluate (chi-square), conserve energy (white furnace) and take the shapes Cycles 3.4
 // gives them; and material_eval builds them from the inputs as Cycles' Principled v1 does.
 #include <gtest/gtest.h>
@@ -44,6 +45,13 @@ Lobe sheen(const Vec3& w = Vec3(1.0f)) {
   Lobe l;
   l.type = LobeType::kSheen;
   l.weight = w;
+  return l;
+}
+
+Lobe velvet(float sigma) {
+  Lobe l;
+  l.type = LobeType::kVelvet;
+  l.roughness = sigma;
   return l;
 }
 
@@ -110,6 +118,8 @@ std::vector<Case> cases() {
       {"Sheen_30", {sheen()}, 30},
       {"Sheen_80", {sheen()}, 80},
       {"SheenOnBurley_60", {lambert(Vec3(0.5f)), sheen(Vec3(0.7f))}, 60},
+      {"Velvet_30", {velvet(0.5f)}, 30},
+      {"Velvet_80", {velvet(1.0f)}, 80},
       {"AnisoGgx_45", {aniso_ggx(0.3f, 0.05f, tangent_at(40))}, 45},
       {"AnisoGgxWide_70", {aniso_ggx(1.0f, 0.1f, tangent_at(-25))}, 70},
       {"ClearcoatNormal_50", {lambert(Vec3(0.5f)), coat}, 50},
@@ -182,11 +192,13 @@ Albedos albedos(const Bsdf& b, const Vec3& wo) {
   return a;
 }
 
-TEST(PrincipledExtrasFurnace, OrenNayarSheenAndAnisotropicGgxConserveEnergy) {
+TEST(PrincipledExtrasFurnace, OrenNayarSheenVelvetAndAnisotropicGgxConserveEnergy) {
   const std::vector<std::pair<const char*, Lobe>> lobes = {
       {"oren-nayar 0", oren_nayar(0.0f)},
       {"oren-nayar 1", oren_nayar(1.0f)},
       {"sheen", sheen()},
+      {"velvet 0.2", velvet(0.2f)},
+      {"velvet 1", velvet(1.0f)},
       {"aniso 0.5/0.02", aniso_ggx(0.5f, 0.02f, tangent_at(30))},
       {"aniso 1/0.32", aniso_ggx(1.0f, 0.316f, tangent_at(-60))},
   };
@@ -207,6 +219,23 @@ TEST(PrincipledExtrasFurnace, OrenNayarSheenAndAnisotropicGgxConserveEnergy) {
   const Bsdf on1 = make({oren_nayar(1.0f)});
   const double expected = kChi2Pi / (kChi2Pi + (3.0 * kChi2Pi - 4.0) / 6.0);
   EXPECT_NEAR(albedos(on1, on1.frame().n).integrated, expected, 2e-3);
+}
+
+TEST(PrincipledExtrasVelvet, CyclesAshikhminVelvet) {
+  const Bsdf b = make({velvet(1.0f)});
+  // Retro-reflection at 60 degrees, Sigma 1: h = wo, cos_h = 1/2, G = min(1, 2 (1/2) (1/2)) = 1/2,
+  // D = exp(-cot^2 h) / (pi sin^4 h) = exp(-1/3) / (pi 9/16); f = D G / (4 cos_o cos_i).
+  const Vec3 wo = dir(b, 60.0f);
+  const double d = std::exp(-1.0 / 3.0) / (kChi2Pi * 0.5625);
+  EXPECT_NEAR(b.eval(wo, wo).x, 0.25 * d * 0.5 / 0.25, 1e-5);
+  // Reciprocal, nothing below the surface, and brighter towards grazing (fibres seen side on).
+  const Vec3 wi = dir(b, 40.0f, 2.0f);
+  EXPECT_NEAR(b.eval(wo, wi).x, b.eval(wi, wo).x, 1e-6f * b.eval(wo, wi).x);
+  EXPECT_EQ(b.eval(wo, -b.frame().n).x, 0.0f);
+  EXPECT_GT(albedos(b, dir(b, 80.0f)).integrated, albedos(b, dir(b, 10.0f)).integrated);
+  // Sigma is saturated and kept from 0 (Cycles: at least 0.01).
+  const Bsdf tight = make({velvet(0.0f)}), at_min = make({velvet(0.01f)});
+  EXPECT_EQ(tight.eval(wo, wi).x, at_min.eval(wo, wi).x);
 }
 
 TEST(PrincipledExtrasSheen, GrowsTowardsGrazingAsCyclesSheen) {

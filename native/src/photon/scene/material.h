@@ -73,6 +73,8 @@ enum class ClosureType : uint8_t {
   kAnisotropic,
   // Principled BSDF v2 (Blender 4.0+): Cycles 4's layered model (render/principled_v2.h).
   kPrincipledV2,
+  // Velvet BSDF (Blender 3.x): Cycles' Ashikhmin velvet with Sigma, a glossy closure.
+  kVelvet,
 };
 
 // The inputs a closure reads, by role; each closure type uses a subset (the rest keep their
@@ -110,6 +112,7 @@ enum class Param : uint8_t {
   kThinFilmThickness,
   kThinFilmIor,
   kDiffuseRoughness,
+  kSigma,  // Velvet BSDF's Sigma
   kCount,
 };
 

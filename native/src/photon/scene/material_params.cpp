@@ -2,6 +2,8 @@
 
 #include <cstring>
 
+#include "photon/base/check.h"
+
 namespace photon {
 namespace {
 
@@ -152,6 +154,10 @@ std::vector<ClosureSpec> make_table() {
          0.0f,
          kTurns}}},
       {ClosureType::kPrincipledV2, "PRINCIPLED_V2", "BSDF_PRINCIPLED", principled_v2},
+      {ClosureType::kVelvet,
+       "VELVET",
+       "BSDF_VELVET",
+       {color(0.8f), {Param::kSigma, "sigma", {"Sigma", nullptr}, S, 1.0f, kUnit}}},
   };
 }
 
@@ -181,12 +187,20 @@ const ClosureSpec* find_closure(const char* name) {
 const ClosureParamSpec& param_spec(ClosureType type, Param p) {
   if (const ClosureParamSpec* own = find_in(closure_spec(type), p)) return *own;
   if (const ClosureParamSpec* v1 = find_in(closure_spec(ClosureType::kPrincipled), p)) return *v1;
-  return *find_in(closure_spec(ClosureType::kPrincipledV2), p);
+  if (const ClosureParamSpec* v2 = find_in(closure_spec(ClosureType::kPrincipledV2), p)) return *v2;
+  // A parameter only one other closure has (Velvet's Sigma).
+  for (const ClosureSpec& c : closure_specs())
+    if (const ClosureParamSpec* other = find_in(c, p)) return *other;
+  check_failed("some closure has every material parameter", __FILE__, __LINE__);
 }
 
 const ClosureParamSpec* find_param(const char* key) {
+  // The Principled BSDFs first (they hold every shared key), then the keys of one closure only.
   for (ClosureType t : {ClosureType::kPrincipled, ClosureType::kPrincipledV2})
     for (const ClosureParamSpec& spec : closure_spec(t).params)
+      if (std::strcmp(spec.key, key) == 0) return &spec;
+  for (const ClosureSpec& c : closure_specs())
+    for (const ClosureParamSpec& spec : c.params)
       if (std::strcmp(spec.key, key) == 0) return &spec;
   return nullptr;
 }

@@ -31,7 +31,7 @@ Material one_closure(ClosureType type, Param p, const Input& in) {
 
 TEST(MaterialTable, ClosureTypesInOrderAndEveryParamOnce) {
   const auto& specs = closure_specs();
-  ASSERT_EQ(specs.size(), static_cast<size_t>(ClosureType::kPrincipledV2) + 1);
+  ASSERT_EQ(specs.size(), static_cast<size_t>(ClosureType::kVelvet) + 1);
   for (size_t i = 0; i < specs.size(); ++i) {
     EXPECT_EQ(static_cast<size_t>(specs[i].type), i) << specs[i].name;
     EXPECT_EQ(find_closure(specs[i].name), &specs[i]);
@@ -46,11 +46,16 @@ TEST(MaterialTable, ClosureTypesInOrderAndEveryParamOnce) {
       EXPECT_EQ(&param_spec(specs[i].type, p.param), &p);
     }
   }
-  // The two Principled BSDFs together read every Param (the fallback of the other closures).
-  std::set<Param> principled;
+  // The two Principled BSDFs together read every Param (the fallback of the other closures)
+  // but Velvet's Sigma; some closure reads each.
+  std::set<Param> principled, any;
   for (ClosureType t : {ClosureType::kPrincipled, ClosureType::kPrincipledV2})
     for (const ClosureParamSpec& p : closure_spec(t).params) principled.insert(p.param);
-  EXPECT_EQ(principled.size(), static_cast<size_t>(Param::kCount));
+  for (const ClosureSpec& c : specs)
+    for (const ClosureParamSpec& p : c.params) any.insert(p.param);
+  EXPECT_EQ(principled.size() + 1, static_cast<size_t>(Param::kCount));
+  EXPECT_EQ(principled.count(Param::kSigma), 0u);
+  EXPECT_EQ(any.size(), static_cast<size_t>(Param::kCount));
   EXPECT_EQ(find_closure("NO_SUCH_CLOSURE"), nullptr);
   EXPECT_EQ(find_param("no_such_param"), nullptr);
 }
