@@ -62,6 +62,12 @@ def is_glossy_v2(node):
     return node.type == 'BSDF_GLOSSY' and node.inputs.get("Anisotropy") is not None
 
 
+def is_ashikhmin_sheen(node):
+    """Blender 4.0+'s Sheen BSDF with the Ashikhmin distribution: Cycles' velvet, which a 3.x
+    Velvet BSDF becomes on loading (its Sigma read as Roughness). Microfiber is another model."""
+    return node.type == 'BSDF_SHEEN' and getattr(node, "distribution", None) == 'ASHIKHMIN'
+
+
 def _differs(socket, default):
     """Whether an input is active: linked, or its value is not Blender's default (default None:
     only a link counts)."""
@@ -127,6 +133,8 @@ def _bsdf_closure(node, stack, ctx):
     elif is_glossy_v2(node):
         # One closure for the merged node: anisotropic GGX (isotropic at Anisotropy 0).
         closure_type, table, _ = closures_by_name()["ANISOTROPIC"]
+    elif is_ashikhmin_sheen(node):
+        closure_type, table, _ = closures_by_name()["VELVET"]
     else:
         found = closure_table().get(kind)
         if found is None:
@@ -143,7 +151,7 @@ def _bsdf_closure(node, stack, ctx):
         closure["diffuse_multiscatter"] = True
     if kind == 'BSDF_PRINCIPLED':
         _note_ignored_principled(node, stack, ctx)
-    else:
+    elif kind != 'BSDF_SHEEN':  # its distribution chose the closure
         distribution = getattr(node, "distribution", None)
         if distribution == 'SHARP':
             closure["sharp"] = True

@@ -66,11 +66,17 @@ def setup_oren_nayar(mat):
 
 
 def setup_velvet(mat):
+    """A Velvet BSDF; in Blender 4+ the Sheen BSDF with the Ashikhmin distribution it became."""
     tree = mat.node_tree
     tree.nodes.remove(principled(mat))
-    velvet = tree.nodes.new("ShaderNodeBsdfVelvet")
+    if bpy.app.version >= (4, 0, 0):
+        velvet = tree.nodes.new("ShaderNodeBsdfSheen")
+        velvet.distribution = 'ASHIKHMIN'
+        velvet.inputs["Roughness"].default_value = 0.6
+    else:
+        velvet = tree.nodes.new("ShaderNodeBsdfVelvet")
+        velvet.inputs["Sigma"].default_value = 0.6
     velvet.inputs["Color"].default_value = (0.8, 0.5, 0.3, 1.0)
-    velvet.inputs["Sigma"].default_value = 0.6
     out = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL')
     tree.links.new(velvet.outputs["BSDF"], out.inputs["Surface"])
 
@@ -170,8 +176,6 @@ def render_both(scene, out_dir, name, photon_samples, cycles_samples):
 V2_SKIPS = {
     "sheen": "Principled v2's Sheen is another model (microfiber), covered with v2's inputs",
     "transmission_roughness": "Principled v2 has no Transmission Roughness",
-    "velvet": "Blender 4 replaced the Velvet BSDF by the Sheen BSDF, which Photon does not read "
-              "yet",
 }
 
 

@@ -32,7 +32,7 @@ bool is_specular_like(const Lobe& lobe) {
     }
     case LobeType::kTransparent:
       return true;
-    default:  // Lambert, Burley, Oren-Nayar, sheen, translucent
+    default:  // Lambert, Burley, Oren-Nayar, sheen, velvet, translucent
       return false;
   }
 }

@@ -73,7 +73,8 @@ enum class ClosureType : uint8_t {
   kAnisotropic,
   // Principled BSDF v2 (Blender 4.0+): Cycles 4's layered model (render/principled_v2.h).
   kPrincipledV2,
-  // Velvet BSDF (Blender 3.x): Cycles' Ashikhmin velvet with Sigma, a glossy closure.
+  // Velvet BSDF (Blender 3.x), and Blender 4's Sheen BSDF with the Ashikhmin distribution (what
+  // a Velvet becomes there): Cycles' Ashikhmin velvet with Sigma, a glossy closure.
   kVelvet,
 };
 

@@ -157,7 +157,8 @@ std::vector<ClosureSpec> make_table() {
       {ClosureType::kVelvet,
        "VELVET",
        "BSDF_VELVET",
-       {color(0.8f), {Param::kSigma, "sigma", {"Sigma", nullptr}, S, 1.0f, kUnit}}},
+       // Blender 4's Sheen BSDF with the Ashikhmin distribution reads Roughness as Sigma.
+       {color(0.8f), {Param::kSigma, "sigma", {"Sigma", "Roughness"}, S, 1.0f, kUnit}}},
   };
 }
 

@@ -22,7 +22,7 @@ bool is_visible_point(const Bsdf& bsdf) {
         break;
       }
       default:
-        return true;  // translucent, sheen: broad lobes
+        return true;  // translucent, sheen, velvet: broad lobes
     }
   }
   return false;
