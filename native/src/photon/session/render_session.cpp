@@ -294,11 +294,11 @@ int RenderSession::render_film(const RenderContext& context, Integrator& integra
     }
   };
   const double limit = settings_.time_limit;
-  const bool iterative = integrator_info(settings_.integrator).capabilities.iterative;
+  const IntegratorInfo& info = integrator_info(settings_.integrator);
+  const bool iterative = info.capabilities.iterative;
   AdaptiveSampling adaptive = adaptive_sampling(settings_);
   if (adaptive.threshold > 0.0f && iterative) {
-    add_warning(std::string("Noise Threshold is not used by ") +
-                integrator_info(settings_.integrator).label +
+    add_warning(std::string("Noise Threshold is not used by ") + info.label +
                 ": every pixel takes part in every iteration");
     adaptive = AdaptiveSampling{};
   }
