@@ -99,8 +99,8 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   if (!py::isinstance<py::dict>(item)) fail(what + " must be a dict");
   py::dict d = py::reinterpret_borrow<py::dict>(item);
   check_keys(d,
-             {"type", "sharp", "cycles4", "multiscatter", "diffuse_multiscatter", "abbe", "params",
-              "normal_map", "normal", "clearcoat_normal", "weight"},
+             {"type", "sharp", "beckmann", "cycles4", "multiscatter", "diffuse_multiscatter",
+              "abbe", "params", "normal_map", "normal", "clearcoat_normal", "weight"},
              what);
   if (!d.contains("type")) fail(what + " has no 'type'");
   const std::string type = py::str(d["type"]);
@@ -110,6 +110,7 @@ Closure parse_closure(const py::handle& item, const std::string& what) {
   closure.type = found->type;
   closure.params = default_params(closure.type);  // inputs the dict leaves out
   if (d.contains("sharp")) closure.sharp = d["sharp"].cast<bool>();
+  if (d.contains("beckmann")) closure.beckmann = d["beckmann"].cast<bool>();
   // Blender 4+ nodes: Cycles 4's microfacet model, and its Multiscatter GGX energy scaling.
   closure.cycles4 = closure.type == ClosureType::kPrincipledV2 ||
                     (d.contains("cycles4") && d["cycles4"].cast<bool>());
@@ -279,6 +280,7 @@ py::dict describe_material(const Material& material) {
     py::dict d;
     d["type"] = closure_spec(c.type).name;
     d["sharp"] = c.sharp;
+    if (c.beckmann) d["beckmann"] = true;
     if (c.cycles4) {
       d["cycles4"] = true;
       d["multiscatter"] = c.multiscatter;

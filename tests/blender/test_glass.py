@@ -20,7 +20,8 @@ TOLERANCE = 0.02
 RES = 64
 ORTHO_SCALE = 2.2
 CASES = ["principled_rough", "principled_nearly_smooth", "principled_tinted", "glass_bsdf_rough",
-         "glass_bsdf_multiscatter", "refraction_bsdf_rough"]
+         "glass_bsdf_multiscatter", "refraction_bsdf_rough", "glass_bsdf_beckmann",
+         "refraction_bsdf_beckmann"]
 
 
 def sphere_mask():

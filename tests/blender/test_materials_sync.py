@@ -85,12 +85,24 @@ def test_mix_by_image_alpha_gives_complementary_weights_on_the_texture(blender, 
     assert diffuse["weight"] == [{"fac": fac, "complement": True}]
     assert glossy["weight"] == [{"fac": fac, "complement": False}]
     assert not glossy["sharp"] and close(glossy["params"]["roughness"], 0.3)
+    assert glossy["beckmann"]  # the node's distribution, rendered as itself
     texture = converted["textures"][index]
     assert texture["path"].endswith("color.png")
     assert (texture["srgb"], texture["extension"], texture["interpolation"]) == (
         True, "CLIP", "Cubic")  # Smart renders as Cubic
-    assert material(converted, "MixAlpha")["warnings"] == [
-        "Material 'MixAlpha': node 'Glossy BSDF': the Beckmann distribution is rendered as GGX"]
+    assert material(converted, "MixAlpha")["warnings"] == []
+
+
+def test_multiscatter_ggx_is_rendered_in_4x_and_reported_in_3x(blender, converted):
+    closure = only_closure(converted, "MultiGlossy")
+    warnings = material(converted, "MultiGlossy")["warnings"]
+    if blender.version >= (4, 0):
+        assert closure["multiscatter"] and warnings == []
+    else:
+        assert "multiscatter" not in closure
+        assert warnings == [
+            "Material 'MultiGlossy': node 'Glossy BSDF': the Multiscatter GGX distribution is "
+            "rendered as single-scattering GGX (darker where rough)"]
 
 
 def test_add_shader_through_reroute_keeps_both_and_shares_the_texture(converted):

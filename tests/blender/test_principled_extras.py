@@ -1,7 +1,7 @@
 """Principled sheen, anisotropic specular, transmission roughness and subsurface fallback, the
-Diffuse BSDF's Oren-Nayar roughness and the Velvet BSDF, against Cycles: a sphere per feature under a sun and a
-grey world, rendered by both engines in one Blender run; the sphere's mean colour must agree
-within 2% (of its brightest channel)."""
+Diffuse BSDF's Oren-Nayar roughness, the Velvet BSDF and the Beckmann distribution, against
+Cycles: a sphere per feature under a sun and a grey world, rendered by both engines in one
+Blender run; the sphere's mean colour must agree within 2% (of its brightest channel)."""
 
 import sys
 from pathlib import Path
@@ -15,7 +15,15 @@ from harness import read_image  # noqa: E402
 TOLERANCE = 0.02
 RES = 64
 ORTHO_SCALE = 2.2
-FEATURES = ["sheen", "anisotropic", "transmission_roughness", "subsurface", "oren_nayar", "velvet"]
+FEATURES = ["sheen", "anisotropic", "transmission_roughness", "subsurface", "oren_nayar", "velvet",
+            "beckmann_glossy", "beckmann_anisotropic"]
+# Tighter where the 2% would not tell the feature from what it replaced: the Beckmann Glossy
+# sphere rendered as GGX comes out 0.9% darker than Cycles' (0.03% as Beckmann, Blender 3.4).
+# The anisotropic one as GGX is 7.7% darker; as Beckmann Cycles 3.4 is 1.7% brighter, all of it
+# in the grey world's light found by BSDF sampling (under the sun alone the two agree to
+# 0.07%): Cycles 3.4 samples anisotropic Beckmann normals with three Newton steps of fast
+# erf approximations, where Photon's sampling is checked against its density (chi-square).
+TOLERANCES = {"beckmann_glossy": 0.005}
 
 
 def sphere_mask():
@@ -47,7 +55,8 @@ def test_sphere_mean_matches_cycles(renders, feature):
     rel = (mean_ours - mean_theirs) / max(mean_theirs.max(), 1e-6)
     print(f"{feature:24s} photon {np.round(mean_ours, 4)} cycles {np.round(mean_theirs, 4)} "
           f"rel {np.round(rel, 4)}")
-    assert np.abs(rel).max() <= TOLERANCE, (feature, mean_ours, mean_theirs, rel)
+    assert np.abs(rel).max() <= TOLERANCES.get(feature, TOLERANCE), (
+        feature, mean_ours, mean_theirs, rel)
 
 
 def test_only_the_subsurface_fallback_is_reported(blender, renders):

@@ -26,7 +26,9 @@ MAX_BSDF_LOBES = 8  # Bsdf::kMaxLobes (native/src/photon/render/bsdf.h): lobes k
 # Which nodes become which closures, and each input's socket names, range and default, come
 # from the core's one table (inputs.closure_table(), _photon.material_parameters()).
 
-# Microfacet distributions rendered as GGX without comment; others warn.
+# Microfacet distributions rendered as GGX without comment (Multiscatter GGX before Blender 4
+# warns where it is read); Sharp and Beckmann render as themselves, others (Ashikhmin-Shirley)
+# warn.
 GGX_LIKE = {'GGX', 'MULTI_GGX'}
 # Principled inputs Photon does not render: (input names, Blender default, whether the input
 # itself is ignored, inputs that only matter when this one is active: (name, default or None
@@ -146,6 +148,13 @@ def _bsdf_closure(node, stack, ctx):
         # Cycles 4's microfacet model, and its Multiscatter GGX (albedo scaling) when chosen.
         closure["cycles4"] = True
         closure["multiscatter"] = getattr(node, "distribution", None) == 'MULTI_GGX'
+    elif getattr(node, "distribution", None) == 'MULTI_GGX':
+        # Cycles 3.x's Multiscatter GGX follows light between the microfacets by a random walk
+        # (Heitz et al. 2016), which Photon does not trace.
+        where = ctx.where(node, stack)
+        ctx.warn_once(("multiscatter", where),
+                      f"{where}: the Multiscatter GGX distribution is rendered as "
+                      "single-scattering GGX (darker where rough)")
     if kind == 'BSDF_DIFFUSE' and bpy.app.version >= (4, 3, 0):
         # Cycles 4.3's Oren-Nayar puts back the light its microfacets scatter among themselves.
         closure["diffuse_multiscatter"] = True
@@ -155,6 +164,8 @@ def _bsdf_closure(node, stack, ctx):
         distribution = getattr(node, "distribution", None)
         if distribution == 'SHARP':
             closure["sharp"] = True
+        elif distribution == 'BECKMANN':
+            closure["beckmann"] = True
         elif distribution is not None and distribution not in GGX_LIKE:
             where = ctx.where(node, stack)
             ctx.warn_once(("distribution", where),

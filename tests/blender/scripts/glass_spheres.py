@@ -49,6 +49,9 @@ CASES = {
     "glass_bsdf_rough": glass_bsdf(0.3, (0.8, 0.9, 1.0)),
     "glass_bsdf_multiscatter": glass_bsdf(0.5, (0.9, 0.8, 0.6), 'MULTI_GGX'),
     "refraction_bsdf_rough": glass_bsdf(0.3, (0.7, 0.9, 0.8), node="ShaderNodeBsdfRefraction"),
+    "glass_bsdf_beckmann": glass_bsdf(0.3, (0.8, 0.9, 1.0), 'BECKMANN'),
+    "refraction_bsdf_beckmann": glass_bsdf(0.3, (0.7, 0.9, 0.8), 'BECKMANN',
+                                           node="ShaderNodeBsdfRefraction"),
 }
 # Cycles 3.4's Multiscatter GGX glass is a random walk over microfacets that Photon renders as
 # single-scattering GGX (with a warning); Blender 4's is albedo scaling, which it renders.

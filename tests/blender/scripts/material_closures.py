@@ -150,6 +150,13 @@ def build(folder):
     links.new(add.outputs[0], outer.inputs[2])
     links.new(outer.outputs[0], out.inputs["Surface"])
 
+    # A Glossy BSDF with Multiscatter GGX: Cycles 3.x's random walk, Cycles 4's albedo scaling.
+    mat, nodes, links, bsdf, out = new_material("MultiGlossy")
+    nodes.remove(bsdf)
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = 'MULTI_GGX'
+    links.new(glossy.outputs[0], out.inputs["Surface"])
+
     # A packed image (written from its packed bytes) and a generated one (rendered to EXR).
     packed = write_png("PackedPNG", os.path.join(folder, "packed_src.png"), 4, 2,
                        (0.1, 0.2, 0.3, 1.0))

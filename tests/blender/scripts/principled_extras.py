@@ -1,5 +1,6 @@
 """One UV sphere per BSDF feature (Principled sheen, anisotropic specular, transmission roughness,
-subsurface fallback; Diffuse BSDF roughness; Velvet BSDF), lit by a sun and a grey world, rendered by Cycles
+subsurface fallback; Diffuse BSDF roughness; Velvet BSDF; Glossy and Anisotropic BSDFs
+with the Beckmann distribution), lit by a sun and a grey world, rendered by Cycles
 and by Photon to EXR in the folder given. Args: out_dir, photon_samples, cycles_samples,
 features (comma separated, or "all"). Returns {feature: {"cycles": path, "photon": path}} and
 Photon's warnings per feature."""
@@ -81,6 +82,25 @@ def setup_velvet(mat):
     tree.links.new(velvet.outputs["BSDF"], out.inputs["Surface"])
 
 
+def setup_beckmann_glossy(mat, anisotropy=0.0):
+    """A Glossy BSDF with the Beckmann distribution; with `anisotropy`, Blender 3.x's
+    Anisotropic BSDF or 4.x's merged Glossy BSDF (its tangent from the sphere's UVs)."""
+    tree = mat.node_tree
+    tree.nodes.remove(principled(mat))
+    if anisotropy and bpy.app.version < (4, 0, 0):
+        glossy = tree.nodes.new("ShaderNodeBsdfAnisotropic")
+    else:
+        glossy = tree.nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = 'BECKMANN'
+    glossy.inputs["Color"].default_value = (0.9, 0.8, 0.6, 1.0)
+    glossy.inputs["Roughness"].default_value = 0.35
+    if anisotropy:
+        glossy.inputs["Anisotropy"].default_value = anisotropy
+        glossy.inputs["Rotation"].default_value = 0.1
+    out = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL')
+    tree.links.new(glossy.outputs["BSDF"], out.inputs["Surface"])
+
+
 FEATURES = {
     "sheen": setup_sheen,
     "anisotropic": setup_anisotropic,
@@ -88,6 +108,8 @@ FEATURES = {
     "subsurface": setup_subsurface,
     "oren_nayar": setup_oren_nayar,
     "velvet": setup_velvet,
+    "beckmann_glossy": setup_beckmann_glossy,
+    "beckmann_anisotropic": lambda mat: setup_beckmann_glossy(mat, 0.7),
 }
 
 

@@ -82,6 +82,7 @@ void add_material(Fingerprint* f, const Material& m) {
     f->add(c.normal_reg), f->add(c.clearcoat_normal_reg), f->add(c.abbe);
     if (c.cycles4) f->add(c.cycles4), f->add(c.multiscatter);
     if (c.diffuse_multiscatter) f->add(c.diffuse_multiscatter);
+    if (c.beckmann) f->add(c.beckmann);
     f->add<uint64_t>(c.weight.size());
     for (const WeightFactor& w : c.weight) add_input(f, w.fac), f->add(w.complement);
   }

@@ -106,6 +106,8 @@ struct Lobe {
   // Height-correlated Smith masking-shadowing G2 = 1 / (1 + L(wo) + L(wi)) (Cycles 4) instead of
   // the separable G1(wo) G1(wi) (Cycles 3.4).
   bool correlated = false;
+  // Beckmann's distribution instead of GGX's for the microfacet lobes (with the same alphas).
+  bool beckmann = false;
   // kOrenNayar with the multiple scattering term of OpenPBR's energy-preserving Oren-Nayar
   // (Cycles 4.3+'s Diffuse BSDF and Principled Diffuse Roughness).
   bool oren_nayar_multiscatter = false;

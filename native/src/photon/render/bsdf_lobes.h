@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "photon/base/microfacet.h"
+#include "photon/base/microfacet_beckmann.h"
 #include "photon/base/optics.h"
 #include "photon/base/sampling.h"
 #include "photon/render/bsdf.h"
@@ -54,28 +55,41 @@ inline bool is_delta(const Lobe& l) {
   }
 }
 
-// The GGX functions of a lobe: anisotropic ones with both alphas (the isotropic path keeps the
-// isotropic functions, so isotropic lobes are unchanged to the bit).
+// The microfacet functions of a lobe: Beckmann's for a Beckmann lobe (isotropic as ax == ay),
+// else GGX's, anisotropic ones with both alphas (the isotropic path keeps the isotropic
+// functions, so isotropic lobes are unchanged to the bit).
+inline float lobe_alpha_y(const Lobe& l) {
+  return l.anisotropic() ? l.alpha_y : l.alpha;
+}
 inline float lobe_d(const Lobe& l, const Vec3& h) {
+  if (l.beckmann) return beckmann_d(h, l.alpha, lobe_alpha_y(l));
   return l.anisotropic() ? ggx_d(h, l.alpha, l.alpha_y) : ggx_d(h, l.alpha);
+}
+inline float lobe_lambda(const Lobe& l, const Vec3& w) {
+  if (l.beckmann) return beckmann_lambda_approx(w, l.alpha, lobe_alpha_y(l));
+  return l.anisotropic() ? ggx_lambda(w, l.alpha, l.alpha_y) : ggx_lambda(w, l.alpha);
 }
 inline float lobe_g2(const Lobe& l, const Vec3& wo, const Vec3& wi, const Vec3& h) {
   if (l.correlated) {
     // Both directions on the front of their microfacet side (as G1's test), then
     // 1 / (1 + L(wo) + L(wi)); L is even in w.z, so refracted directions read alike.
     if (dot(wo, h) * wo.z <= 0.0f || dot(wi, h) * wi.z <= 0.0f) return 0.0f;
-    const float lo = l.anisotropic() ? ggx_lambda(wo, l.alpha, l.alpha_y) : ggx_lambda(wo, l.alpha);
-    const float li = l.anisotropic() ? ggx_lambda(wi, l.alpha, l.alpha_y) : ggx_lambda(wi, l.alpha);
-    return 1.0f / (1.0f + lo + li);
+    return 1.0f / (1.0f + lobe_lambda(l, wo) + lobe_lambda(l, wi));
+  }
+  if (l.beckmann) {
+    const float ay = lobe_alpha_y(l);
+    return beckmann_g1(wo, h, l.alpha, ay) * beckmann_g1(wi, h, l.alpha, ay);
   }
   if (!l.anisotropic()) return ggx_g2(wo, wi, h, l.alpha);
   return ggx_g1(wo, h, l.alpha, l.alpha_y) * ggx_g1(wi, h, l.alpha, l.alpha_y);
 }
 inline float lobe_visible_normal_pdf(const Lobe& l, const Vec3& wo, const Vec3& h) {
+  if (l.beckmann) return beckmann_visible_normal_pdf(wo, h, l.alpha, lobe_alpha_y(l));
   return l.anisotropic() ? ggx_visible_normal_pdf(wo, h, l.alpha, l.alpha_y)
                          : ggx_visible_normal_pdf(wo, h, l.alpha);
 }
 inline Vec3 lobe_sample_visible_normal(const Lobe& l, const Vec3& wo, Vec2 u) {
+  if (l.beckmann) return beckmann_sample_visible_normal(wo, l.alpha, lobe_alpha_y(l), u);
   return l.anisotropic() ? ggx_sample_visible_normal(wo, l.alpha, l.alpha_y, u)
                          : ggx_sample_visible_normal(wo, l.alpha, u);
 }

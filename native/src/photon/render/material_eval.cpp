@@ -311,6 +311,7 @@ void add_closure(const Closure& c, float w, const InputReader& reader, const Lob
   const float r = c.sharp ? 0.0f : in.unit(Param::kRoughness);
   l.alpha = r * r;
   l.ior = std::max(in.scalar(Param::kIor), 1e-3f);
+  l.beckmann = c.beckmann;  // read only by the microfacet lobes
   switch (c.type) {
     case ClosureType::kDiffuse:
       // Cycles 3.4: Lambert at roughness 0, else Oren-Nayar with sigma = roughness; Cycles

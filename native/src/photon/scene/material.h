@@ -133,6 +133,8 @@ struct Closure {
   ClosureType type = ClosureType::kDiffuse;
   std::array<Input, static_cast<size_t>(Param::kCount)> params = default_params();
   bool sharp = false;  // Glossy / Glass / Refraction with the Sharp distribution
+  // Glossy, Anisotropic, Glass or Refraction with the Beckmann distribution (GGX otherwise).
+  bool beckmann = false;
   // The node comes from Blender 4.0+ and renders with Cycles 4's microfacet model (height-
   // correlated Smith G); Principled v2 always does.
   bool cycles4 = false;
