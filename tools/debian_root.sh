@@ -122,4 +122,6 @@ shift
 # The build folder lives inside the root: it holds objects for that Debian's compiler and Python.
 in_root "$ROOT" "$REPO" /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/root \
   LANG=C.UTF-8 CI="${CI:-}" PHOTON_BUILD_DIR="${PHOTON_ROOT_BUILD_DIR:-/var/tmp/photon-build}" \
+  PHOTON_ROOT_UNIT_TESTS="${PHOTON_ROOT_UNIT_TESTS:-}" \
+  PHOTON_ROOT_CYCLES_SUITES="${PHOTON_ROOT_CYCLES_SUITES:-}" \
   bash -c 'cd /photon && "$@"' bash "$@"
