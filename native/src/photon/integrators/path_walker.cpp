@@ -68,7 +68,7 @@ bool continue_spectral_path(const PathRules& rules, const SpectralBsdf& bsdf, co
   s->pdf = ss.pdf;
   s->flags = ss.flags;
   s->transparent = ss.transparent;
-  state->last_delta = ss.is_delta();
+  if (!ss.transparent) state->last_delta = ss.is_delta();
   state->after_glossy = state->after_glossy || !ss.is_delta();
   return true;
 }
@@ -107,7 +107,9 @@ bool continue_path(const PathRules& rules, const Bsdf& bsdf, const SpectralBsdf*
       state->throughput *= s->weight;
       break;
   }
-  state->last_delta = s->is_delta();
+  // A Transparent pass-through is no bounce for light sampling: shadow rays cross it
+  // (render/shadow_ray.h), so emission beyond it was estimated at the last real bounce.
+  if (!s->transparent) state->last_delta = s->is_delta();
   state->after_glossy = state->after_glossy || !s->is_delta();
   return true;
 }

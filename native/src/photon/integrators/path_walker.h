@@ -76,8 +76,10 @@ struct PathState {
   // pass-throughs (Transparent BSDF, shadow catchers), which Cycles' Ray Depth leaves out.
   int diffuse_depth = 0, glossy_depth = 0, transmission_depth = 0, transparent_depth = 0;
   bool after_glossy = false;  // a rough (non-delta) lobe was sampled on the way
-  bool last_delta = true;     // the last sampled lobe was delta (or there was none yet)
-  bool see_through = true;    // only Transparent pass-throughs since the path began
+  // The last sampled lobe was delta (or there was none yet); Transparent pass-throughs leave
+  // it as it was, since shadow rays see through them.
+  bool last_delta = true;
+  bool see_through = true;  // only Transparent pass-throughs since the path began
 
   bool black() const { return spectral ? is_black(beta) : is_black(throughput); }
   // Spectral mode: starts at wavelengths `w` with weight `b` at each one in use (0 elsewhere).

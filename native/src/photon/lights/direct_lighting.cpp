@@ -5,7 +5,9 @@
 #include "photon/lights/emissive_mesh.h"
 #include "photon/lights/emitter_set.h"
 #include "photon/render/material_eval.h"
+#include "photon/render/shadow_ray.h"
 #include "photon/render/spectral_bsdf.h"
+#include "photon/spectral/rgb_uplift.h"
 
 namespace photon {
 namespace {
@@ -32,6 +34,8 @@ struct RgbColours {
   static Vec3 zero() { return Vec3(0.0f); }
   const Vec3& emitted(const Emitter&, const Vec3& rgb) const { return rgb; }
   const Vec3& surface(const Vec3& rgb) const { return rgb; }
+  // Light `c` after the transparent surfaces a shadow ray crossed let `t` of it through.
+  static Vec3 filtered(const Vec3& c, const Vec3& t) { return c * t; }
 };
 
 struct SpectralColours {
@@ -42,6 +46,10 @@ struct SpectralColours {
   static SampledSpectrum zero() { return SampledSpectrum(0.0f); }
   SampledSpectrum emitted(const Emitter& e, const Vec3& rgb) const { return e.spectrum(rgb, wl); }
   SampledSpectrum surface(const Vec3& rgb) const { return spectral::illuminant_at(rgb, wl); }
+  // A Transparent closure's colour is a reflectance-like filter (as the BSDF's lobe weights).
+  SampledSpectrum filtered(const SampledSpectrum& c, const Vec3& t) const {
+    return t.x == 1.0f && t.y == 1.0f && t.z == 1.0f ? c : c * spectral::reflectance_at(t, wl);
+  }
 };
 
 // Veach 1997, eq. 9.13 with beta = 2. Densities above ~1.8e19 (a light of tiny area seen from
@@ -56,24 +64,58 @@ inline float power_heuristic(float f, float g) {
   return 1.0f / (1.0f + r * r);
 }
 
-bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, const Vec3& wi,
-                float distance) {
+// What a shadow ray from si towards wi lets through over `distance` (shadow_ray.h): 1 when
+// nothing is in the way, 0 when something opaque is, the share transparent surfaces pass.
+Vec3 transmittance(const RenderContext& context, const SurfaceInteraction& si, const Vec3& wi,
+                   float distance) {
   Ray shadow;
   shadow.origin = offset_ray_origin(si.p, si.ng, wi, context.accel->length_scale());
   shadow.direction = wi;
   shadow.tmax = std::isfinite(distance) ? distance * (1.0f - 1e-4f) : INFINITY;
-  return !context.accel->occluded(shadow, kVisibleShadow);
+  return shadow_transmittance(*context.accel, context.textures, shadow);
 }
 
-// Visibility of a sampled light point. A point on an emissive triangle is scene geometry: the
-// shadow ray must stop short of that surface, or it ends inside it and the light occludes
+// The same towards a sampled light point. A point on an emissive triangle is scene geometry:
+// the shadow ray must stop short of that surface, or it ends inside it and the light occludes
 // itself (everywhere the offset exceeds the tmax margin: nearly all light samples).
-bool unoccluded(const RenderContext& context, const SurfaceInteraction& si, const LightSample& ls) {
+Vec3 transmittance(const RenderContext& context, const SurfaceInteraction& si,
+                   const LightSample& ls) {
   if (!(length_squared(ls.surface_normal) > 0.0f) || !std::isfinite(ls.distance))
-    return unoccluded(context, si, ls.wi, ls.distance);
+    return transmittance(context, si, ls.wi, ls.distance);
   const Ray shadow = shadow_ray_between(si.p, si.ng, si.p + ls.wi * ls.distance, ls.surface_normal,
                                         context.accel->length_scale());
-  return !context.accel->occluded(shadow, kVisibleShadow);
+  return shadow_transmittance(*context.accel, context.textures, shadow);
+}
+
+// Follows a BSDF-sampled ray from si along wi through the surfaces that let light straight
+// through (shadow_ray.h), as a shadow ray would, calling visit(hit, t_from, t_to, t) for each
+// surface it meets: `t_from` to `t_to` the stretch of the ray before the surface (distances
+// from si.p; t_from 0 on the first), `t` the share of light the surfaces before it let through.
+// When the ray leaves the scene, visit(nullptr, t_from, INFINITY, t). Stops at the first opaque
+// surface, or after kShadowCrossings transparent ones.
+template <class Visit>
+void follow_bsdf_ray(const RenderContext& context, const SurfaceInteraction& si, const Vec3& wi,
+                     Visit&& visit) {
+  const Accel& accel = *context.accel;
+  Ray ray;
+  ray.origin = offset_ray_origin(si.p, si.ng, wi, accel.length_scale());
+  ray.direction = wi;
+  Vec3 t(1.0f);
+  float t_from = 0.0f;
+  for (int crossed = 0;; ++crossed) {
+    Hit hit;
+    if (!accel.intersect(ray, kVisibleShadow, &hit)) return visit(nullptr, t_from, INFINITY, t);
+    const float t_to = crossed == 0 ? hit.t : dot(hit.p - si.p, wi);
+    visit(&hit, t_from, t_to, t);
+    if (crossed >= kShadowCrossings || !accel.has_transparent_shadows() ||
+        !accel.triangle_material(hit.instance, hit.primitive).may_be_transparent())
+      return;
+    const SurfaceInteraction surface = accel.interaction(hit);
+    t *= straight_transmittance(accel, context.textures, surface, wi);
+    if (is_black(t)) return;
+    ray = ray_past(ray, surface, accel.length_scale());
+    t_from = t_to;
+  }
 }
 
 // f |cos| towards a sampled light direction, and the BSDF's density of sampling it.
@@ -92,9 +134,11 @@ typename P::Color light_sample_term(const P& colours, const RenderContext& conte
                                     const LightSample& ls) {
   float pdf_bsdf;
   const typename P::Color f_cos = bsdf_towards(bsdf, wo, ls.wi, lobes, &pdf_bsdf);
-  if (is_black(f_cos) || !unoccluded(context, si, ls)) return P::zero();
+  if (is_black(f_cos)) return P::zero();
+  const Vec3 t = transmittance(context, si, ls);
+  if (is_black(t)) return P::zero();
   const float w = ls.pdf > 0.0f ? power_heuristic(ls.pdf, pdf_bsdf) : 1.0f;
-  return f_cos * colours.emitted(e, ls.weight) * w;
+  return colours.filtered(f_cos * colours.emitted(e, ls.weight) * w, t);
 }
 
 // One BSDF sample's light, weighted against light sampling of the emitter(s) it can reach:
@@ -108,9 +152,11 @@ typename P::Color bsdf_sample_term(const P& colours, const RenderContext& contex
     case EmitterKind::kLamp: {
       LightHit h;
       if (!e.eval_li(si.p, bs.wi, &h)) return P::zero();
-      if (!unoccluded(context, si, bs.wi, h.distance)) return P::zero();
-      return colours.emitted(e, h.radiance) * bs.weight *
-             power_heuristic(bs.pdf, light_pmf * h.pdf);
+      const Vec3 t = transmittance(context, si, bs.wi, h.distance);
+      if (is_black(t)) return P::zero();
+      return colours.filtered(
+          colours.emitted(e, h.radiance) * bs.weight * power_heuristic(bs.pdf, light_pmf * h.pdf),
+          t);
     }
     case EmitterKind::kSurface:  // found by the scene's BVH: emissive_hit_term
     case EmitterKind::kWorld:    // found by rays leaving the scene
@@ -127,28 +173,33 @@ typename P::Color world_bsdf_term(const P& colours, const RenderContext& context
                                   const SurfaceInteraction& si, const Emitter& e,
                                   const typename P::Sample& bs) {
   const Vec3 rgb = e.radiance_at_infinity(bs.wi);
-  if (is_black(rgb) || !unoccluded(context, si, bs.wi, INFINITY)) return P::zero();
+  if (is_black(rgb)) return P::zero();
+  const Vec3 t = transmittance(context, si, bs.wi, INFINITY);
+  if (is_black(t)) return P::zero();
   const typename P::Color le = colours.emitted(e, rgb);
   const float pdf_light = e.pdf_li_at_infinity(si.p, bs.wi);
-  return pdf_light > 0.0f ? le * bs.weight * power_heuristic(bs.pdf, pdf_light) : le * bs.weight;
+  return colours.filtered(
+      pdf_light > 0.0f ? le * bs.weight * power_heuristic(bs.pdf, pdf_light) : le * bs.weight, t);
 }
 
-// The emissive surface a BSDF-sampled ray hits (if any), weighted against light sampling with
-// density `surface_pdf(hit, light_si)`.
+// The emissive surfaces a BSDF-sampled ray meets (the first it hits, and those behind
+// transparent ones), weighted against light sampling with density `surface_pdf(hit, light_si)`.
 template <class P, class SurfacePdf>
 typename P::Color emissive_hit_term(const P& colours, const RenderContext& context,
                                     const SurfaceInteraction& si, const typename P::Sample& bs,
                                     SurfacePdf&& surface_pdf) {
-  Ray ray;
-  ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
-  ray.direction = bs.wi;
-  Hit hit;
-  if (!context.accel->intersect(ray, kVisibleShadow, &hit)) return P::zero();
-  const SurfaceInteraction light_si = context.accel->interaction(hit);
-  const float pdf_light = surface_pdf(hit, light_si);
-  if (!(pdf_light > 0.0f)) return P::zero();
-  return colours.surface(emitted_radiance(*light_si.mat, light_si, context.textures)) * bs.weight *
-         power_heuristic(bs.pdf, pdf_light);
+  typename P::Color l = P::zero();
+  follow_bsdf_ray(context, si, bs.wi, [&](const Hit* hit, float, float, const Vec3& t) {
+    if (!hit) return;
+    const SurfaceInteraction light_si = context.accel->interaction(*hit);
+    const float pdf_light = surface_pdf(*hit, light_si);
+    if (!(pdf_light > 0.0f)) return;
+    l += colours.filtered(
+        colours.surface(emitted_radiance(*light_si.mat, light_si, context.textures)) * bs.weight *
+            power_heuristic(bs.pdf, pdf_light),
+        t);
+  });
+  return l;
 }
 
 // Every emitter sampled at every shading point (EmitterSet::every_light()).
@@ -219,40 +270,42 @@ typename P::Color tree_radiance(const P& colours, const RenderContext& context,
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, lobes, &bs)) {
-      // One scene ray: it finds the emissive triangle the sample hits and bounds the lamps
-      // that can be seen along it (lamps do not occlude each other, as with every-light
-      // sampling; the geometry does).
-      Ray ray;
-      ray.origin = offset_ray_origin(si.p, si.ng, bs.wi, context.accel->length_scale());
-      ray.direction = bs.wi;
-      Hit hit;
-      const bool found = context.accel->intersect(ray, kVisibleShadow, &hit);
-      const float t_geo = found ? hit.t : INFINITY;
-      Ray lamp_ray;
-      lamp_ray.origin = si.p;
-      lamp_ray.direction = bs.wi;
-      lamp_ray.tmax =
-          found ? t_geo / (1.0f - 1e-4f) + 1e-4f * context.accel->length_scale() : INFINITY;
-      tree.for_each_hit(lamp_ray, [&](uint32_t i) {
-        LightHit h;
-        if (!set.tree_emitter(i).eval_li(si.p, bs.wi, &h)) return;
-        if (found && t_geo < h.distance * (1.0f - 1e-4f)) return;  // behind the geometry
-        const float pmf_i = tree.pmf(si.p, i);
-        if (pmf_i > 0.0f)
-          l += colours.emitted(set.tree_emitter(i), h.radiance) * bs.weight *
-               power_heuristic(bs.pdf, pmf_i * h.pdf);
-      });
+      // One scene ray (continued through transparent surfaces): it finds the emissive
+      // triangles the sample hits and bounds the lamps that can be seen along it (lamps do not
+      // occlude each other, as with every-light sampling; the geometry does).
       const EmissiveMeshes* emissive = set.emissive();
-      const long t = found && emissive ? emissive->find(hit.instance, hit.primitive) : -1;
-      if (t >= 0) {
-        const SurfaceInteraction light_si = context.accel->interaction(hit);
-        const uint32_t i = set.triangle_entry(static_cast<size_t>(t));
-        const float pdf_light =
-            tree.pmf(si.p, i) * surface_pdf(set.tree_emitter(i), hit, bs.wi, light_si.ng);
-        if (pdf_light > 0.0f)
-          l += colours.surface(emitted_radiance(*light_si.mat, light_si, context.textures)) *
-               bs.weight * power_heuristic(bs.pdf, pdf_light);
-      }
+      const float margin = 1e-4f * context.accel->length_scale();
+      follow_bsdf_ray(
+          context, si, bs.wi, [&](const Hit* hit, float t_from, float t_to, const Vec3& t) {
+            Ray lamp_ray;
+            lamp_ray.origin = si.p;
+            lamp_ray.direction = bs.wi;
+            lamp_ray.tmax = hit ? t_to / (1.0f - 1e-4f) + margin : INFINITY;
+            tree.for_each_hit(lamp_ray, [&](uint32_t i) {
+              LightHit h;
+              if (!set.tree_emitter(i).eval_li(si.p, bs.wi, &h)) return;
+              if (hit && t_to < h.distance * (1.0f - 1e-4f)) return;  // behind the surface
+              // Before the last transparent surface crossed: counted with the stretch before it.
+              if (t_from > 0.0f && !(t_from < h.distance * (1.0f - 1e-4f))) return;
+              const float pmf_i = tree.pmf(si.p, i);
+              if (pmf_i > 0.0f)
+                l += colours.filtered(colours.emitted(set.tree_emitter(i), h.radiance) * bs.weight *
+                                          power_heuristic(bs.pdf, pmf_i * h.pdf),
+                                      t);
+            });
+            const long tri = hit && emissive ? emissive->find(hit->instance, hit->primitive) : -1;
+            if (tri >= 0) {
+              const SurfaceInteraction light_si = context.accel->interaction(*hit);
+              const uint32_t i = set.triangle_entry(static_cast<size_t>(tri));
+              const float pdf_light =
+                  tree.pmf(si.p, i) * surface_pdf(set.tree_emitter(i), *hit, bs.wi, light_si.ng);
+              if (pdf_light > 0.0f)
+                l += colours.filtered(
+                    colours.surface(emitted_radiance(*light_si.mat, light_si, context.textures)) *
+                        bs.weight * power_heuristic(bs.pdf, pdf_light),
+                    t);
+            }
+          });
     }
   }
   if (const Emitter* world = set.world()) {
@@ -300,15 +353,15 @@ Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
                                               const Vec3& wo, Sampler& sampler, Vec3* unshadowed) {
   constexpr uint8_t kLobes = kLobeDiffuse | kLobeGlossy;
   Vec3 shadowed(0.0f), free(0.0f);
-  auto add = [&](const Vec3& contribution, bool visible) {
+  auto add = [&](const Vec3& contribution, const Vec3& transmitted) {
     if (!is_finite(contribution)) return;
     free += contribution;
-    if (visible) shadowed += contribution;
+    if (!is_black(transmitted)) shadowed += contribution * transmitted;
   };
   auto light_term = [&](const LightSample& ls) {
     float pdf_bsdf;
     const Vec3 f_cos = bsdf_towards(bsdf, wo, ls.wi, kLobes, &pdf_bsdf);
-    if (!is_black(f_cos)) add(f_cos * ls.weight, unoccluded(context, si, ls));
+    if (!is_black(f_cos)) add(f_cos * ls.weight, transmittance(context, si, ls));
   };
   const EmitterSet& set = *context.emitters;
   const Emitter* world = nullptr;
@@ -351,7 +404,8 @@ Vec3 direct_radiance_with_and_without_shadows(const RenderContext& context,
     const float u_lobe = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
     if (bsdf.sample(wo, u_lobe, u, kLobes, &bs))
-      add(world->radiance_at_infinity(bs.wi) * bs.weight, unoccluded(context, si, bs.wi, INFINITY));
+      add(world->radiance_at_infinity(bs.wi) * bs.weight,
+          transmittance(context, si, bs.wi, INFINITY));
   }
   *unshadowed = free;
   return shadowed;

@@ -2,7 +2,10 @@
 // sampling (Veach 1997, power heuristic) with a BSDF sample for lights that have an area (area
 // lights, point and spot lights with a radius, emissive meshes, an environment map), and a BSDF
 // sample of a uniform world. Only the BSDF's non-delta lobes see direct light this way; delta lobes
-// reach lights by ray tracing.
+// reach lights by ray tracing. Shadow rays and these BSDF rays cross surfaces that let light
+// straight through (Transparent closures, alpha), taking the share they pass
+// (render/shadow_ray.h); paths do not count light met after such a pass-through from a
+// non-delta bounce (path_walker.h), so each light path is counted once.
 #pragma once
 
 #include "photon/base/rng.h"

@@ -86,6 +86,7 @@ void Accel::clear_after_cancel() {
   instances_.clear();
   embree_instance_.assign(scene_.instances.size(), UINT32_MAX);
   blas_count_ = blas_reused_ = triangle_count_ = 0;
+  transparent_shadows_ = false;
   top_ = rtcNewScene(device_);
   rtcCommitScene(top_);  // empty: instant, and every query on it misses
 }
@@ -198,7 +199,9 @@ Accel::Accel(const Scene& scene, std::vector<std::string>* warnings,
     for (int c = 0; c < 4; ++c)
       for (int r = 0; r < 3; ++r) xf[c * 3 + r] = to_world.m[r][c];
     rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_COLUMN_MAJOR, xf);
-    rtcSetGeometryMask(geom, inst.visibility);
+    data.mask = instance_mask(data);
+    transparent_shadows_ = transparent_shadows_ || (data.mask & kShadowTransparent);
+    rtcSetGeometryMask(geom, data.mask);
     rtcCommitGeometry(geom);
     rtcAttachGeometryByID(top_, geom, static_cast<unsigned>(instances_.size()));
     rtcReleaseGeometry(geom);
@@ -320,6 +323,42 @@ bool Accel::update_instance_transforms(const std::vector<uint32_t>& scene_indice
   rtcCommitScene(top_);
   update_bounds();
   return true;
+}
+
+uint32_t Accel::instance_mask(const InstanceData& data) const {
+  const uint32_t visibility = scene_.instances[data.scene_index].visibility;
+  if (!(visibility & kVisibleShadow)) return visibility;
+  // Every material a triangle can name (slots outside the list fall back to the default
+  // material, which is opaque).
+  bool transparent = false;
+  for (uint32_t slot = 0; slot < data.slot_count && !transparent; ++slot) {
+    const int32_t m = data.slot_materials[slot];
+    transparent = m >= 0 && static_cast<size_t>(m) < scene_.materials.size() &&
+                  scene_.materials[m].may_be_transparent();
+  }
+  return visibility | (transparent ? kShadowTransparent : kShadowOpaque);
+}
+
+void Accel::update_shadow_masks() {
+  if (cancelled_ || !top_) return;
+  bool any = false, changed = false;
+  for (size_t id = 0; id < instances_.size(); ++id) {
+    InstanceData& data = instances_[id];
+    const uint32_t mask = instance_mask(data);
+    any = any || (mask & kShadowTransparent);
+    if (mask == data.mask) continue;
+    data.mask = mask;
+    RTCGeometry geom = rtcGetGeometry(top_, static_cast<unsigned>(id));
+    rtcSetGeometryMask(geom, mask);
+    rtcCommitGeometry(geom);
+    changed = true;
+  }
+  transparent_shadows_ = any;
+  if (!changed) return;
+  // As update_instance_transforms: a short top-level build that is not cancellable.
+  rtcSetSceneProgressMonitorFunction(top_, nullptr, nullptr);
+  cancel_ = nullptr;
+  rtcCommitScene(top_);
 }
 
 Accel::~Accel() {

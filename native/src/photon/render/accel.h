@@ -41,6 +41,13 @@ struct SurfaceInteraction {
   const Mesh* mesh = nullptr;
 };
 
+// Mask bits the Accel adds to every instance that casts shadows (kVisibleShadow), by whether
+// any of its materials may let light straight through (Material::may_be_transparent): shadow
+// rays test the opaque ones with one any-hit query and walk through the others
+// (render/shadow_ray.h). Rays that ask for kVisibleShadow see both kinds.
+constexpr uint32_t kShadowOpaque = 1u << 5;
+constexpr uint32_t kShadowTransparent = 1u << 6;
+
 // What the BVH is built for. Embree's LOW quality (Morton build) takes about a third of the
 // MEDIUM (binned SAH) build time but traces rays about half as fast: it pays only when a
 // render traces few rays per triangle (see bvh_quality_for()).
@@ -105,6 +112,12 @@ class Accel {
   // singular, an instance without a BVH) or the build was cancelled: build a new Accel then.
   // No ray may be traced meanwhile.
   bool update_instance_transforms(const std::vector<uint32_t>& scene_indices);
+  // Whether any instance that casts shadows has a material that may be transparent (then
+  // shadow rays must look through surfaces, render/shadow_ray.h).
+  bool has_transparent_shadows() const { return transparent_shadows_; }
+  // Sets every instance's shadow bits again after the caller edited Scene::materials (a
+  // material may have become transparent or opaque). No ray may be traced meanwhile.
+  void update_shadow_masks();
 
  private:
   // What shading reads per hit, kept compact (one cache line) and free of pointer chains.
@@ -114,6 +127,7 @@ class Accel {
     const int32_t* slot_materials = nullptr;
     const Mesh* mesh = nullptr;
     uint32_t scene_index = 0;
+    uint32_t mask = 0;  // as set in Embree (instance_mask)
   };
 
   const Scene& scene_;
@@ -132,6 +146,10 @@ class Accel {
   std::mutex warnings_mutex_;
   const std::atomic<bool>* cancel_ = nullptr;
   bool cancelled_ = false;
+  bool transparent_shadows_ = false;
+
+  // The instance's Embree mask: its ray visibility and, when it casts shadows, its shadow bit.
+  uint32_t instance_mask(const InstanceData& data) const;
 
   static void on_embree_error(void* user, RTCError code, const char* message);
   // Embree's build progress callback: false (stop) once the render is cancelled.

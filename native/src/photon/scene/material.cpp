@@ -153,6 +153,18 @@ bool Material::may_emit() const {
   return false;
 }
 
+bool Material::may_be_transparent() const {
+  for (const Closure& c : closures) {
+    if (weight_is_zero(c)) continue;
+    if (c.type == ClosureType::kTransparent && !constant_zero(c[Param::kColor])) return true;
+    if (c.type == ClosureType::kPrincipled || c.type == ClosureType::kPrincipledV2) {
+      const Input& alpha = c[Param::kAlpha];
+      if (!alpha.is_constant() || alpha.value.x < 1.0f) return true;
+    }
+  }
+  return false;
+}
+
 bool Material::needs_tangent() const {
   for (const Closure& c : closures) {
     if (c.type == ClosureType::kAnisotropic) return true;

@@ -191,6 +191,9 @@ struct Material {
   // transmissive): a conservative answer without evaluating textures.
   bool may_emit() const;
   bool may_be_specular() const;
+  // Whether light may pass straight through it: a Transparent closure, or a Principled alpha
+  // below 1 (conservative, as may_emit). Shadow rays look through such surfaces.
+  bool may_be_transparent() const;
   // Whether a closure may be anisotropic (so shading needs the UV tangent).
   bool needs_tangent() const;
 };

@@ -144,6 +144,7 @@ bool SceneResources::update_instance_transforms(const std::vector<uint32_t>& sce
 
 bool SceneResources::update_materials() {
   if (textures_.cancelled() || accel_.cancelled()) return false;
+  accel_.update_shadow_masks();  // which objects shadow rays must look through
   refresh_emissive();
   return true;
 }

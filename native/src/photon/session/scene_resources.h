@@ -51,8 +51,9 @@ class SceneResources {
   // move (see there): build new resources then.
   bool update_instance_transforms(const std::vector<uint32_t>& scene_indices);
   // Edited materials: the caller replaced entries of Scene::materials (same textures). Shading
-  // reads materials from the scene, so only the emissive triangles (their radiance and which
-  // triangles emit) and the emitters on them are rebuilt, and only when they changed. False
+  // reads materials from the scene, so only the objects' shadow bits (render/shadow_ray.h), the
+  // emissive triangles (their radiance and which triangles emit) and the emitters on them are
+  // rebuilt, and only when they changed. False
   // when the resources were cancelled while being built (build new ones then).
   bool update_materials();
 

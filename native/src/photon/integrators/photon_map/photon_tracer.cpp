@@ -35,7 +35,8 @@ struct PathSetup {
 // Rough glossy paths are not caustics here: final gathering collects them (see
 // photon_map_integrator.cpp), so the two never count the same light twice.
 uint8_t photon_kind(const PathState& state) {
-  if (state.depth == 0) return kPhotonDirect;
+  // Straight through Transparent surfaces is still direct light: shadow rays see through them.
+  if (state.depth == state.transparent_depth) return kPhotonDirect;
   return state.after_glossy ? kPhotonIndirect : kPhotonCaustic;
 }
 

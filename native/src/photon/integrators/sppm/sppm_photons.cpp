@@ -38,7 +38,7 @@ struct SppmPhotonVisitor {
     sp = shade(context, si, -state.ray.direction);
     const Bsdf& bsdf = sp.bsdf;
     // A non-finite position would break the kd-tree's ordering; such a photon is dropped.
-    if (state.depth > 0 && is_visible_point(bsdf) && is_finite(si.p)) {
+    if (state.depth > state.transparent_depth && is_visible_point(bsdf) && is_finite(si.p)) {
       if (!state.spectral && is_finite(state.throughput))
         out->photons.push_back({si.p, -state.ray.direction, state.throughput});
       else if (state.spectral && is_finite(state.beta))
