@@ -48,11 +48,16 @@ EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, 
   if (radiance_) {
     // The world's mean channel value at each texel's (sub)sample points.
     std::vector<float> centre(value_.size(), 0.0f);
+    // Whether each row's evaluations all equal its first one, and that one.
+    std::vector<uint8_t> row_flat(height_, 0);
+    std::vector<Vec3> row_first(height_, Vec3(0.0f));
     tbb::parallel_for(
         tbb::blocked_range<int>(0, height_, 1), [&](const tbb::blocked_range<int>& r) {
           for (int i = r.begin(); i != r.end(); ++i) {
             if (cancel && cancel->load(std::memory_order_relaxed)) return;
             double red = 0.0, green = 0.0, blue = 0.0;
+            bool flat = true;
+            Vec3 first(0.0f);
             for (int j = 0; j < width_; ++j) {
               double texel[3] = {0.0, 0.0, 0.0};
               for (int a = 0; a < k; ++a) {
@@ -60,6 +65,8 @@ EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, 
                 for (int b = 0; b < k; ++b) {
                   const double phi = kTwoPiD * (j + (b + 0.5) / k) / width_;
                   const Vec3 l = sanitized(radiance_(direction_at(z, phi)));
+                  if (j == 0 && a == 0 && b == 0) first = l;
+                  flat = flat && l.x == first.x && l.y == first.y && l.z == first.z;
                   texel[0] += l.x;
                   texel[1] += l.y;
                   texel[2] += l.z;
@@ -74,8 +81,15 @@ EnvironmentEmitter::EnvironmentEmitter(EnvironmentFunction radiance, int width, 
             row_color[i] =
                 Vec3(static_cast<float>(red), static_cast<float>(green), static_cast<float>(blue)) *
                 (1.0f / static_cast<float>(k * k));
+            row_flat[i] = flat;
+            row_first[i] = first;
           }
         });
+    const Vec3 first = row_first.front();
+    flat_ = !(cancel && cancel->load()) && !is_black(first);
+    for (int i = 0; i < height_ && flat_; ++i)
+      flat_ = row_flat[i] && row_first[i].x == first.x && row_first[i].y == first.y &&
+              row_first[i].z == first.z;
     // A texel's sampling weight is the largest value of it and its eight neighbours: the
     // texture's bilinear filter spreads a bright pixel (a sun a few pixels wide) half a pixel
     // into its neighbours, and where the radiance stood far above its texel's weight, BSDF
@@ -177,6 +191,7 @@ bool EnvironmentEmitter::sample_li(const Vec3&, const LightSampleU& u,
     out->cos_light = 1.0f;
     return !is_black(out->radiance) && is_finite(out->radiance);
   }
+  if (flat_) return false;  // reached by BSDF samples (flags())
   Vec3 wi;
   float pdf;
   if (!sample_direction(u.uv, &wi, &pdf)) return false;

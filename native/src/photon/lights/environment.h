@@ -45,11 +45,26 @@ class EnvironmentEmitter final : public Emitter {
                               int subsamples = 1, const std::atomic<bool>* cancel = nullptr);
 
   EmitterKind kind() const override { return EmitterKind::kWorld; }
-  uint8_t flags() const override { return kEmitterBidirectional | kEmitterInfinite; }
+  // A world whose nodes give one colour in every direction (an RGB node into the Background)
+  // is lit as the uniform world is: by BSDF samples alone, which for a constant radiance are
+  // the better strategy (cosine sampling is exact for an unshadowed diffuse surface) and save
+  // a shadow ray per shading point. Its radiance is still the function's.
+  uint8_t flags() const override {
+    return kEmitterBidirectional | kEmitterInfinite | (flat_ ? kEmitterBsdfSampledOnly : 0);
+  }
+  LightSampleU draw_li(Sampler& sampler) const override {
+    return flat_ ? LightSampleU{} : Emitter::draw_li(sampler);
+  }
   // One 2D sample: a direction from the table; pdf in solid angle, weight L / pdf with L the
-  // function's value (not the table's). Bidirectional estimators sample it alike.
+  // function's value (not the table's). Bidirectional estimators sample it alike; direct
+  // lighting does not sample a flat world.
   bool sample_li(const Vec3& p, const LightSampleU& u, const PhotonFrame* bidirectional,
                  LightSample* out) const override;
+  float pdf_li_at_infinity(const Vec3& p, const Vec3& direction) const override {
+    return flat_ ? 0.0f : Emitter::pdf_li_at_infinity(p, direction);
+  }
+  // Every evaluation that built the table gave the same colour.
+  bool flat() const { return flat_; }
   bool has_area() const override { return true; }
   Vec3 radiance_at_infinity(const Vec3& direction, bool bidirectional = false) const override;
   float pdf_at_infinity(const Vec3& direction, bool bidirectional = false) const override;
@@ -97,6 +112,7 @@ class EnvironmentEmitter final : public Emitter {
   double inv_total_ = 0.0;      // 1 / sum of value x solid angle (0: the table is black)
   float uniform_share_ = 1.0f;  // kUniformShare, or 1 when the table is black
   Vec3 integral_{0.0f};
+  bool flat_ = false;
 };
 
 }  // namespace photon

@@ -598,6 +598,27 @@ TEST(Environment, RadiosityFloorUnderALinearSkyReceivesItsIrradiance) {
     }
 }
 
+TEST(Environment, AFlatWorldIsLitByBsdfSamplesAlone) {
+  // A node tree that gives one colour everywhere (an RGB node into the Background) is lit as
+  // the uniform world is; one texel of another colour keeps the table's light samples.
+  const Vec3 grey(0.37f, 0.44f, 0.5f);
+  const EnvironmentEmitter flat([&](const Vec3&) { return grey; }, 64);
+  EXPECT_TRUE(flat.flat());
+  EXPECT_TRUE(flat.flags() & kEmitterBsdfSampledOnly);
+  EXPECT_EQ(flat.pdf_li_at_infinity(Vec3(0.0f), Vec3(0, 0, 1)), 0.0f);
+  LightSample ls;
+  EXPECT_FALSE(flat.sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.3f, 0.6f)}, nullptr, &ls));
+  // Bidirectional estimators (VCM, portals) still sample its table.
+  const PhotonFrame frame;
+  EXPECT_TRUE(flat.sample_li(Vec3(0.0f), LightSampleU{0.0f, Vec2(0.3f, 0.6f)}, &frame, &ls));
+  EXPECT_EQ(flat.radiance_at_infinity(Vec3(0, 0, 1)).x, grey.x);
+  const EnvironmentEmitter spotted([&](const Vec3& d) { return d.z > 0.99f ? grey * 2.0f : grey; },
+                                   64);
+  EXPECT_FALSE(spotted.flat());
+  EXPECT_FALSE(spotted.flags() & kEmitterBsdfSampledOnly);
+  EXPECT_FALSE(EnvironmentEmitter([](const Vec3&) { return Vec3(0.0f); }, 64).flat());
+}
+
 TEST(Environment, CancelStopsTabulating) {
   // With the render already cancelled the function is not evaluated (the table is black and the
   // density uniform); otherwise once per texel.
