@@ -3,6 +3,8 @@
 // src/tests/bsdfs.cpp). Header-only; included by *_test.cpp files only.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -190,6 +192,41 @@ struct Chi2Test {
         seed, renormalize_expected);
   }
 };
+
+// The direction `theta_deg` from b's shading normal, at azimuth `phi` in its frame.
+inline Vec3 direction_at(const Bsdf& b, float theta_deg, float phi = 0.0f) {
+  const float t = theta_deg * static_cast<float>(kChi2Pi / 180.0);
+  return b.frame().to_world(
+      Vec3(std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi), std::cos(t)));
+}
+
+// `n` samples of b at wo: each non-delta one's pdf is pdf()'s and its weight eval() |cos| / pdf,
+// to 1e-3. `checked` (if given) receives how many were compared.
+inline ::testing::AssertionResult sample_weights_match(const Bsdf& b, const Vec3& wo, uint64_t seed,
+                                                       int n, int* checked = nullptr) {
+  Uniform rng(seed);
+  int count = 0;
+  for (int i = 0; i < n; ++i) {
+    BsdfSample s;
+    const float u_lobe = rng.next();
+    if (!b.sample(wo, u_lobe, rng.next_2d(), kLobeAll, &s) || s.is_delta()) continue;
+    const Vec3 f = b.eval(wo, s.wi);
+    const float pdf = b.pdf(wo, s.wi);
+    if (!(std::fabs(s.pdf - pdf) <= 1e-3f * pdf + 1e-6f))
+      return ::testing::AssertionFailure()
+             << "sample " << i << ": pdf " << s.pdf << ", pdf() " << pdf;
+    const float cos = std::fabs(dot(s.wi, b.frame().n));
+    for (int k = 0; k < 3; ++k) {
+      const float want = f[k] * cos / pdf;
+      if (!(std::fabs(s.weight[k] - want) <= 1e-3f * s.weight[k] + 1e-6f))
+        return ::testing::AssertionFailure() << "sample " << i << " channel " << k << ": weight "
+                                             << s.weight[k] << ", f |cos| / pdf " << want;
+    }
+    ++count;
+  }
+  if (checked) *checked = count;
+  return ::testing::AssertionSuccess();
+}
 
 // Sidak correction: a suite of `tests` rejects a correct implementation with probability 0.01.
 inline double sidak_significance(int tests) {

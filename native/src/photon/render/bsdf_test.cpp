@@ -108,12 +108,6 @@ Bsdf make_bsdf(const BsdfSetup& s) {
   return b;
 }
 
-Vec3 direction_at(const Bsdf& b, float theta_deg, float phi = 0.0f) {
-  const float t = theta_deg * static_cast<float>(kPiD / 180.0);
-  return b.frame().to_world(
-      Vec3(std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi), std::cos(t)));
-}
-
 struct Chi2Case {
   std::string name;
   BsdfSetup setup;

@@ -85,9 +85,7 @@ Bsdf make(const std::vector<Lobe>& lobes, const Vec3& n = kN) {
 }
 
 Vec3 dir(const Bsdf& b, float theta_deg, float phi = 0.7f) {
-  const float t = theta_deg * static_cast<float>(kChi2Pi / 180.0);
-  return b.frame().to_world(
-      Vec3(std::sin(t) * std::cos(phi), std::sin(t) * std::sin(phi), std::cos(t)));
+  return direction_at(b, theta_deg, phi);
 }
 
 struct Case {
@@ -143,18 +141,7 @@ TEST_P(PrincipledExtrasChi2, SampleMatchesPdfAndEval) {
       << "chi2 " << r.statistic << " dof " << r.dof;
   std::printf("  %-22s chi2 %8.1f dof %4d p %.3g\n", c.name.c_str(), r.statistic, r.dof, r.p_value);
   // The sample weight is eval |cos| / pdf of what eval() and pdf() say for that direction.
-  Uniform rng(7);
-  for (int i = 0; i < 2000; ++i) {
-    BsdfSample s;
-    const float ul = rng.next();
-    if (!b.sample(wo, ul, rng.next_2d(), kLobeAll, &s) || s.is_delta()) continue;
-    const Vec3 f = b.eval(wo, s.wi);
-    const float pdf = b.pdf(wo, s.wi);
-    ASSERT_NEAR(s.pdf, pdf, 1e-3f * pdf + 1e-6f);
-    const float cos = std::fabs(dot(s.wi, b.frame().n));
-    for (int k = 0; k < 3; ++k)
-      ASSERT_NEAR(s.weight[k], f[k] * cos / pdf, 1e-3f * s.weight[k] + 1e-6f);
-  }
+  EXPECT_TRUE(sample_weights_match(b, wo, 7, 2000));
 }
 
 INSTANTIATE_TEST_SUITE_P(Lobes, PrincipledExtrasChi2, ::testing::ValuesIn(cases()),
