@@ -11,6 +11,7 @@
 #include "photon/render/bsdf_lobes.h"
 #include "photon/render/material_eval.h"
 #include "photon/render/shader_globals.h"
+#include "photon/render/shadow_ray.h"
 #include "photon/render/world_shader.h"
 
 namespace photon {
@@ -45,16 +46,6 @@ Vec3 average_normal(const ShadingPoint& shading, const Vec3& fallback) {
   }
   if (!(length_squared(sum) > 0.0f) || !is_finite(sum)) return fallback;
   return normalize(sum);
-}
-
-// The Transparent closures' summed weight (Cycles' surface_shader_transparency); the surface's
-// alpha is 1 minus it, clamped.
-Vec3 transparent_weight(const ShadingPoint& shading) {
-  Vec3 transparent(0.0f);
-  for (int i = 0; i < shading.bsdf.lobe_count(); ++i)
-    if (shading.bsdf.lobe(i).type == LobeType::kTransparent)
-      transparent += shading.bsdf.lobe(i).weight;
-  return transparent;
 }
 
 Vec3 clamp01(const Vec3& v) {
@@ -341,7 +332,8 @@ void DataPassRow::add(size_t i, int sample, uint64_t pixel_index, const Ray& cam
     const Vec3 wo = normalize(-ray.direction);
     const ShadingPoint shading =
         shade_surface(si, wo, *context_.accel, context_.textures, shade_ray);
-    const Vec3 transparency = transparent_weight(shading);
+    // The surface's alpha is 1 minus it, clamped.
+    const Vec3 transparency = transparent_weight(shading.bsdf);
     const Vec3 alpha = clamp01(Vec3(1.0f) - transparency);
 
     // Cycles' shaders write AOVs at every hit before the single-sample passes are done.

@@ -6,15 +6,19 @@
 
 namespace photon {
 
+Vec3 transparent_weight(const Bsdf& bsdf) {
+  Vec3 t(0.0f);
+  for (int i = 0; i < bsdf.lobe_count(); ++i)
+    if (bsdf.lobe(i).type == LobeType::kTransparent) t += bsdf.lobe(i).weight;
+  return t;
+}
+
 Vec3 straight_transmittance(const Accel& accel, const TextureSet* textures,
                             const SurfaceInteraction& si, const Vec3& direction) {
   if (!si.mat || !si.mat->may_be_transparent()) return Vec3(0.0f);
   ShadeRay ray;
   ray.flags = kRayShadow;
-  const ShadingPoint sp = shade_surface(si, -direction, accel, textures, ray);
-  Vec3 t(0.0f);
-  for (int i = 0; i < sp.bsdf.lobe_count(); ++i)
-    if (sp.bsdf.lobe(i).type == LobeType::kTransparent) t += sp.bsdf.lobe(i).weight;
+  const Vec3 t = transparent_weight(shade_surface(si, -direction, accel, textures, ray).bsdf);
   // Weights are clamped inputs times mix factors: at most 1 unless an Add Shader sums two.
   return is_finite(t) ? max(t, Vec3(0.0f)) : Vec3(0.0f);
 }

@@ -11,10 +11,15 @@
 #pragma once
 
 #include "photon/render/accel.h"
+#include "photon/render/bsdf.h"
 
 namespace photon {
 
 class TextureSet;
+
+// The summed weight of a BSDF's Transparent lobes (Cycles' surface_shader_transparency): the
+// share of light that passes its surface straight through.
+Vec3 transparent_weight(const Bsdf& bsdf);
 
 // The share of light that passes straight through the surface `si` travelling along
 // `direction`: the summed weights of its Transparent lobes, evaluated as a shadow ray sees the
