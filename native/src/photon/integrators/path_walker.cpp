@@ -29,6 +29,15 @@ void spawn_ray(const SurfaceInteraction& si, const Vec3& wi, float length_scale,
 
 namespace {
 
+// A power-carrying path through a refraction takes the adjoint BSDF's factor into the sample's
+// weight. Russian roulette by the bounce's albedo is drawn before it: the factor is no loss of
+// energy but its spreading into a denser medium, and photons through a closed glass object,
+// multiplied by 1 / eta^2 and then eta^2, keep their power and their number.
+void apply_adjoint(const PathRules& rules, const Bsdf& bsdf, const Vec3& wo, BsdfSample* s) {
+  if (rules.adjoint && (s->flags & kLobeTransmission) && !s->transparent)
+    s->weight *= bsdf.adjoint_scale(wo, s->wi);
+}
+
 // continue_path for a spectral path: the same draws and rules on beta. Q of Russian roulette
 // is taken over the wavelengths (beta is 0 at those not in use).
 bool continue_spectral_path(const PathRules& rules, const SpectralBsdf& bsdf, const Vec3& wo,
@@ -45,15 +54,18 @@ bool continue_spectral_path(const PathRules& rules, const SpectralBsdf& bsdf, co
   for (int i = 0; i < spectral::kSpectrumSamples; ++i)
     if (!state->wl.active(i)) weight[i] = state->beta[i] = 0.0f;
   if (is_black(weight)) return false;
+  const SampledSpectrum adjoint = rules.adjoint && (ss.flags & kLobeTransmission) && !ss.transparent
+                                      ? bsdf.adjoint_scale(wo, ss.wi)
+                                      : SampledSpectrum(1.0f);
   switch (rules.roulette) {
     case Roulette::kBounceAlbedo: {
       const float q = std::min(1.0f, max_component(weight));
       if (!(u_survive < q)) return false;
-      state->beta = state->beta * weight / q;
+      state->beta = state->beta * weight * adjoint / q;
       break;
     }
     case Roulette::kPathThroughput:
-      state->beta *= weight;
+      state->beta *= weight * adjoint;
       if (state->depth >= rules.roulette_depth) {
         const float q = std::min(1.0f, max_component(state->beta));
         if (!(sampler.get_1d() < q)) return false;
@@ -61,7 +73,7 @@ bool continue_spectral_path(const PathRules& rules, const SpectralBsdf& bsdf, co
       }
       break;
     case Roulette::kNone:
-      state->beta *= weight;
+      state->beta *= weight * adjoint;
       break;
   }
   s->wi = ss.wi;
@@ -88,11 +100,13 @@ bool continue_path(const PathRules& rules, const Bsdf& bsdf, const SpectralBsdf*
       if (!bsdf.sample(wo, u_lobe, u, rules.continue_lobes, s) || is_black(s->weight)) return false;
       const float q = std::min(1.0f, max_component(s->weight));
       if (!(u_survive < q)) return false;
+      apply_adjoint(rules, bsdf, wo, s);
       state->throughput = state->throughput * s->weight / q;
       break;
     }
     case Roulette::kPathThroughput: {
       if (!bsdf.sample(wo, u_lobe, u, rules.continue_lobes, s) || is_black(s->weight)) return false;
+      apply_adjoint(rules, bsdf, wo, s);
       state->throughput *= s->weight;
       // Arvo & Kirk 1990: survive with q = max channel of the path throughput, weight / q.
       if (state->depth >= rules.roulette_depth) {
@@ -104,6 +118,7 @@ bool continue_path(const PathRules& rules, const Bsdf& bsdf, const SpectralBsdf*
     }
     case Roulette::kNone:
       if (!bsdf.sample(wo, u_lobe, u, rules.continue_lobes, s) || is_black(s->weight)) return false;
+      apply_adjoint(rules, bsdf, wo, s);
       state->throughput *= s->weight;
       break;
   }

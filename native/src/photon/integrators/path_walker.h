@@ -42,6 +42,8 @@ struct PathRules {
   Roulette roulette = Roulette::kPathThroughput;
   int roulette_depth = 2;                     // kPathThroughput: first vertex depth with roulette
   bool transparent_keeps_visibility = false;  // camera paths through Transparent BSDFs
+  // Paths that carry power: each refraction multiplies by Bsdf::adjoint_scale.
+  bool adjoint = false;
 };
 
 // Rules of the paths that carry importance from the camera (camera paths, final gathers).
@@ -57,6 +59,7 @@ inline PathRules power_rules(int max_depth, uint8_t continue_lobes) {
   r.max_depth = max_depth;
   r.continue_lobes = continue_lobes;
   r.roulette = Roulette::kBounceAlbedo;
+  r.adjoint = true;
   return r;
 }
 

@@ -10,8 +10,8 @@
 
 #include "photon/lights/direct_lighting.h"
 #include "photon/scene/material_params.h"
-#include "photon/session/render_session.h"
 #include "photon/session/scene_resources.h"
+#include "photon/testing/session_output.h"
 #include "photon/testing/test_scenes.h"
 
 namespace photon {
@@ -110,13 +110,7 @@ double mean_image(const Scene& scene, IntegratorType integrator, uint64_t seed,
   s.photons = 20000;
   s.caustic_photons = 2000;
   s.final_gather_rays = 16;
-  RenderSession session(std::make_shared<Scene>(scene), s);
-  session.start();
-  session.wait();
-  const std::vector<float> rgba = session.image();
-  double sum = 0.0;
-  for (size_t i = 0; i < rgba.size(); i += 4) sum += (rgba[i] + rgba[i + 1] + rgba[i + 2]) / 3.0;
-  return sum / (rgba.size() / 4);
+  return render_mean(std::make_shared<Scene>(scene), s);
 }
 
 std::string name_of(Lighting lighting) {

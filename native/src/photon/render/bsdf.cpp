@@ -160,6 +160,34 @@ float Bsdf::eta(const Lobe& l) const {
   return front_facing_ || l.fixed_ior ? l.ior : 1.0f / l.ior;
 }
 
+int Bsdf::refracting_lobe(const Vec3& wo, const Vec3& wi) const {
+  if (!(dot(wo, ng_) * dot(wi, ng_) < 0.0f)) return -1;
+  int found = -1;
+  for (int i = 0; i < count_; ++i) {
+    const Lobe& l = lobes_[i];
+    switch (l.type) {
+      case LobeType::kGgxGlass:
+      case LobeType::kGgxRefraction:
+      case LobeType::kGgxDielectric:
+        if (found >= 0 && (lobes_[found].ior != l.ior || lobes_[found].abbe != l.abbe)) return -1;
+        if (found < 0) found = i;
+        break;
+      case LobeType::kTranslucent:
+        return -1;
+      default:
+        break;
+    }
+  }
+  return found;
+}
+
+float Bsdf::adjoint_scale(const Vec3& wo, const Vec3& wi) const {
+  const int i = refracting_lobe(wo, wi);
+  if (i < 0) return 1.0f;
+  const float e = eta(lobes_[i]);
+  return e > 0.0f && std::isfinite(e) ? 1.0f / (e * e) : 1.0f;
+}
+
 int Bsdf::selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const {
   float total = 0.0f;
   int selected = 0;

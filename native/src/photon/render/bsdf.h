@@ -183,6 +183,16 @@ class Bsdf {
   // does for its diffuse closures.
   void set_smooth_normal(const Vec3& n);
 
+  // What light carried from wo's side to wi's side (a photon, a light subpath) is multiplied by
+  // besides f |cos| / pdf. Camera paths see radiance unscaled through a refraction (above, as
+  // Cycles), so the adjoint BSDF that carries power the other way holds (n_wo / n_wi)^2 = 1 /
+  // eta^2 for a transmission (Veach 1997 sec. 5.2): without it, photons through one refracting
+  // surface (a pool's water, a window pane seen from inside) make light eta^2 brighter than
+  // camera paths do. 1 for a reflection, and for a surface whose transmission is not one
+  // refraction: a Translucent lobe, or refracting lobes of different indices (Transparent lobes,
+  // straight through, are the caller's to skip).
+  float adjoint_scale(const Vec3& wo, const Vec3& wi) const;
+
   const Frame& frame() const { return frame_; }
   const Vec3& ng() const { return ng_; }
   bool front_facing() const { return front_facing_; }
@@ -203,6 +213,9 @@ class Bsdf {
   float shadowing_mean(int i) const;
   // n_wi / n_wo of a transmission through this surface from wo's side.
   float eta(const Lobe& lobe) const;
+  // The lobe that refracts light from wo to wi, when wi is on the other side and the surface
+  // has exactly one index of refraction (adjoint_scale); -1 otherwise.
+  int refracting_lobe(const Vec3& wo, const Vec3& wi) const;
   // Lobe choice probabilities at wo over the lobes in `mask`; returns how many are non-zero.
   int selection_probabilities(const Vec3& wo_local, uint8_t mask, float* probs) const;
 

@@ -43,6 +43,18 @@ bool SpectralBsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask,
   return bsdf_ && BsdfMixture::sample(*bsdf_, *this, wo, u_lobe, u, mask, out);
 }
 
+SampledSpectrum SpectralBsdf::adjoint_scale(const Vec3& wo, const Vec3& wi) const {
+  if (!bsdf_) return SampledSpectrum(1.0f);
+  const int i = bsdf_->refracting_lobe(wo, wi);
+  if (i < 0 || !dispersive_[i]) return SampledSpectrum(bsdf_->adjoint_scale(wo, wi));
+  SampledSpectrum s(1.0f);
+  for (int j = 0; j < kSpectrumSamples; ++j) {
+    const float e = eta_[i][j];
+    if (e > 0.0f && std::isfinite(e)) s[j] = 1.0f / (e * e);
+  }
+  return s;
+}
+
 SampledSpectrum SpectralBsdf::diffuse_reflectance() const {
   SampledSpectrum r(0.0f);
   if (!bsdf_) return r;

@@ -53,6 +53,8 @@ class SpectralBsdf {
   SampledSpectrum eval(const Vec3& wo, const Vec3& wi, uint8_t mask = kLobeAll) const;
   float pdf(const Vec3& wo, const Vec3& wi, uint8_t mask = kLobeAll) const;
   bool sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, SpectralBsdfSample* out) const;
+  // Bsdf::adjoint_scale at each wavelength: a dispersive refraction's index is the wavelength's.
+  SampledSpectrum adjoint_scale(const Vec3& wo, const Vec3& wi) const;
   // Hemispherical reflectance of the diffuse lobes at the wavelengths.
   SampledSpectrum diffuse_reflectance() const;
   // Directional albedo at wo of the diffuse lobes at the wavelengths (Bsdf::diffuse_reflectance).

@@ -7,6 +7,17 @@
 
 namespace photon {
 
+double render_mean(std::shared_ptr<const Scene> scene, const RenderSettings& settings) {
+  RenderSession session(std::move(scene), settings);
+  session.start();
+  session.wait();
+  const std::vector<float> rgba = session.image();
+  if (rgba.empty()) return 0.0;
+  double sum = 0.0;
+  for (size_t i = 0; i < rgba.size(); i += 4) sum += (rgba[i] + rgba[i + 1] + rgba[i + 2]) / 3.0;
+  return sum / static_cast<double>(rgba.size() / 4);
+}
+
 SessionOutput render_whole_session(std::shared_ptr<const Scene> scene, const RenderSettings& s) {
   RenderSession session(std::move(scene), s);
   session.start();

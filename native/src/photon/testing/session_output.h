@@ -27,4 +27,7 @@ struct SessionOutput {
 SessionOutput render_whole_session(std::shared_ptr<const Scene> scene,
                                    const RenderSettings& settings);
 
+// Renders to the end and returns the mean over the rendered image's pixels of (R + G + B) / 3.
+double render_mean(std::shared_ptr<const Scene> scene, const RenderSettings& settings);
+
 }  // namespace photon

@@ -114,7 +114,7 @@ class CameraPath {
       const Vec3 dir = d / dist;
       const SampledSpectrum fc = bsdf.eval(wo, dir);
       if (is_black(fc)) continue;
-      const SampledSpectrum fl = lb.eval(v.wo, -dir);
+      const SampledSpectrum fl = lb.eval(v.wo, -dir) * lb.adjoint_scale(v.wo, -dir);
       if (is_black(fl)) continue;
       const float cos_c = std::fabs(dot(ng, dir)), cos_l = std::fabs(dot(v.ng, dir));
       const float ng_wo = std::fabs(dot(v.ng, v.wo));

@@ -74,12 +74,12 @@ bool VcmBsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, VcmBsdfSample* out) c
   if (spectral_) {
     SpectralBsdfSample s;
     if (!spectral_->sample(wo, u_lobe, u, kLobeAll, &s)) return false;
-    *out = {s.wi, s.weight, s.pdf, s.flags, s.terminate};
+    *out = {s.wi, s.weight, s.pdf, s.flags, s.terminate, s.transparent};
     return true;
   }
   BsdfSample s;
   if (!rgb_->sample(wo, u_lobe, u, kLobeAll, &s)) return false;
-  *out = {s.wi, rgb_lanes(s.weight), s.pdf, s.flags, false};
+  *out = {s.wi, rgb_lanes(s.weight), s.pdf, s.flags, false, s.transparent};
   return true;
 }
 

@@ -94,6 +94,7 @@ struct VcmBsdfSample {
   float pdf = 0.0f;
   uint8_t flags = 0;
   bool terminate = false;
+  bool transparent = false;  // a Transparent lobe: straight through
   bool is_delta() const { return (flags & kLobeSpecular) != 0; }
 };
 
@@ -114,6 +115,11 @@ class VcmBsdf {
     return spectral_ ? spectral_->pdf(wo, wi) : rgb_->pdf(wo, wi);
   }
   bool sample(const Vec3& wo, float u_lobe, Vec2 u, VcmBsdfSample* out) const;
+  // Bsdf::adjoint_scale: what light subpaths take besides f from wo's side to wi's.
+  SampledSpectrum adjoint_scale(const Vec3& wo, const Vec3& wi) const {
+    return spectral_ ? spectral_->adjoint_scale(wo, wi)
+                     : SampledSpectrum(rgb_->adjoint_scale(wo, wi));
+  }
 
  private:
   const Bsdf* rgb_ = nullptr;

@@ -34,7 +34,7 @@ void connect_to_camera(const RenderContext& context, const VcmCamera& camera, co
   float cos_axis, distance;
   if (!camera.project(v.p, &raster, &cos_axis, &distance)) return;
   const Vec3 to_camera = (camera.position() - v.p) / distance;
-  const SampledSpectrum f = bsdf.eval(v.wo, to_camera);
+  const SampledSpectrum f = bsdf.eval(v.wo, to_camera) * bsdf.adjoint_scale(v.wo, to_camera);
   if (is_black(f)) return;
   const float cos_surface = std::fabs(dot(v.ng, to_camera));
   // The adjoint BSDF with the shading normal (Veach eq. 5.17): the geometric cosine towards
@@ -138,6 +138,7 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
     }
     throughput =
         throughput * s.weight * (adjoint_correction(bsdf.frame().n, ng, wo, s.wi) / continuation);
+    if (!s.transparent && (s.flags & kLobeTransmission)) throughput *= bsdf.adjoint_scale(wo, s.wi);
     if (s.terminate) path_wl.terminate_secondary();  // the weight is the hero's alone
     if (is_black(throughput)) return;
     mask = visibility_after(s.flags);
