@@ -1,7 +1,7 @@
 """Light through a pane that lets part of it straight through (a window made as Mix(Glass,
-Transparent), a tinted Transparent BSDF, Principled Alpha) against that Blender's Cycles
-(tests/blender/scripts/transparent_shadows.py): shadow rays cross the pane's Transparent share
-in both engines, and the light is counted once. The floor's mean colour must agree within 2% of
+Transparent), on a slab and on a single sheet, a tinted Transparent BSDF, Principled Alpha)
+against that Blender's Cycles (tests/blender/scripts/transparent_shadows.py): shadow rays cross
+the pane's Transparent share in both engines, and the light is counted once. The floor's mean colour must agree within 2% of
 its brightest channel."""
 
 import sys
@@ -14,7 +14,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent / "scripts"))
 from harness import read_image  # noqa: E402
 
 TOLERANCE = 0.02
-CASES = ["window", "tinted", "alpha"]
+CASES = ["window", "sheet", "tinted", "alpha"]
 
 
 @pytest.fixture(scope="module")

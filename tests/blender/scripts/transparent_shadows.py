@@ -2,8 +2,9 @@
 folder given: light reaches the floor through the pane's Transparent share, which shadow rays
 cross in both engines (and through its glass share, refracted: caustics). The camera, below the
 pane, sees only the floor. Cases: a window as artists make one (Mix 0.8 of a sharp Glass and a
-grey Transparent BSDF, on a 1 cm slab), a tinted Transparent BSDF, and a Principled BSDF at
-Alpha 0.4.
+grey Transparent BSDF, on a 1 cm slab), the same material on a single sheet (the floor is then
+"inside the glass": photons take the adjoint's 1 / eta^2 there), a tinted Transparent BSDF, and a
+Principled BSDF at Alpha 0.4.
 Args: out_dir, photon_samples, cycles_samples. Returns {case: {"cycles": path, "photon": path}}.
 """
 
@@ -43,7 +44,7 @@ def alpha(mat):
     return p.outputs["BSDF"]
 
 
-CASES = {"window": window, "tinted": tinted, "alpha": alpha}
+CASES = {"window": window, "sheet": window, "tinted": tinted, "alpha": alpha}
 
 
 def build(case):
@@ -59,9 +60,7 @@ def build(case):
     out = next(n for n in tree.nodes if n.type == 'OUTPUT_MATERIAL')
     tree.links.new(CASES[case](mat), out.inputs["Surface"])
     if case == "window":
-        # Glass 1 cm thick, as windows are modelled: a single refracting sheet would leave the
-        # floor "inside the glass", where photons (flux) and Cycles' paths (which leave out the
-        # radiance's eta^2 across a refraction) disagree by that factor.
+        # Glass 1 cm thick, as windows are modelled.
         builders.box("Pane", (-2, -2, 0.99), (2, 2, 1.0), mat)
     else:
         builders.quad("Pane", (-2, -2, 1.0), (4, 0, 0), (0, 4, 0), mat)
