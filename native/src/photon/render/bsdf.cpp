@@ -234,6 +234,26 @@ float Bsdf::pdf(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
   return BsdfMixture::pdf(*this, RgbColours{lobes_}, wo, wi, mask);
 }
 
+float Bsdf::pdf_reverse(const Vec3& wo, const Vec3& wi, uint8_t mask) const {
+  if (dot(wi, ng_) >= 0.0f) return pdf(wi, wo, mask);
+  return seen_from_behind().pdf(wi, wo, mask);
+}
+
+Bsdf Bsdf::seen_from_behind() const {
+  Bsdf b(-frame_.n, -ng_, !front_facing_);
+  b.valid_ = valid_;
+  if (has_smooth_) b.set_smooth_normal(-smooth_n_);
+  for (int i = 0; i < count_; ++i) {
+    Lobe l = lobes_[i];
+    if (own_frame_[i]) {
+      l.normal = -lobe_frames_[i].n;
+      l.tangent = lobe_frames_[i].t;
+    }
+    b.add(l);
+  }
+  return b;
+}
+
 bool Bsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, uint8_t mask, BsdfSample* out) const {
   return BsdfMixture::sample(*this, RgbColours{lobes_}, wo, u_lobe, u, mask, out);
 }

@@ -157,6 +157,13 @@ class Bsdf {
   // Solid-angle pdf of sample() producing wi, for the same mask (non-delta lobes only; the
   // lobe choice probabilities are included).
   float pdf(const Vec3& wo, const Vec3& wi, uint8_t mask = kLobeAll) const;
+  // The density with which sample() from wi's side would produce wo: pdf(wi, wo), with the BSDF
+  // seen from behind when wi is on the other side (a transmission), where pdf(wi, wo) is 0.
+  // Bidirectional methods weigh their techniques with it (Veach 1997 sec. 10.2).
+  float pdf_reverse(const Vec3& wo, const Vec3& wi, uint8_t mask = kLobeAll) const;
+  // The same surface with its normals turned to the other side: the BSDF a path that reaches
+  // it from behind would shade with (front_facing inverted, so refraction's eta inverts).
+  Bsdf seen_from_behind() const;
   // Chooses a lobe among those in `mask` with probability proportional to its estimated albedo
   // at wo (using u_lobe), then samples it with u. For a non-delta lobe, weight and pdf are
   // those of the whole masked mixture (one-sample MIS over lobes). Returns false when nothing

@@ -70,7 +70,7 @@ class CameraPath {
     const float cos_geometric = std::fabs(dot(ng, il.wi));
     const bool delta = (lights_.flags(k) & (kEmitterDeltaPosition | kEmitterDeltaDirection)) != 0;
     const float dir_pdf = delta ? 0.0f : bsdf.pdf(wo, il.wi) * continuation;
-    const float rev_pdf = bsdf.pdf(il.wi, wo) * continuation;
+    const float rev_pdf = bsdf.pdf_reverse(wo, il.wi) * continuation;
     // Tech. report eqs. 38-40.
     const float w_light = dir_pdf / (pick * il.direct_pdf);
     const float w_camera = il.emission_pdf * cos_geometric / (il.direct_pdf * il.cos_light) *
@@ -122,9 +122,9 @@ class CameraPath {
       const float adjoint = std::fabs(dot(lb.frame().n, v.wo)) / ng_wo;
       const float lc = shaded_[i - begin_].continuation;
       const float cam_dir_pdf = bsdf.pdf(wo, dir) * continuation;
-      const float cam_rev_pdf = bsdf.pdf(dir, wo) * continuation;
+      const float cam_rev_pdf = bsdf.pdf_reverse(wo, dir) * continuation;
       const float light_dir_pdf = lb.pdf(v.wo, -dir) * lc;
-      const float light_rev_pdf = lb.pdf(-dir, v.wo) * lc;
+      const float light_rev_pdf = lb.pdf_reverse(v.wo, -dir) * lc;
       // Tech. report eqs. 40-42.
       const float w_light =
           cam_dir_pdf * cos_l / dist2 * (mis_.vm_factor + v.dvcm + v.dvc * light_rev_pdf);
@@ -159,7 +159,7 @@ class CameraPath {
       float weight = 1.0f;
       if (mis_.mode != VcmMode::kPpm) {
         const float cam_dir_pdf = bsdf.pdf(wo, v.wo) * continuation;
-        const float cam_rev_pdf = bsdf.pdf(v.wo, wo) * continuation;
+        const float cam_rev_pdf = bsdf.pdf_reverse(wo, v.wo) * continuation;
         // Tech. report eqs. 37-39.
         const float w_light = v.dvcm * mis_.vc_factor + v.dvm * cam_dir_pdf;
         const float w_camera = c.dvcm * mis_.vc_factor + c.dvm * cam_rev_pdf;
@@ -299,7 +299,7 @@ VcmCameraSample trace_vcm_camera_path(const RenderContext& context, const VcmLig
       c.dvc *= cos_out;
       c.dvm *= cos_out;
     } else {
-      const float rev_pdf = bsdf.pdf(bs.wi, wo) * continuation;
+      const float rev_pdf = bsdf.pdf_reverse(wo, bs.wi) * continuation;
       c.dvc = cos_out / dir_pdf * (c.dvc * rev_pdf + c.dvcm + mis.vm_factor);
       c.dvm = cos_out / dir_pdf * (c.dvm * rev_pdf + c.dvcm * mis.vc_factor + 1.0f);
       c.dvcm = 1.0f / dir_pdf;

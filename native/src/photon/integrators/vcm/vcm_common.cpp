@@ -70,6 +70,13 @@ Vec3 VcmColours::rgb(const SampledSpectrum& sum) const {
   return tally.rgb(*wl);
 }
 
+float VcmBsdf::pdf_reverse(const Vec3& wo, const Vec3& wi) const {
+  if (dot(wi, rgb_->ng()) >= 0.0f) return pdf(wi, wo);
+  const Bsdf behind = rgb_->seen_from_behind();
+  return spectral_ ? SpectralBsdf(behind, spectral_->wavelengths()).pdf(wi, wo)
+                   : behind.pdf(wi, wo);
+}
+
 bool VcmBsdf::sample(const Vec3& wo, float u_lobe, Vec2 u, VcmBsdfSample* out) const {
   if (spectral_) {
     SpectralBsdfSample s;

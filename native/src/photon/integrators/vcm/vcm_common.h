@@ -114,6 +114,8 @@ class VcmBsdf {
   float pdf(const Vec3& wo, const Vec3& wi) const {
     return spectral_ ? spectral_->pdf(wo, wi) : rgb_->pdf(wo, wi);
   }
+  // Bsdf::pdf_reverse at VCM's colours: the density of sampling wo from wi's side.
+  float pdf_reverse(const Vec3& wo, const Vec3& wi) const;
   bool sample(const Vec3& wo, float u_lobe, Vec2 u, VcmBsdfSample* out) const;
   // Bsdf::adjoint_scale: what light subpaths take besides f from wo's side to wi's.
   SampledSpectrum adjoint_scale(const Vec3& wo, const Vec3& wi) const {

@@ -43,7 +43,7 @@ void connect_to_camera(const RenderContext& context, const VcmCamera& camera, co
   if (!(ng_wo > 1e-9f)) return;
   const float image_to_surface =
       camera.raster_to_solid_angle(cos_axis) * cos_surface / (distance * distance);
-  const float rev_pdf = bsdf.pdf(to_camera, v.wo) * continuation;
+  const float rev_pdf = bsdf.pdf_reverse(v.wo, to_camera) * continuation;
   const float n = static_cast<float>(mis.light_paths);
   VcmSplat s;
   s.x = raster.x;
@@ -131,7 +131,7 @@ void trace_one(const RenderContext& context, const VcmLights& lights, const VcmC
       dvc *= cos_out;
       dvm *= cos_out;
     } else {
-      const float rev_pdf = bsdf.pdf(s.wi, wo) * continuation;
+      const float rev_pdf = bsdf.pdf_reverse(wo, s.wi) * continuation;
       dvc = cos_out / dir_pdf * (dvc * rev_pdf + dvcm + mis.vm_factor);
       dvm = cos_out / dir_pdf * (dvm * rev_pdf + dvcm * mis.vc_factor + 1.0f);
       dvcm = 1.0f / dir_pdf;
