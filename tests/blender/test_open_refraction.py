@@ -3,7 +3,7 @@ photon map, SPPM and VCM against that Blender's Cycles. Photons cross the sheet 
 BSDF's 1 / eta^2; without it the floor is eta^2 = 1.77 times as bright as Cycles'. Through a
 rough sheet VCM weighs its techniques with the densities of both sides (2.2 times too bright
 without). The floor's mean must agree within 5%. SPPM is left out of the rough case: its
-visible points on the sheet read the light from behind it short (docs/sppm.md)."""
+visible points on the sheet converge slowly on the light behind it (docs/sppm.md)."""
 
 import sys
 from pathlib import Path
