@@ -105,6 +105,15 @@ def test_multiscatter_ggx_is_rendered_in_4x_and_reported_in_3x(blender, converte
             "rendered as single-scattering GGX (darker where rough)"]
 
 
+def test_ashikhmin_shirley_is_rendered_as_ggx_and_reported(converted):
+    closure = only_closure(converted, "AshikhminGlossy")
+    assert closure["type"] == "GLOSSY" and not closure.get("beckmann") and not closure["sharp"]
+    assert close(closure["params"]["roughness"], 0.4)
+    assert material(converted, "AshikhminGlossy")["warnings"] == [
+        "Material 'AshikhminGlossy': node 'Glossy BSDF': the Ashikhmin Shirley distribution is "
+        "rendered as GGX"]
+
+
 def test_add_shader_through_reroute_keeps_both_and_shares_the_texture(converted):
     closures = material(converted, "AddEmit")["closures"]
     assert [c["type"] for c in closures] == ["DIFFUSE", "EMISSION"]

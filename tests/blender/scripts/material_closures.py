@@ -157,6 +157,14 @@ def build(folder):
     glossy.distribution = 'MULTI_GGX'
     links.new(glossy.outputs[0], out.inputs["Surface"])
 
+    # A Glossy BSDF with the Ashikhmin-Shirley distribution, which Photon renders as GGX.
+    mat, nodes, links, bsdf, out = new_material("AshikhminGlossy")
+    nodes.remove(bsdf)
+    glossy = nodes.new("ShaderNodeBsdfGlossy")
+    glossy.distribution = 'ASHIKHMIN_SHIRLEY'
+    glossy.inputs["Roughness"].default_value = 0.4
+    links.new(glossy.outputs[0], out.inputs["Surface"])
+
     # A packed image (written from its packed bytes) and a generated one (rendered to EXR).
     packed = write_png("PackedPNG", os.path.join(folder, "packed_src.png"), 4, 2,
                        (0.1, 0.2, 0.3, 1.0))
